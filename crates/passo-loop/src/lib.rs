@@ -1,0 +1,1 @@
+//! Fixed-timestep loop (filled in below).

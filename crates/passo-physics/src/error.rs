@@ -1,0 +1,94 @@
+//! Errors returned where values enter the physics API.
+
+use crate::BodyId;
+use std::fmt;
+
+/// Why the physics API refused a value.
+///
+/// Every value that enters the world (body definitions, settings, forces,
+/// impulses) is checked where it enters, so the world never stores a NaN or
+/// an infinity.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PhysicsError {
+    /// A value that must be finite was NaN or infinite.
+    NonFinite {
+        /// The field or argument, e.g. `"BodyDef::position"`.
+        what: &'static str,
+    },
+    /// A finite value outside its allowed range.
+    OutOfRange {
+        /// The field or argument, e.g. `"BodyDef::mass"`.
+        what: &'static str,
+        /// The value that was given.
+        value: f32,
+        /// The allowed range, e.g. `"> 0 kg"`.
+        allowed: &'static str,
+    },
+    /// The id names a body that was removed (or never existed in this world).
+    StaleBody(BodyId),
+}
+
+impl fmt::Display for PhysicsError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NonFinite { what } => write!(f, "{what} must be finite (got NaN or infinity)"),
+            Self::OutOfRange {
+                what,
+                value,
+                allowed,
+            } => write!(f, "{what} must be {allowed}, got {value}"),
+            Self::StaleBody(id) => write!(f, "{id:?} does not name a body in this world"),
+        }
+    }
+}
+
+impl std::error::Error for PhysicsError {}
+
+/// Checks that a scalar is finite.
+pub(crate) fn finite(what: &'static str, value: f32) -> Result<f32, PhysicsError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(PhysicsError::NonFinite { what })
+    }
+}
+
+/// Checks that both components of a vector are finite.
+pub(crate) fn finite_vec(
+    what: &'static str,
+    value: glam::Vec2,
+) -> Result<glam::Vec2, PhysicsError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(PhysicsError::NonFinite { what })
+    }
+}
+
+/// Checks that a scalar is finite and `>= 0`.
+pub(crate) fn non_negative(what: &'static str, value: f32) -> Result<f32, PhysicsError> {
+    finite(what, value)?;
+    if value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(PhysicsError::OutOfRange {
+            what,
+            value,
+            allowed: ">= 0",
+        })
+    }
+}
+
+/// Checks that a scalar is finite and `> 0`.
+pub(crate) fn positive(what: &'static str, value: f32) -> Result<f32, PhysicsError> {
+    finite(what, value)?;
+    if value > 0.0 {
+        Ok(value)
+    } else {
+        Err(PhysicsError::OutOfRange {
+            what,
+            value,
+            allowed: "> 0",
+        })
+    }
+}

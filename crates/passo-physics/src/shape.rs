@@ -1,0 +1,63 @@
+//! Collision shapes: circles and axis-aligned boxes. Bodies do not rotate.
+
+use glam::Vec2;
+
+/// The shape of a body, centred on its position.
+///
+/// Bodies do not rotate, so a box stays axis-aligned.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Shape {
+    /// A circle (disc) of the given radius, metres.
+    Circle {
+        /// Radius, metres, > 0.
+        radius: f32,
+    },
+    /// An axis-aligned box with the given half extents, metres.
+    Box {
+        /// Half the width and half the height, metres, both > 0.
+        half_extents: Vec2,
+    },
+}
+
+impl Shape {
+    /// A circle of the given radius, metres.
+    pub const fn circle(radius: f32) -> Self {
+        Self::Circle { radius }
+    }
+
+    /// A box of the given full width and height, metres.
+    pub fn rect(width: f32, height: f32) -> Self {
+        Self::Box {
+            half_extents: Vec2::new(width * 0.5, height * 0.5),
+        }
+    }
+
+    /// Area in square metres (used to derive mass from density).
+    pub fn area(&self) -> f32 {
+        match *self {
+            Self::Circle { radius } => std::f32::consts::PI * radius * radius,
+            Self::Box { half_extents } => 4.0 * half_extents.x * half_extents.y,
+        }
+    }
+
+    /// Half extents of the shape's bounding box, metres.
+    pub fn half_extents(&self) -> Vec2 {
+        match *self {
+            Self::Circle { radius } => Vec2::splat(radius),
+            Self::Box { half_extents } => half_extents,
+        }
+    }
+
+    /// Checks that every size is finite and strictly positive.
+    pub(crate) fn validate(&self) -> Result<(), crate::PhysicsError> {
+        match *self {
+            Self::Circle { radius } => crate::error::positive("Shape::Circle::radius", radius)?,
+            Self::Box { half_extents } => {
+                crate::error::positive("Shape::Box::half_extents.x", half_extents.x)?;
+                crate::error::positive("Shape::Box::half_extents.y", half_extents.y)?
+            }
+        };
+        Ok(())
+    }
+}
