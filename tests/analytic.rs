@@ -333,7 +333,7 @@ fn stable_drag_never_overshoots_where_the_plain_form_blows_up() {
     let (mut stable, s) = single(forces, Integrator::SemiImplicitEuler, def);
     let mut plain = World::new(WorldSettings {
         force_form: ForceForm::Explicit,
-        ..stable.settings().clone()
+        ..*stable.settings()
     })
     .unwrap();
     let p = plain.add_body(def).unwrap();

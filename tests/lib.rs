@@ -1,1 +1,107 @@
+#![doc = include_str!("../README.md")]
 //! Helpers shared by the cross-crate tests.
+
+use std::time::Duration;
+
+/// A small deterministic generator (xorshift64*) for jittered schedules and
+/// random scenes, so tests need no extra dependency and replay exactly.
+#[derive(Clone, Debug)]
+pub struct Rng(u64);
+
+impl Rng {
+    /// A generator from a seed (0 is replaced by a fixed odd constant).
+    pub fn new(seed: u64) -> Self {
+        Self(if seed == 0 {
+            0x9E37_79B9_7F4A_7C15
+        } else {
+            seed
+        })
+    }
+
+    /// The next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    /// A uniform float in `[lo, hi)`.
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        let unit = (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
+        lo + (hi - lo) * unit
+    }
+}
+
+/// The frame time of a display refreshing at `hz`, to the nanosecond.
+pub fn frame_time(hz: u64) -> Duration {
+    Duration::from_nanos(1_000_000_000 / hz)
+}
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, BodyId, BodyKind, Shape, World, collide};
+
+/// The deepest overlap between any two shaped bodies (dynamic-dynamic or
+/// dynamic-static, sensors excluded), from exact geometry at the current
+/// positions: not from the solver's cached contact data.
+pub fn max_penetration(world: &World) -> f32 {
+    let bodies: Vec<_> = world
+        .bodies()
+        .filter(|b| b.shape.is_some() && !b.sensor)
+        .collect();
+    let mut deepest = 0.0f32;
+    for (i, a) in bodies.iter().enumerate() {
+        for b in &bodies[i + 1..] {
+            if a.kind == BodyKind::Static && b.kind == BodyKind::Static {
+                continue;
+            }
+            if !a.filter.allows(&b.filter) {
+                continue;
+            }
+            let (sa, sb) = (a.shape.unwrap(), b.shape.unwrap());
+            if let Some(m) = collide(&sa, a.position, &sb, b.position, 0.0) {
+                deepest = deepest.max(-m.separation);
+            }
+        }
+    }
+    deepest
+}
+
+/// Panics if any body's position or velocity is not finite.
+pub fn assert_finite(world: &World) {
+    for b in world.bodies() {
+        assert!(
+            b.position.is_finite() && b.velocity.is_finite(),
+            "{:?} became non-finite: {b:?}",
+            b.id
+        );
+    }
+}
+
+/// A static box from `min` to `max`.
+pub fn add_static_box(world: &mut World, min: Vec2, max: Vec2) -> BodyId {
+    let def = BodyDef::fixed((min + max) * 0.5, Shape::rect(max.x - min.x, max.y - min.y));
+    world.add_body(def).expect("valid static box")
+}
+
+/// A dynamic box of the given size and mass at `centre`.
+pub fn add_box(world: &mut World, centre: Vec2, size: Vec2, mass: f32) -> BodyId {
+    let def = BodyDef {
+        position: centre,
+        mass,
+        shape: Some(Shape::rect(size.x, size.y)),
+        ..Default::default()
+    };
+    world.add_body(def).expect("valid box")
+}
+
+/// A dynamic circle.
+pub fn add_circle(world: &mut World, centre: Vec2, radius: f32, mass: f32) -> BodyId {
+    let def = BodyDef {
+        position: centre,
+        mass,
+        shape: Some(Shape::circle(radius)),
+        ..Default::default()
+    };
+    world.add_body(def).expect("valid circle")
+}

@@ -3,7 +3,7 @@
 
 use crate::constants::{DEFAULT_DRAG_AREA, DEFAULT_FRICTION};
 use crate::error::{finite_vec, non_negative, positive};
-use crate::{PhysicsError, Shape};
+use crate::{CollisionFilter, PhysicsError, Shape};
 use glam::Vec2;
 use std::fmt;
 
@@ -75,6 +75,12 @@ pub struct BodyDef {
     pub friction: f32,
     /// Restitution (bounciness) in `[0, 1]` used by contacts. Default 0.
     pub restitution: f32,
+    /// Which bodies this one may touch. Default: layer 1, touches all.
+    pub filter: CollisionFilter,
+    /// A sensor reports bodies overlapping its shape (see
+    /// [`World::events`](crate::World::events)) but never pushes them.
+    /// Default `false`.
+    pub sensor: bool,
     /// Minimum speed override, metres per second, >= 0; `None` (the default)
     /// uses the world's.
     pub min_speed: Option<f32>,
@@ -97,6 +103,8 @@ impl Default for BodyDef {
             drag_area: DEFAULT_DRAG_AREA,
             friction: DEFAULT_FRICTION,
             restitution: 0.0,
+            filter: CollisionFilter::default(),
+            sensor: false,
             min_speed: None,
             max_speed: None,
             user_data: 0,
@@ -188,6 +196,10 @@ pub struct Body {
     pub friction: f32,
     /// Restitution in `[0, 1]`.
     pub restitution: f32,
+    /// Collision filter.
+    pub filter: CollisionFilter,
+    /// Whether the body is a sensor.
+    pub sensor: bool,
     /// Minimum speed override, if any.
     pub min_speed: Option<f32>,
     /// Maximum speed override, if any.
@@ -213,6 +225,8 @@ impl Body {
             drag_area: self.drag_area,
             friction: self.friction,
             restitution: self.restitution,
+            filter: self.filter,
+            sensor: self.sensor,
             min_speed: self.min_speed,
             max_speed: self.max_speed,
             user_data: self.user_data,
@@ -228,6 +242,8 @@ pub(crate) struct BodyMeta {
     pub shape: Option<Shape>,
     pub drag_area: f32,
     pub restitution: f32,
+    pub filter: CollisionFilter,
+    pub sensor: bool,
     pub min_speed: Option<f32>,
     pub max_speed: Option<f32>,
     pub user_data: u64,
@@ -324,6 +340,8 @@ impl DynamicBodies {
             drag_area: self.drag_area[i],
             friction: self.friction[i],
             restitution: m.restitution,
+            filter: m.filter,
+            sensor: m.sensor,
             min_speed: m.min_speed,
             max_speed: m.max_speed,
             user_data: m.user_data,
@@ -370,6 +388,8 @@ impl StaticBodies {
             drag_area: m.drag_area,
             friction: self.friction[i],
             restitution: m.restitution,
+            filter: m.filter,
+            sensor: m.sensor,
             min_speed: m.min_speed,
             max_speed: m.max_speed,
             user_data: m.user_data,

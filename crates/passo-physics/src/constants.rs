@@ -42,3 +42,37 @@ pub const DEFAULT_FRICTION: f32 = 0.6;
 /// Default surface gravity for top-down friction, metres per second²: the
 /// normal force on a body resting on the plane is `m * 9.81`.
 pub const DEFAULT_SURFACE_GRAVITY: f32 = 9.81;
+
+/// Allowed penetration, metres: 5 mm (Box2D's `linear slop`).
+///
+/// Overlap up to this depth is left alone by position correction, so a
+/// resting contact does not jitter between touching and apart; deeper
+/// overlap is pushed out. Smaller values make stacks jitter, larger values
+/// make overlap visible. Also the tolerance for "touching".
+pub const LINEAR_SLOP: f32 = 0.005;
+
+/// Distance below which contacts are kept before bodies touch, metres:
+/// 4 × [`LINEAR_SLOP`] = 2 cm, as in Box2D. Together with each body's
+/// travel this step it makes contacts speculative, so nothing passes
+/// through a thin wall.
+pub const SPECULATIVE_DISTANCE: f32 = 4.0 * LINEAR_SLOP;
+
+/// Default substeps of a step when contacts are solved: 4. Each substep
+/// integrates forces, solves contacts and moves bodies with `dt / 4`; more
+/// substeps make tall stacks and large mass ratios stiffer.
+pub const DEFAULT_SUBSTEPS: u32 = 4;
+
+/// Default fraction of overlap (beyond the slop) removed per substep: 0.2.
+///
+/// Higher values separate overlapping bodies faster but let deep piles
+/// overshoot and jitter; lower values leave overlap visible for longer.
+pub const POSITION_CORRECTION: f32 = 0.2;
+
+/// Default cap on the speed at which overlapping bodies are pushed apart,
+/// metres per second: 3. Deep overlap is removed at most this fast, so it
+/// takes a few steps instead of one violent jump.
+pub const CONTACT_PUSH_SPEED: f32 = 3.0;
+
+/// Default restitution threshold, metres per second: 1. Slower impacts do
+/// not bounce, so bouncy bodies come to rest.
+pub const RESTITUTION_THRESHOLD: f32 = 1.0;

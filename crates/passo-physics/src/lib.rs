@@ -32,15 +32,26 @@
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
+mod aabb;
 mod body;
+mod broad_phase;
 pub mod constants;
+mod contact;
 mod error;
 mod forces;
 mod integrator;
+mod manifold;
+mod query;
 mod shape;
+mod solver;
+mod static_tree;
 mod world;
 
+pub use aabb::Aabb;
 pub use body::{Body, BodyDef, BodyId, BodyKind};
+pub use contact::{
+    CollisionFilter, Contact, ContactEvents, ContactPair, ContactSettings, SensorPair,
+};
 pub use error::PhysicsError;
 pub use forces::{
     CentralGravity, ForceForm, ForceModel, ForceModels, LinearDrag, QuadraticDrag, Spring,
@@ -48,5 +59,7 @@ pub use forces::{
 };
 pub use glam;
 pub use integrator::Integrator;
+pub use manifold::{Manifold, collide};
+pub use query::RayHit;
 pub use shape::Shape;
 pub use world::{Stage, StepStats, World, WorldSettings};

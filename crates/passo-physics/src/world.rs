@@ -2,11 +2,14 @@
 
 use crate::body::{BodyMeta, DynamicBodies, SpeedLimits, StaticBodies, check_max_speed};
 use crate::constants::{DEFAULT_MAX_SPEED, DEFAULT_MIN_SPEED};
+use crate::contact::ContactWorld;
 use crate::error::{finite_vec, non_negative};
 use crate::forces::{BodyParams, Dissipation, Drive, potential_energy};
 use crate::integrator::{Forces, integrate_body};
+use crate::solver::{self, SolverBodies};
 use crate::{
-    Body, BodyDef, BodyId, BodyKind, ForceForm, ForceModel, ForceModels, Integrator, PhysicsError,
+    Body, BodyDef, BodyId, BodyKind, ContactSettings, ForceForm, ForceModel, ForceModels,
+    Integrator, PhysicsError,
 };
 use glam::Vec2;
 use std::sync::Arc;
@@ -33,6 +36,12 @@ pub struct WorldSettings {
     /// can draw [`World::interpolated_position`]. Costs one copy of the
     /// positions per step. Default `false`.
     pub interpolation: bool,
+    /// How contacts between shaped bodies are solved; `None` turns
+    /// collisions off. Default `Some(ContactSettings::default())`. The
+    /// contact stage runs only while the world holds a shaped dynamic body
+    /// and another shaped body; it then advances in
+    /// [`ContactSettings::substeps`] substeps.
+    pub contacts: Option<ContactSettings>,
 }
 
 impl Default for WorldSettings {
@@ -44,6 +53,7 @@ impl Default for WorldSettings {
             min_speed: DEFAULT_MIN_SPEED,
             max_speed: DEFAULT_MAX_SPEED,
             interpolation: false,
+            contacts: Some(ContactSettings::default()),
         }
     }
 }
@@ -54,6 +64,9 @@ impl WorldSettings {
         self.forces.validate()?;
         non_negative("WorldSettings::min_speed", self.min_speed)?;
         check_max_speed("WorldSettings::max_speed", self.max_speed)?;
+        if let Some(contacts) = &self.contacts {
+            contacts.validate()?;
+        }
         Ok(())
     }
 }
@@ -82,6 +95,8 @@ pub enum Stage {
     SurfaceFriction,
     /// Integration of velocities and positions with the given method.
     Integrate(Integrator),
+    /// Broad phase, narrow phase and the contact solver.
+    Contacts,
     /// Minimum-speed snap and maximum-speed clamp.
     SpeedLimits,
 }
@@ -137,6 +152,15 @@ pub struct World {
     speed_overrides: usize,
     /// Whether game code applied friction since the last step.
     game_friction: bool,
+    /// Shaped bodies of each kind: the contact stage runs only with some.
+    shaped_dynamic: usize,
+    shaped_static: usize,
+    /// Static bodies were added, removed or moved since the last step.
+    statics_dirty: bool,
+    /// The contact stage's state, made the first time it runs.
+    pub(crate) contacts: Option<Box<ContactWorld>>,
+    /// Position corrections of the multi-stage integrators, with contacts.
+    correction: Vec<Vec2>,
     stats: StepStats,
 }
 
@@ -171,6 +195,11 @@ impl World {
             statics: StaticBodies::default(),
             speed_overrides: 0,
             game_friction: false,
+            shaped_dynamic: 0,
+            shaped_static: 0,
+            statics_dirty: false,
+            contacts: None,
+            correction: Vec::new(),
             stats: StepStats::default(),
         })
     }
@@ -234,6 +263,7 @@ impl World {
                 index
             }
         };
+        self.count_shape(def.kind, def.shape.is_some(), 1);
         let slot = &mut self.slots[index as usize];
         let id = BodyId {
             index,
@@ -249,6 +279,8 @@ impl World {
             shape: def.shape,
             drag_area: def.drag_area,
             restitution: def.restitution,
+            filter: def.filter,
+            sensor: def.sensor,
             min_speed: def.min_speed,
             max_speed: def.max_speed,
             user_data: def.user_data,
@@ -266,6 +298,7 @@ impl World {
             BodyKind::Static => {
                 slot.location = Location::Static(self.statics.len() as u32);
                 self.statics.push(&def, meta);
+                self.statics_dirty = true;
             }
         }
         Ok(id)
@@ -277,6 +310,7 @@ impl World {
     pub fn remove_body(&mut self, id: BodyId) -> Option<Body> {
         let location = self.locate(id)?;
         let body = self.view(location);
+        self.count_shape(body.kind, body.shape.is_some(), -1);
         let moved = match location {
             Location::Dynamic(i) => {
                 let meta = &self.dynamic.meta[i as usize];
@@ -285,7 +319,10 @@ impl World {
                 }
                 self.dynamic.swap_remove(i as usize)
             }
-            Location::Static(i) => self.statics.swap_remove(i as usize),
+            Location::Static(i) => {
+                self.statics_dirty = true;
+                self.statics.swap_remove(i as usize)
+            }
             Location::Free => unreachable!("locate never returns a free slot"),
         };
         if let Some(moved) = moved {
@@ -345,7 +382,10 @@ impl World {
                     *prev = position;
                 }
             }
-            Location::Static(i) => self.statics.pos[i as usize] = position,
+            Location::Static(i) => {
+                self.statics.pos[i as usize] = position;
+                self.statics_dirty = true;
+            }
             Location::Free => unreachable!(),
         }
         Ok(())
@@ -492,6 +532,9 @@ impl World {
         ];
         stages.extend(models.iter().filter(|(on, _)| *on).map(|(_, s)| *s));
         stages.push(Stage::Integrate(self.settings.integrator));
+        if self.contact_settings().is_some() {
+            stages.push(Stage::Contacts);
+        }
         if self.has_speed_limits() {
             stages.push(Stage::SpeedLimits);
         }
@@ -500,13 +543,16 @@ impl World {
 
     // ----- the step -----
 
-    /// Advances the world by `dt` seconds:
+    /// Advances the world by `dt` seconds, stage by stage; each stage runs
+    /// only if the settings and bodies ask for it ([`active_stages`](Self::active_stages)):
     ///
-    /// 1. store previous positions (if interpolating);
-    /// 2. integrate velocities with every active force model;
-    /// 3. clamp speeds (minimum snap to zero, maximum clamp);
-    /// 4. integrate positions;
-    /// 5. clear force accumulators.
+    /// 1. store previous positions (interpolation);
+    /// 2. without contacts, one pass per body: integrate velocity with every
+    ///    active force model, clamp speed, integrate position;
+    /// 3. with contacts, broad and narrow phase, then `substeps` times:
+    ///    integrate velocities, warm start, solve contacts, clamp speeds,
+    ///    integrate positions, relax; then restitution and a last clamp;
+    /// 4. clear force accumulators.
     ///
     /// Run it from a fixed-timestep loop (`passo-loop`) with a constant `dt`:
     /// a variable `dt` makes the result depend on the frame rate.
@@ -520,7 +566,15 @@ impl World {
             "World::step: dt must be finite and > 0 seconds, got {dt}"
         );
         self.store_previous_positions();
-        self.integrate(dt);
+        match self.contact_settings() {
+            Some(contacts) => self.step_with_contacts(dt, &contacts),
+            None => {
+                self.step_bodies(dt);
+                if let Some(cw) = &mut self.contacts {
+                    cw.idle_step(&self.dynamic, &self.statics);
+                }
+            }
+        }
         self.clear_forces();
         self.stats.steps += 1;
     }
@@ -531,40 +585,129 @@ impl World {
         }
     }
 
+    /// The contact settings if the contact stage runs: contacts are on, a
+    /// shaped dynamic body exists and something else is shaped.
+    fn contact_settings(&self) -> Option<ContactSettings> {
+        let contacts = self.settings.contacts?;
+        (self.shaped_dynamic > 0 && self.shaped_dynamic + self.shaped_static >= 2)
+            .then_some(contacts)
+    }
+
+    fn speed_limits(&self) -> Option<Option<SpeedLimits>> {
+        self.has_speed_limits()
+            .then(|| (self.speed_overrides == 0).then(|| self.world_limits()))
+    }
+
     /// Integrates velocities, clamps speeds and moves bodies, one body at a
-    /// time (a single pass over the arrays).
-    fn integrate(&mut self, dt: f32) {
+    /// time: a single pass over the arrays.
+    fn step_bodies(&mut self, dt: f32) {
         let integrator = self.settings.integrator;
-        let forces = Forces::new(
-            Drive::new(&self.settings.forces, &self.custom),
-            Dissipation::new(&self.settings.forces, self.game_friction),
-            self.settings.force_form,
-            integrator,
-        );
-        let uniform = (self.speed_overrides == 0).then(|| self.world_limits());
-        let clamp = self.has_speed_limits();
+        let forces = forces(&self.settings, &self.custom, self.game_friction);
+        let limits = self.speed_limits();
         let b = &mut self.dynamic;
         let mut resets = 0;
         for i in 0..b.pos.len() {
-            let params = BodyParams {
-                inv_mass: b.inv_mass[i],
-                force: b.force[i],
-                drag_area: b.drag_area[i],
-                friction: b.friction[i],
-                friction_force: b.friction_force[i],
-            };
-            let (mut v, mut c) =
-                integrate_body(integrator, &forces, b.pos[i], b.vel[i], &params, dt);
-            if !(v.is_finite() && c.is_finite()) {
-                v = Vec2::ZERO;
-                c = Vec2::ZERO;
-                resets += 1;
-            } else if clamp {
+            let (mut v, c) = integrate_velocity(integrator, &forces, b, i, dt, &mut resets);
+            if let Some(uniform) = limits {
                 limit_speed(&mut v, uniform.unwrap_or(b.limits[i]));
             }
             b.vel[i] = v;
             b.pos[i] += v * dt + c;
         }
+        self.stats.non_finite_resets += resets;
+    }
+
+    // Structure of arrays: one index walks several slices at once.
+    #[allow(clippy::needless_range_loop)]
+    fn step_with_contacts(&mut self, dt: f32, settings: &ContactSettings) {
+        let substeps = settings.substeps;
+        let h = dt / substeps as f32;
+        let gravity = self.settings.forces.gravity.unwrap_or(Vec2::ZERO);
+        let mut cw = self
+            .contacts
+            .take()
+            .unwrap_or_else(|| Box::new(ContactWorld::new()));
+        if self.statics_dirty {
+            cw.statics_changed();
+            self.statics_dirty = false;
+        }
+        cw.begin_step(&self.dynamic, &self.statics, settings, gravity, dt, h);
+        let integrator = self.settings.integrator;
+        let limits = self.speed_limits();
+        let mut resets = 0;
+        let mut correction = std::mem::take(&mut self.correction);
+        let corrects = integrator != Integrator::SemiImplicitEuler;
+        correction.resize(if corrects { self.dynamic.len() } else { 0 }, Vec2::ZERO);
+        let ContactWorld {
+            constraints,
+            start,
+            push,
+            ..
+        } = &mut *cw;
+        for _ in 0..substeps {
+            // Integrate velocities.
+            let forces = forces(&self.settings, &self.custom, self.game_friction);
+            let b = &mut self.dynamic;
+            for i in 0..b.pos.len() {
+                let (v, c) = integrate_velocity(integrator, &forces, b, i, h, &mut resets);
+                b.vel[i] = v;
+                if corrects {
+                    correction[i] = c;
+                }
+            }
+            // Warm start and solve contacts.
+            push.fill(Vec2::ZERO);
+            solver::reset_push(constraints);
+            let mut bodies = SolverBodies {
+                vel: &mut b.vel,
+                push,
+                pos: &b.pos,
+                start,
+            };
+            if settings.warm_starting {
+                solver::warm_start(constraints, &mut bodies);
+            }
+            for _ in 0..settings.iterations {
+                solver::solve(constraints, &mut bodies, settings, h, true);
+            }
+            // Clamp speeds and integrate positions, pushed apart where overlapping.
+            for i in 0..b.pos.len() {
+                let mut v = b.vel[i];
+                if let Some(uniform) = limits {
+                    limit_speed(&mut v, uniform.unwrap_or(b.limits[i]));
+                    b.vel[i] = v;
+                }
+                let c = if corrects { correction[i] } else { Vec2::ZERO };
+                b.pos[i] += (v + push[i]) * h + c;
+            }
+            // Relax: velocity iterations at the new positions.
+            let mut bodies = SolverBodies {
+                vel: &mut b.vel,
+                push,
+                pos: &b.pos,
+                start,
+            };
+            for _ in 0..settings.relax_iterations {
+                solver::solve(constraints, &mut bodies, settings, h, false);
+            }
+        }
+        let b = &mut self.dynamic;
+        let mut bodies = SolverBodies {
+            vel: &mut b.vel,
+            push,
+            pos: &b.pos,
+            start,
+        };
+        solver::restitution(constraints, &mut bodies, settings.restitution_threshold);
+        solver::store_separations(constraints, &bodies);
+        if let Some(uniform) = limits {
+            for i in 0..b.vel.len() {
+                limit_speed(&mut b.vel[i], uniform.unwrap_or(b.limits[i]));
+            }
+        }
+        cw.end_step(&self.dynamic, &self.statics);
+        self.contacts = Some(cw);
+        self.correction = correction;
         self.stats.non_finite_resets += resets;
     }
 
@@ -577,6 +720,18 @@ impl World {
     }
 
     // ----- helpers -----
+
+    fn count_shape(&mut self, kind: BodyKind, shaped: bool, delta: isize) {
+        if shaped {
+            let count = match kind {
+                BodyKind::Dynamic => &mut self.shaped_dynamic,
+                BodyKind::Static => &mut self.shaped_static,
+            };
+            *count = count
+                .checked_add_signed(delta)
+                .expect("shape count underflow");
+        }
+    }
 
     fn world_limits(&self) -> SpeedLimits {
         SpeedLimits::new(self.settings.min_speed, self.settings.max_speed)
@@ -623,6 +778,48 @@ impl World {
             Some(prev) => prev.lerp(current, alpha.clamp(0.0, 1.0)),
             None => current,
         }
+    }
+}
+
+/// The forces of a step, constants hoisted out of the body loop.
+fn forces<'a>(
+    settings: &WorldSettings,
+    custom: &'a [Arc<dyn ForceModel>],
+    game_friction: bool,
+) -> Forces<'a> {
+    Forces::new(
+        Drive::new(&settings.forces, custom),
+        Dissipation::new(&settings.forces, game_friction),
+        settings.force_form,
+        settings.integrator,
+    )
+}
+
+/// One body's new velocity and position correction over `h`. A non-finite
+/// result (a broken custom force, an overflow) drops the body's motion for
+/// this step and counts a reset.
+#[inline(always)]
+fn integrate_velocity(
+    integrator: Integrator,
+    forces: &Forces<'_>,
+    b: &DynamicBodies,
+    i: usize,
+    h: f32,
+    resets: &mut u64,
+) -> (Vec2, Vec2) {
+    let params = BodyParams {
+        inv_mass: b.inv_mass[i],
+        force: b.force[i],
+        drag_area: b.drag_area[i],
+        friction: b.friction[i],
+        friction_force: b.friction_force[i],
+    };
+    let (v, c) = integrate_body(integrator, forces, b.pos[i], b.vel[i], &params, h);
+    if v.is_finite() && c.is_finite() {
+        (v, c)
+    } else {
+        *resets += 1;
+        (Vec2::ZERO, Vec2::ZERO)
     }
 }
 

@@ -1,0 +1,534 @@
+//! The fixed-timestep accumulator.
+
+use std::fmt;
+use std::ops::Range;
+use std::time::Duration;
+
+/// Default cap on one frame's time: 250 ms.
+///
+/// A frame longer than this (a debugger break, a window drag, a slow disk)
+/// is cut to 250 ms and the rest is dropped, not simulated. Without the cap
+/// a long frame asks for many ticks, those ticks make the next frame long
+/// too, and the game never catches up: the "death spiral".
+pub const DEFAULT_MAX_FRAME_TIME: Duration = Duration::from_millis(250);
+
+/// Default cap on fixed ticks run in one frame: 16 (over 250 ms at 60 Hz).
+///
+/// The second guard against the death spiral: if a tick costs more than its
+/// `dt` in real time, at most this many run per frame and the time they
+/// could not cover is dropped, so the game slows down instead of freezing.
+pub const DEFAULT_MAX_TICKS_PER_FRAME: u32 = 16;
+
+/// Largest accepted time scale (fast forward), 1000×.
+pub const MAX_TIME_SCALE: f64 = 1000.0;
+
+/// A value the loop cannot use.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoopError {
+    /// A rate that is not finite and > 0 Hz, or too high for a 1 ns step.
+    InvalidRate(f64),
+    /// A step that is not finite and > 0 seconds, or rounds to 0 ns.
+    InvalidStep(f64),
+    /// A time scale outside `[0, 1000]` or not finite.
+    InvalidTimeScale(f64),
+}
+
+impl fmt::Display for LoopError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::InvalidRate(hz) => {
+                write!(
+                    f,
+                    "fixed rate must be finite, > 0 and at most 1e9 Hz, got {hz}"
+                )
+            }
+            Self::InvalidStep(s) => {
+                write!(f, "fixed step must be finite and at least 1 ns, got {s} s")
+            }
+            Self::InvalidTimeScale(s) => {
+                write!(
+                    f,
+                    "time scale must be finite and in [0, {MAX_TIME_SCALE}], got {s}"
+                )
+            }
+        }
+    }
+}
+
+impl std::error::Error for LoopError {}
+
+/// What one call to [`FixedTimestep::advance`] decided.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    /// Fixed ticks to run now.
+    pub ticks: u32,
+    /// Number of the first of them (ticks are counted from 0).
+    pub first_tick: u64,
+    /// Length of each tick, seconds (the step as `f32`, for the physics).
+    pub dt: f32,
+    /// Length of each tick, exactly.
+    pub step: Duration,
+    /// Where to draw, from the previous tick (0) towards the latest (1):
+    /// `remainder / step`, in `[0, 1)`.
+    pub alpha: f32,
+    /// Simulated time thrown away this frame by the death-spiral guards.
+    pub dropped: Duration,
+}
+
+impl Frame {
+    /// The numbers of the ticks to run, in order.
+    pub fn tick_numbers(&self) -> Range<u64> {
+        self.first_tick..self.first_tick + u64::from(self.ticks)
+    }
+}
+
+/// A fixed timestep with an integer-nanosecond accumulator.
+///
+/// Each frame, [`advance`](Self::advance) adds the frame's duration (capped,
+/// then scaled) to the accumulator and takes out as many whole steps as fit:
+/// those are the ticks to simulate. What is left, less than one step, is the
+/// interpolation factor `alpha` for the renderer. Step and accumulator are
+/// [`Duration`]s, so the accumulator never drifts: after any sequence of
+/// frames, ticks run + time dropped + remainder equals the total scaled
+/// time, to the nanosecond.
+#[derive(Clone, Debug)]
+pub struct FixedTimestep {
+    step: Duration,
+    accumulator: Duration,
+    max_frame_time: Duration,
+    max_ticks_per_frame: u32,
+    time_scale: f64,
+    paused: bool,
+    queued_steps: u32,
+    tick: u64,
+    dropped: Duration,
+    last_frame: Option<Frame>,
+}
+
+impl Default for FixedTimestep {
+    /// 60 Hz, with the default guards.
+    fn default() -> Self {
+        Self::from_hz(60.0).expect("60 Hz is a valid rate")
+    }
+}
+
+impl FixedTimestep {
+    /// A timestep of exactly `step`.
+    ///
+    /// # Panics
+    /// If `step` is zero (a programming error; use
+    /// [`from_seconds`](Self::from_seconds) for values from outside).
+    pub fn new(step: Duration) -> Self {
+        assert!(!step.is_zero(), "FixedTimestep::new: the step must be > 0");
+        Self {
+            step,
+            accumulator: Duration::ZERO,
+            max_frame_time: DEFAULT_MAX_FRAME_TIME,
+            max_ticks_per_frame: DEFAULT_MAX_TICKS_PER_FRAME,
+            time_scale: 1.0,
+            paused: false,
+            queued_steps: 0,
+            tick: 0,
+            dropped: Duration::ZERO,
+            last_frame: None,
+        }
+    }
+
+    /// `hz` ticks per second; the step is `1 / hz` rounded to the nearest
+    /// nanosecond (60 Hz: 16 666 667 ns).
+    pub fn from_hz(hz: f64) -> Result<Self, LoopError> {
+        Ok(Self::new(step_from_hz(hz)?))
+    }
+
+    /// A step of `seconds`, rounded to the nearest nanosecond.
+    pub fn from_seconds(seconds: f64) -> Result<Self, LoopError> {
+        Ok(Self::new(step_from_seconds(seconds)?))
+    }
+
+    /// The step.
+    pub fn step(&self) -> Duration {
+        self.step
+    }
+
+    /// The step in seconds, as the physics takes it.
+    pub fn dt(&self) -> f32 {
+        self.step.as_secs_f32()
+    }
+
+    /// Ticks per second (`1 / step`).
+    pub fn hz(&self) -> f64 {
+        1.0 / self.step.as_secs_f64()
+    }
+
+    /// Changes the step. It takes effect from the next call to
+    /// [`advance`](Self::advance): the ticks of the frame already advanced
+    /// keep the step their [`Frame`] names. The accumulated remainder is
+    /// kept (it is time, not ticks).
+    ///
+    /// # Panics
+    /// If `step` is zero.
+    pub fn set_step(&mut self, step: Duration) {
+        assert!(
+            !step.is_zero(),
+            "FixedTimestep::set_step: the step must be > 0"
+        );
+        self.step = step;
+    }
+
+    /// Changes the rate, like [`set_step`](Self::set_step).
+    pub fn set_hz(&mut self, hz: f64) -> Result<(), LoopError> {
+        self.step = step_from_hz(hz)?;
+        Ok(())
+    }
+
+    /// The longest frame time taken into account.
+    pub fn max_frame_time(&self) -> Duration {
+        self.max_frame_time
+    }
+
+    /// Sets the longest frame time taken into account (default 250 ms);
+    /// longer frames are cut and the excess is dropped.
+    pub fn set_max_frame_time(&mut self, max: Duration) {
+        self.max_frame_time = max;
+    }
+
+    /// The most ticks run in one frame.
+    pub fn max_ticks_per_frame(&self) -> u32 {
+        self.max_ticks_per_frame
+    }
+
+    /// Sets the most ticks run in one frame (default 16).
+    ///
+    /// # Panics
+    /// If `max` is 0: the simulation could never advance.
+    pub fn set_max_ticks_per_frame(&mut self, max: u32) {
+        assert!(
+            max > 0,
+            "FixedTimestep::set_max_ticks_per_frame: must be >= 1"
+        );
+        self.max_ticks_per_frame = max;
+    }
+
+    /// Simulated seconds per real second.
+    pub fn time_scale(&self) -> f64 {
+        self.time_scale
+    }
+
+    /// Slow motion (`< 1`), fast forward (`> 1`) or a freeze (`0`). Must be
+    /// finite and in `[0, 1000]`. The step does not change: slow motion runs
+    /// fewer ticks per frame, so the simulation stays exactly the same.
+    pub fn set_time_scale(&mut self, scale: f64) -> Result<(), LoopError> {
+        if !(scale.is_finite() && (0.0..=MAX_TIME_SCALE).contains(&scale)) {
+            return Err(LoopError::InvalidTimeScale(scale));
+        }
+        self.time_scale = scale;
+        Ok(())
+    }
+
+    /// Stops simulated time: frames run no tick (but
+    /// [`step_once`](Self::step_once) can) and `alpha` stays where it was.
+    pub fn pause(&mut self) {
+        self.paused = true;
+    }
+
+    /// Restarts simulated time from where it stopped.
+    pub fn resume(&mut self) {
+        self.paused = false;
+        self.queued_steps = 0;
+    }
+
+    /// Whether simulated time is stopped.
+    pub fn is_paused(&self) -> bool {
+        self.paused
+    }
+
+    /// While paused, makes the next [`advance`](Self::advance) run one more
+    /// tick (calls add up, within the per-frame cap). Ignored while running.
+    pub fn step_once(&mut self) {
+        if self.paused {
+            self.queued_steps = self.queued_steps.saturating_add(1);
+        }
+    }
+
+    /// Ticks run so far; also the number of the next tick.
+    pub fn tick(&self) -> u64 {
+        self.tick
+    }
+
+    /// Accumulated time not yet simulated, less than one step.
+    pub fn remainder(&self) -> Duration {
+        self.accumulator
+    }
+
+    /// `remainder / step`, in `[0, 1)`.
+    pub fn alpha(&self) -> f32 {
+        let a = (self.accumulator.as_nanos() as f64 / self.step.as_nanos() as f64) as f32;
+        // Rounding to f32 could reach 1.0 for a remainder one ns short of a step.
+        a.min(1.0 - f32::EPSILON / 2.0)
+    }
+
+    /// Total simulated time dropped by the guards since the start.
+    pub fn dropped_total(&self) -> Duration {
+        self.dropped
+    }
+
+    /// The last frame [`advance`](Self::advance) returned, if any.
+    pub fn last_frame(&self) -> Option<Frame> {
+        self.last_frame
+    }
+
+    /// Forgets the accumulated remainder (after loading a level, say).
+    pub fn reset_accumulator(&mut self) {
+        self.accumulator = Duration::ZERO;
+    }
+
+    /// Adds one frame's real duration and returns the ticks to run now.
+    ///
+    /// 1. The frame time is cut to [`max_frame_time`](Self::max_frame_time).
+    /// 2. It is multiplied by the time scale and added to the accumulator
+    ///    (unless paused).
+    /// 3. Whole steps are taken out as ticks, at most
+    ///    [`max_ticks_per_frame`](Self::max_ticks_per_frame); whole steps
+    ///    beyond the cap are dropped.
+    ///
+    /// Time cut by 1 and 3 is reported, in simulated time, in
+    /// [`Frame::dropped`] and [`dropped_total`](Self::dropped_total).
+    pub fn advance(&mut self, frame_time: Duration) -> Frame {
+        let first_tick = self.tick;
+        let mut dropped = Duration::ZERO;
+        let ticks = if self.paused {
+            let ticks = self.queued_steps.min(self.max_ticks_per_frame);
+            self.queued_steps = 0;
+            ticks
+        } else {
+            let counted = frame_time.min(self.max_frame_time);
+            dropped = self.scale(frame_time - counted);
+            self.accumulator = self.accumulator.saturating_add(self.scale(counted));
+            let wanted = self.accumulator.as_nanos() / self.step.as_nanos();
+            let ticks = wanted.min(u128::from(self.max_ticks_per_frame)) as u32;
+            // Whole steps beyond the cap are dropped; the sub-step remainder stays.
+            let whole = self.accumulator - self.accumulator_remainder();
+            let run = self.step * ticks;
+            dropped = dropped.saturating_add(whole - run);
+            self.accumulator -= whole;
+            ticks
+        };
+        self.tick += u64::from(ticks);
+        self.dropped = self.dropped.saturating_add(dropped);
+        let frame = Frame {
+            ticks,
+            first_tick,
+            dt: self.dt(),
+            step: self.step,
+            alpha: self.alpha(),
+            dropped,
+        };
+        self.last_frame = Some(frame);
+        frame
+    }
+
+    fn accumulator_remainder(&self) -> Duration {
+        let rem = self.accumulator.as_nanos() % self.step.as_nanos();
+        // rem < step <= u64::MAX ns.
+        Duration::from_nanos(rem as u64)
+    }
+
+    fn scale(&self, real: Duration) -> Duration {
+        if self.time_scale == 1.0 {
+            real
+        } else {
+            // Finite, >= 0 and <= 1000 times a frame time: no overflow in practice;
+            // saturate rather than panic if a caller passes an absurd duration.
+            Duration::try_from_secs_f64(real.as_secs_f64() * self.time_scale)
+                .unwrap_or(Duration::MAX)
+        }
+    }
+}
+
+fn step_from_hz(hz: f64) -> Result<Duration, LoopError> {
+    if !(hz.is_finite() && hz > 0.0 && hz <= 1e9) {
+        return Err(LoopError::InvalidRate(hz));
+    }
+    Ok(Duration::from_nanos((1e9 / hz).round() as u64))
+}
+
+fn step_from_seconds(seconds: f64) -> Result<Duration, LoopError> {
+    let ns = (seconds * 1e9).round();
+    if !(seconds.is_finite() && ns >= 1.0 && ns <= u64::MAX as f64) {
+        return Err(LoopError::InvalidStep(seconds));
+    }
+    Ok(Duration::from_nanos(ns as u64))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MS: Duration = Duration::from_millis(1);
+
+    fn ns(n: u64) -> Duration {
+        Duration::from_nanos(n)
+    }
+
+    #[test]
+    fn ticks_remainder_and_alpha_follow_the_arithmetic_frame_by_frame() {
+        let mut t = FixedTimestep::new(10 * MS);
+        // (frame time, ticks, remainder after, alpha)
+        let expected = [
+            (4 * MS, 0, 4 * MS, 0.4),
+            (4 * MS, 0, 8 * MS, 0.8),
+            (4 * MS, 1, 2 * MS, 0.2),
+            (25 * MS, 2, 7 * MS, 0.7),
+            (3 * MS, 1, Duration::ZERO, 0.0),
+            (Duration::ZERO, 0, Duration::ZERO, 0.0),
+            (ns(9_999_999), 0, ns(9_999_999), 0.9999999),
+            (ns(1), 1, Duration::ZERO, 0.0),
+        ];
+        let mut tick = 0;
+        for (n, (frame_time, ticks, remainder, alpha)) in expected.into_iter().enumerate() {
+            let frame = t.advance(frame_time);
+            assert_eq!(frame.ticks, ticks, "frame {n}");
+            assert_eq!(frame.first_tick, tick, "frame {n}");
+            assert_eq!(t.remainder(), remainder, "frame {n}");
+            assert_eq!(frame.alpha, alpha, "frame {n}");
+            assert_eq!(frame.dropped, Duration::ZERO);
+            tick += u64::from(ticks);
+            assert_eq!(t.tick(), tick);
+        }
+    }
+
+    #[test]
+    fn sixty_hz_fed_16_666_ms_for_10000_frames_never_drifts() {
+        let mut t = FixedTimestep::from_hz(60.0).unwrap();
+        assert_eq!(t.step(), ns(16_666_667));
+        let frame_time = ns(16_666_000);
+        let mut total = 0u128;
+        for n in 0..10_000u64 {
+            let frame = t.advance(frame_time);
+            total += frame_time.as_nanos();
+            // Exactly what integer arithmetic says, every frame.
+            let want_ticks = (total / 16_666_667) as u64;
+            assert_eq!(t.tick(), want_ticks, "frame {n}");
+            assert_eq!(t.remainder().as_nanos(), total % 16_666_667, "frame {n}");
+            // 667 ns short per frame: the first frame runs no tick and the
+            // 24 988th would be the next one without; no double tick ever.
+            assert_eq!(frame.ticks, u32::from(n > 0), "frame {n}");
+        }
+        assert_eq!(t.tick(), 9_999);
+        assert_eq!(t.dropped_total(), Duration::ZERO);
+    }
+
+    #[test]
+    fn a_five_second_hitch_runs_at_most_the_cap_and_reports_the_dropped_time() {
+        let mut t = FixedTimestep::new(10 * MS);
+        t.set_max_ticks_per_frame(8);
+        t.advance(3 * MS);
+        let hitch = t.advance(Duration::from_secs(5));
+        assert_eq!(hitch.ticks, 8);
+        // 5 s cut to 250 ms: 4.75 s dropped. 253 ms accumulated, 8 ticks run
+        // (80 ms), 17 whole steps dropped (170 ms), 3 ms kept.
+        assert_eq!(hitch.dropped, 4750 * MS + 170 * MS);
+        assert_eq!(t.remainder(), 3 * MS);
+        assert_eq!(t.dropped_total(), hitch.dropped);
+        // The next frame is back to normal.
+        let next = t.advance(17 * MS);
+        assert_eq!((next.ticks, next.dropped), (2, Duration::ZERO));
+        assert_eq!(t.tick(), 10);
+    }
+
+    #[test]
+    fn pause_freezes_time_and_step_once_runs_exactly_one_tick() {
+        let mut t = FixedTimestep::new(10 * MS);
+        t.advance(15 * MS);
+        t.pause();
+        let frame = t.advance(100 * MS);
+        assert_eq!((frame.ticks, frame.alpha), (0, 0.5));
+        t.step_once();
+        let frame = t.advance(100 * MS);
+        assert_eq!((frame.ticks, frame.first_tick, frame.alpha), (1, 1, 0.5));
+        assert_eq!(t.advance(100 * MS).ticks, 0, "one queued step runs once");
+        t.step_once();
+        t.step_once();
+        assert_eq!(t.advance(MS).ticks, 2);
+        t.resume();
+        t.step_once(); // ignored while running
+        let frame = t.advance(5 * MS);
+        assert_eq!((frame.ticks, t.remainder()), (1, Duration::ZERO));
+        assert_eq!(t.tick(), 5);
+    }
+
+    #[test]
+    fn time_scale_slows_and_speeds_simulated_time_without_changing_the_step() {
+        let mut t = FixedTimestep::new(10 * MS);
+        t.set_time_scale(0.25).unwrap();
+        assert_eq!(t.advance(20 * MS).ticks, 0);
+        assert_eq!(t.remainder(), 5 * MS);
+        assert_eq!(t.advance(20 * MS).ticks, 1);
+        t.set_time_scale(4.0).unwrap();
+        let frame = t.advance(20 * MS);
+        assert_eq!((frame.ticks, frame.dt), (8, 0.01));
+        t.set_time_scale(0.0).unwrap();
+        assert_eq!(t.advance(Duration::from_secs(1)).ticks, 0);
+        for bad in [-1.0, f64::NAN, f64::INFINITY, 1000.5] {
+            assert!(matches!(
+                t.set_time_scale(bad),
+                Err(LoopError::InvalidTimeScale(_))
+            ));
+        }
+        assert_eq!(t.time_scale(), 0.0, "a refused scale changes nothing");
+    }
+
+    #[test]
+    fn a_rate_change_takes_effect_on_the_next_advance_and_keeps_the_remainder() {
+        let mut t = FixedTimestep::new(10 * MS);
+        let frame = t.advance(25 * MS);
+        assert_eq!((frame.ticks, frame.step), (2, 10 * MS));
+        t.set_hz(200.0).unwrap(); // 5 ms
+        let frame = t.advance(6 * MS); // 5 ms kept + 6 ms = 11 ms
+        assert_eq!((frame.ticks, frame.step, frame.dt), (2, 5 * MS, 0.005));
+        assert_eq!(t.remainder(), MS);
+        assert_eq!(frame.alpha, 0.2);
+    }
+
+    #[test]
+    fn alpha_is_always_below_one() {
+        let mut t = FixedTimestep::new(ns(1_000_000_007));
+        let frame = t.advance(ns(1_000_000_006));
+        assert_eq!(frame.ticks, 0);
+        assert!(frame.alpha < 1.0);
+    }
+
+    #[test]
+    fn invalid_rates_and_steps_are_refused() {
+        for hz in [0.0, -60.0, f64::NAN, f64::INFINITY, 2e9] {
+            assert!(matches!(
+                FixedTimestep::from_hz(hz),
+                Err(LoopError::InvalidRate(_))
+            ));
+        }
+        for s in [0.0, -0.1, f64::NAN, 1e-10] {
+            assert!(FixedTimestep::from_seconds(s).is_err());
+        }
+        assert_eq!(
+            FixedTimestep::from_hz(0.0).unwrap_err().to_string(),
+            "fixed rate must be finite, > 0 and at most 1e9 Hz, got 0"
+        );
+        assert_eq!(FixedTimestep::from_seconds(0.02).unwrap().step(), 20 * MS);
+    }
+
+    #[test]
+    #[should_panic(expected = "the step must be > 0")]
+    fn a_zero_step_is_a_programming_error() {
+        FixedTimestep::new(Duration::ZERO);
+    }
+
+    #[test]
+    fn an_absurd_frame_time_with_no_cap_saturates_instead_of_panicking() {
+        let mut t = FixedTimestep::new(MS);
+        t.set_max_frame_time(Duration::MAX);
+        t.set_time_scale(1000.0).unwrap();
+        let frame = t.advance(Duration::MAX);
+        assert_eq!(frame.ticks, DEFAULT_MAX_TICKS_PER_FRAME);
+        assert!(t.remainder() < MS);
+    }
+}

@@ -1,0 +1,209 @@
+//! Broad phase for moving bodies: a hashed uniform grid.
+//!
+//! Each step every moving proxy (a body's bounding box, grown by how far it
+//! can move this step) is binned into the grid cells it covers; cells are
+//! hashed into a table sized to the number of entries and grouped with a
+//! counting sort, so the whole pass is linear in the number of bodies for
+//! evenly spread bodies and allocates nothing once its buffers have grown.
+//! The cell size follows the bodies: twice their mean proxy size, so a
+//! typical proxy covers at most four cells. The rare proxy much larger than
+//! that (over [`LARGE_PROXY_CELLS`] cells across) is tested against every
+//! proxy instead of being binned into hundreds of cells.
+//!
+//! A pair sharing several cells is reported once, by the cell holding the
+//! lower-left corner of the two boxes' intersection. Output order depends
+//! only on the input, so the step stays deterministic.
+
+use crate::Aabb;
+use glam::Vec2;
+
+/// A proxy covering more than this many cells along an axis is handled
+/// apart, against every other proxy.
+pub const LARGE_PROXY_CELLS: i32 = 8;
+
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    cell: (i32, i32),
+    proxy: u32,
+}
+
+/// Scratch buffers of the grid, kept between steps.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct BroadPhase {
+    entries: Vec<Entry>,
+    sorted: Vec<Entry>,
+    starts: Vec<u32>,
+    large: Vec<u32>,
+}
+
+#[inline]
+fn bucket(cell: (i32, i32), mask: usize) -> usize {
+    let h = (cell.0 as u32).wrapping_mul(0x9E37_79B1) ^ (cell.1 as u32).wrapping_mul(0x85EB_CA77);
+    (h ^ (h >> 15)) as usize & mask
+}
+
+impl BroadPhase {
+    /// Appends to `pairs` every `(i, j)`, `i < j`, whose boxes overlap.
+    pub fn find_pairs(&mut self, proxies: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
+        if proxies.len() < 2 {
+            return;
+        }
+        let mean_size =
+            proxies.iter().map(|b| b.size().max_element()).sum::<f32>() / proxies.len() as f32;
+        let cell_size = (2.0 * mean_size).max(1e-3);
+        let inv = 1.0 / cell_size;
+        let cell_of = |p: Vec2| ((p.x * inv).floor() as i32, (p.y * inv).floor() as i32);
+
+        self.entries.clear();
+        self.large.clear();
+        for (i, b) in proxies.iter().enumerate() {
+            let lo = cell_of(b.min);
+            let hi = cell_of(b.max);
+            if hi.0 - lo.0 >= LARGE_PROXY_CELLS || hi.1 - lo.1 >= LARGE_PROXY_CELLS {
+                self.large.push(i as u32);
+                continue;
+            }
+            for cy in lo.1..=hi.1 {
+                for cx in lo.0..=hi.0 {
+                    self.entries.push(Entry {
+                        cell: (cx, cy),
+                        proxy: i as u32,
+                    });
+                }
+            }
+        }
+
+        // Counting sort of the entries by bucket (stable: proxy order kept).
+        let table = (2 * self.entries.len()).next_power_of_two().max(2);
+        let mask = table - 1;
+        self.starts.clear();
+        self.starts.resize(table + 1, 0);
+        for e in &self.entries {
+            self.starts[bucket(e.cell, mask) + 1] += 1;
+        }
+        for k in 1..=table {
+            self.starts[k] += self.starts[k - 1];
+        }
+        self.sorted.clear();
+        self.sorted.resize(
+            self.entries.len(),
+            Entry {
+                cell: (0, 0),
+                proxy: 0,
+            },
+        );
+        {
+            // `starts[k]` is used as the write cursor of bucket k, then restored.
+            for e in &self.entries {
+                let k = bucket(e.cell, mask);
+                self.sorted[self.starts[k] as usize] = *e;
+                self.starts[k] += 1;
+            }
+            for k in (1..=table).rev() {
+                self.starts[k] = self.starts[k - 1];
+            }
+            self.starts[0] = 0;
+        }
+
+        for k in 0..table {
+            let run = &self.sorted[self.starts[k] as usize..self.starts[k + 1] as usize];
+            for (x, ea) in run.iter().enumerate() {
+                for eb in &run[x + 1..] {
+                    if ea.cell != eb.cell {
+                        continue; // a hash collision between two cells
+                    }
+                    let (a, b) = (&proxies[ea.proxy as usize], &proxies[eb.proxy as usize]);
+                    if a.overlaps(b) && cell_of(a.min.max(b.min)) == ea.cell {
+                        pairs.push(ordered(ea.proxy, eb.proxy));
+                    }
+                }
+            }
+        }
+
+        for &l in &self.large {
+            let lb = &proxies[l as usize];
+            for (j, b) in proxies.iter().enumerate() {
+                let j = j as u32;
+                // A pair of two large proxies is reported by the lower one.
+                let j_is_large = self.large.binary_search(&j).is_ok();
+                if j == l || (j_is_large && j < l) {
+                    continue;
+                }
+                if lb.overlaps(b) {
+                    pairs.push(ordered(l, j));
+                }
+            }
+        }
+    }
+}
+
+fn ordered(a: u32, b: u32) -> (u32, u32) {
+    if a < b { (a, b) } else { (b, a) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn brute_force(proxies: &[Aabb]) -> Vec<(u32, u32)> {
+        let mut pairs = Vec::new();
+        for i in 0..proxies.len() {
+            for j in i + 1..proxies.len() {
+                if proxies[i].overlaps(&proxies[j]) {
+                    pairs.push((i as u32, j as u32));
+                }
+            }
+        }
+        pairs
+    }
+
+    fn grid_pairs(proxies: &[Aabb]) -> Vec<(u32, u32)> {
+        let mut pairs = Vec::new();
+        BroadPhase::default().find_pairs(proxies, &mut pairs);
+        let count = pairs.len();
+        pairs.sort_unstable();
+        pairs.dedup();
+        assert_eq!(pairs.len(), count, "a pair was reported twice");
+        pairs
+    }
+
+    fn aabb() -> impl Strategy<Value = Aabb> {
+        // Mostly small boxes over a region, a few large ones, some far away.
+        (
+            -50.0f32..50.0,
+            -50.0f32..50.0,
+            prop_oneof![8 => 0.01f32..2.0, 1 => 2.0f32..60.0],
+            prop_oneof![8 => 0.01f32..2.0, 1 => 2.0f32..60.0],
+        )
+            .prop_map(|(x, y, w, h)| Aabb {
+                min: Vec2::new(x, y),
+                max: Vec2::new(x + w, y + h),
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        #[test]
+        fn grid_finds_exactly_the_pairs_brute_force_finds(
+            proxies in prop::collection::vec(aabb(), 0..300)
+        ) {
+            prop_assert_eq!(grid_pairs(&proxies), brute_force(&proxies));
+        }
+    }
+
+    #[test]
+    fn touching_and_identical_boxes_are_pairs() {
+        let unit = |x: f32, y: f32| Aabb {
+            min: Vec2::new(x, y),
+            max: Vec2::new(x + 1.0, y + 1.0),
+        };
+        let proxies = [
+            unit(0.0, 0.0),
+            unit(1.0, 0.0),
+            unit(0.0, 0.0),
+            unit(5.0, 5.0),
+        ];
+        assert_eq!(grid_pairs(&proxies), [(0, 1), (0, 2), (1, 2)]);
+    }
+}

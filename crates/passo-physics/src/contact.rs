@@ -1,0 +1,552 @@
+//! Contacts: settings, filters, what a game can read about contacts, and
+//! the per-step bookkeeping (broad phase, narrow phase, warm starting,
+//! begin/end events).
+
+use crate::body::{DynamicBodies, StaticBodies};
+use crate::broad_phase::BroadPhase;
+use crate::constants::{
+    CONTACT_PUSH_SPEED, DEFAULT_SUBSTEPS, LINEAR_SLOP, POSITION_CORRECTION, RESTITUTION_THRESHOLD,
+    SPECULATIVE_DISTANCE,
+};
+use crate::error::{non_negative, positive};
+use crate::manifold::collide;
+use crate::solver::{Constraint, STATIC_BODY};
+use crate::static_tree::StaticTree;
+use crate::{Aabb, BodyId, PhysicsError, Shape};
+use glam::Vec2;
+
+/// How contacts are solved. `WorldSettings::contacts: None` turns the
+/// contact stage off altogether.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
+pub struct ContactSettings {
+    /// Substeps per step, >= 1. Default 4 ([`DEFAULT_SUBSTEPS`]).
+    pub substeps: u32,
+    /// Iterations per substep over every contact (friction, normal, push),
+    /// >= 1. Default 2.
+    pub iterations: u32,
+    /// Velocity iterations per substep after bodies moved ("relax": they see
+    /// the new separations), >= 0. Default 1.
+    pub relax_iterations: u32,
+    /// Fraction of the overlap beyond the slop removed per substep, in
+    /// `(0, 1]`. Default 0.2 ([`POSITION_CORRECTION`]).
+    pub position_correction: f32,
+    /// Cap on the push-apart speed, metres per second, > 0. Default 3.
+    pub push_out_speed: f32,
+    /// Allowed penetration, metres, >= 0. Default 0.005 ([`LINEAR_SLOP`]).
+    pub slop: f32,
+    /// Impacts slower than this do not bounce, metres per second, >= 0. Default 1.
+    pub restitution_threshold: f32,
+    /// Continuous collision: contacts are created ahead of time from each
+    /// body's travel this step (speculative contacts), so fast bodies cannot
+    /// pass through thin walls. Default `true`.
+    pub continuous: bool,
+    /// Start each step from the last step's impulses. Default `true`.
+    pub warm_starting: bool,
+}
+
+impl Default for ContactSettings {
+    fn default() -> Self {
+        Self {
+            substeps: DEFAULT_SUBSTEPS,
+            iterations: 2,
+            relax_iterations: 1,
+            position_correction: POSITION_CORRECTION,
+            push_out_speed: CONTACT_PUSH_SPEED,
+            slop: LINEAR_SLOP,
+            restitution_threshold: RESTITUTION_THRESHOLD,
+            continuous: true,
+            warm_starting: true,
+        }
+    }
+}
+
+impl ContactSettings {
+    /// Checks every value, naming the first one that is wrong.
+    pub fn validate(&self) -> Result<(), PhysicsError> {
+        let count = |what, n: u32, min: u32| {
+            if n >= min && n <= 1024 {
+                Ok(())
+            } else {
+                Err(PhysicsError::OutOfRange {
+                    what,
+                    value: n as f32,
+                    allowed: if min == 1 {
+                        "in [1, 1024]"
+                    } else {
+                        "in [0, 1024]"
+                    },
+                })
+            }
+        };
+        count("ContactSettings::substeps", self.substeps, 1)?;
+        count("ContactSettings::iterations", self.iterations, 1)?;
+        count(
+            "ContactSettings::relax_iterations",
+            self.relax_iterations,
+            0,
+        )?;
+        positive(
+            "ContactSettings::position_correction",
+            self.position_correction,
+        )?;
+        if self.position_correction > 1.0 {
+            return Err(PhysicsError::OutOfRange {
+                what: "ContactSettings::position_correction",
+                value: self.position_correction,
+                allowed: "in (0, 1]",
+            });
+        }
+        positive("ContactSettings::push_out_speed", self.push_out_speed)?;
+        non_negative("ContactSettings::slop", self.slop)?;
+        non_negative(
+            "ContactSettings::restitution_threshold",
+            self.restitution_threshold,
+        )?;
+        Ok(())
+    }
+}
+
+/// Which bodies may touch: A and B collide when `A.layers & B.mask != 0`
+/// and `B.layers & A.mask != 0`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
+pub struct CollisionFilter {
+    /// The layers the body is on. Default `1`.
+    pub layers: u32,
+    /// The layers the body collides with. Default all (`u32::MAX`).
+    pub mask: u32,
+}
+
+impl Default for CollisionFilter {
+    fn default() -> Self {
+        Self {
+            layers: 1,
+            mask: u32::MAX,
+        }
+    }
+}
+
+impl CollisionFilter {
+    /// Whether bodies with these filters may touch.
+    pub fn allows(&self, other: &Self) -> bool {
+        self.layers & other.mask != 0 && other.layers & self.mask != 0
+    }
+}
+
+/// A contact between two bodies after the last step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// First body.
+    pub a: BodyId,
+    /// Second body.
+    pub b: BodyId,
+    /// Unit normal from `a` to `b`.
+    pub normal: Vec2,
+    /// Separation along the normal at the end of the step, metres
+    /// (negative: overlap). A speculative contact has a positive separation.
+    pub separation: f32,
+    /// Contact points (world space) found at the start of the step.
+    pub points: [Vec2; 2],
+    /// Number of valid points, 1 or 2.
+    pub point_count: u8,
+    /// Normal impulse of the last substep, newton seconds.
+    pub normal_impulse: f32,
+    /// Friction impulse of the last substep, newton seconds.
+    pub tangent_impulse: f32,
+    /// Whether the bodies touch: the solver pushed them apart this step, or
+    /// they overlap.
+    pub touching: bool,
+}
+
+impl Contact {
+    /// The same contact seen from `b`.
+    pub fn flipped(&self) -> Self {
+        Self {
+            a: self.b,
+            b: self.a,
+            normal: -self.normal,
+            ..*self
+        }
+    }
+}
+
+/// Two bodies that started or stopped touching during the last step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ContactPair {
+    /// One body (the one with the lower index).
+    pub a: BodyId,
+    /// The other body.
+    pub b: BodyId,
+}
+
+/// A body that entered or left a sensor during the last step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct SensorPair {
+    /// The sensor.
+    pub sensor: BodyId,
+    /// The body that entered or left it.
+    pub visitor: BodyId,
+}
+
+/// What happened to contacts and sensors in the last step, in a fixed order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ContactEvents {
+    /// Pairs that started touching.
+    pub begin: Vec<ContactPair>,
+    /// Pairs that stopped touching (or whose body was removed).
+    pub end: Vec<ContactPair>,
+    /// Bodies that entered a sensor.
+    pub sensor_begin: Vec<SensorPair>,
+    /// Bodies that left a sensor (or were removed).
+    pub sensor_end: Vec<SensorPair>,
+}
+
+impl ContactEvents {
+    fn clear(&mut self) {
+        self.begin.clear();
+        self.end.clear();
+        self.sensor_begin.clear();
+        self.sensor_end.clear();
+    }
+}
+
+/// Impulses a contact carries to the next step.
+#[derive(Clone, Copy, Debug)]
+struct Cached {
+    key: (BodyId, BodyId),
+    normal_impulse: f32,
+    tangent_impulse: f32,
+}
+
+/// A sensor and a body that may be inside it at the end of the step.
+#[derive(Clone, Copy, Debug)]
+struct SensorCandidate {
+    pair: SensorPair,
+    /// Collider references (dynamic index or `STATIC_BODY | static index`).
+    sensor: u32,
+    visitor: u32,
+}
+
+/// A collider as the contact stage sees it.
+#[derive(Clone, Copy)]
+struct Collider {
+    shape: Shape,
+    /// Dynamic index, or `STATIC_BODY | static index`.
+    body: u32,
+    id: BodyId,
+    sensor: bool,
+}
+
+/// Everything the contact stage keeps between steps. Created the first time
+/// the stage runs, so a world without colliders never allocates it.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ContactWorld {
+    broad_phase: BroadPhase,
+    tree: StaticTree,
+    /// Static collider per tree item: static index.
+    tree_items: Vec<u32>,
+    tree_dirty: bool,
+    /// Dynamic colliders this step: proxy -> dynamic index.
+    proxy_body: Vec<u32>,
+    proxies: Vec<Aabb>,
+    /// Per-body travel margin this step, by proxy.
+    margins: Vec<f32>,
+    pairs: Vec<(u32, u32)>,
+    pub constraints: Vec<Constraint>,
+    /// Positions at the start of the step (separations are updated from
+    /// the displacement since then).
+    pub start: Vec<Vec2>,
+    /// Push velocities of the current substep, per dynamic body.
+    pub push: Vec<Vec2>,
+    cache: Vec<Cached>,
+    touching: Vec<(BodyId, BodyId)>,
+    touching_prev: Vec<(BodyId, BodyId)>,
+    /// Sensor-visitor pairs close enough to overlap by the end of the step.
+    sensor_candidates: Vec<SensorCandidate>,
+    sensors: Vec<SensorPair>,
+    sensors_prev: Vec<SensorPair>,
+    pub events: ContactEvents,
+}
+
+fn key(a: BodyId, b: BodyId) -> (BodyId, BodyId) {
+    if a.index <= b.index { (a, b) } else { (b, a) }
+}
+
+impl ContactWorld {
+    pub fn new() -> Self {
+        Self {
+            tree_dirty: true,
+            ..Self::default()
+        }
+    }
+
+    /// Static bodies changed: rebuild the tree at the next step.
+    pub fn statics_changed(&mut self) {
+        self.tree_dirty = true;
+    }
+
+    fn rebuild_tree(&mut self, statics: &StaticBodies) {
+        self.tree_items.clear();
+        let mut boxes = Vec::new();
+        for (i, meta) in statics.meta.iter().enumerate() {
+            if let Some(shape) = &meta.shape {
+                self.tree_items.push(i as u32);
+                boxes.push(Aabb::from_centre(statics.pos[i], shape.half_extents()));
+            }
+        }
+        self.tree = StaticTree::build(boxes);
+        self.tree_dirty = false;
+    }
+
+    /// Broad and narrow phase at the start of a step: builds the contact
+    /// constraints (with last step's impulses when warm starting) and the
+    /// sensor overlaps.
+    pub fn begin_step(
+        &mut self,
+        dynamic: &DynamicBodies,
+        statics: &StaticBodies,
+        settings: &ContactSettings,
+        gravity: Vec2,
+        dt: f32,
+        h: f32,
+    ) {
+        if self.tree_dirty {
+            self.rebuild_tree(statics);
+        }
+        self.start.clear();
+        self.start.extend_from_slice(&dynamic.pos);
+        self.push.clear();
+        self.push.resize(dynamic.len(), Vec2::ZERO);
+
+        // Proxies: shaped dynamic bodies, grown by their possible travel.
+        self.proxy_body.clear();
+        self.proxies.clear();
+        self.margins.clear();
+        let fall = gravity.length() * dt;
+        for (i, meta) in dynamic.meta.iter().enumerate() {
+            let Some(shape) = &meta.shape else { continue };
+            let travel = if settings.continuous {
+                (dynamic.vel[i].length() + fall) * dt
+            } else {
+                0.0
+            };
+            let margin = 0.5 * SPECULATIVE_DISTANCE + travel;
+            self.proxy_body.push(i as u32);
+            self.proxies
+                .push(Aabb::from_centre(dynamic.pos[i], shape.half_extents()).grown(margin));
+            self.margins.push(margin);
+        }
+        self.pairs.clear();
+        self.broad_phase.find_pairs(&self.proxies, &mut self.pairs);
+        let dynamic_pairs = self.pairs.len();
+        for (p, aabb) in self.proxies.iter().enumerate() {
+            let pairs = &mut self.pairs;
+            let items = &self.tree_items;
+            self.tree.query(aabb, |item| {
+                pairs.push((p as u32, STATIC_BODY | items[item as usize]))
+            });
+        }
+
+        // Narrow phase in a fixed order: sort by body ids.
+        let collider = |body: u32| -> Collider {
+            if body & STATIC_BODY != 0 {
+                let s = (body & !STATIC_BODY) as usize;
+                let m = &statics.meta[s];
+                Collider {
+                    shape: m.shape.expect("static collider has a shape"),
+                    body,
+                    id: m.id,
+                    sensor: m.sensor,
+                }
+            } else {
+                let m = &dynamic.meta[body as usize];
+                Collider {
+                    shape: m.shape.expect("proxy has a shape"),
+                    body,
+                    id: m.id,
+                    sensor: m.sensor,
+                }
+            }
+        };
+        let mut constraints = std::mem::take(&mut self.constraints);
+        constraints.clear();
+        self.sensor_candidates.clear();
+        for (n, &(pa, pb)) in self.pairs.iter().enumerate() {
+            let a_body = self.proxy_body[pa as usize];
+            let (b_body, margin) = if n < dynamic_pairs {
+                (
+                    self.proxy_body[pb as usize],
+                    self.margins[pa as usize] + self.margins[pb as usize],
+                )
+            } else {
+                (pb, self.margins[pa as usize] + 0.5 * SPECULATIVE_DISTANCE)
+            };
+            let (ca, cb) = (collider(a_body), collider(b_body));
+            let filter_a = &dynamic.meta[a_body as usize].filter;
+            let filter_b = if b_body & STATIC_BODY != 0 {
+                &statics.meta[(b_body & !STATIC_BODY) as usize].filter
+            } else {
+                &dynamic.meta[b_body as usize].filter
+            };
+            if !filter_a.allows(filter_b) || (ca.sensor && cb.sensor) {
+                continue;
+            }
+            let pos_of = |c: &Collider| {
+                if c.body & STATIC_BODY != 0 {
+                    statics.pos[(c.body & !STATIC_BODY) as usize]
+                } else {
+                    dynamic.pos[c.body as usize]
+                }
+            };
+            if ca.sensor || cb.sensor {
+                let (s, v) = if ca.sensor { (ca, cb) } else { (cb, ca) };
+                self.sensor_candidates.push(SensorCandidate {
+                    pair: SensorPair {
+                        sensor: s.id,
+                        visitor: v.id,
+                    },
+                    sensor: s.body,
+                    visitor: v.body,
+                });
+                continue;
+            }
+            // A static body is always B; otherwise the lower id is A, so a
+            // contact's orientation does not depend on storage order.
+            let (ca, cb) = if cb.body & STATIC_BODY != 0 || ca.id.index <= cb.id.index {
+                (ca, cb)
+            } else {
+                (cb, ca)
+            };
+            let Some(m) = collide(&ca.shape, pos_of(&ca), &cb.shape, pos_of(&cb), margin) else {
+                continue;
+            };
+            constraints.push(Constraint::new(
+                &m, ca.body, cb.body, ca.id, cb.id, dynamic, statics, gravity, h,
+            ));
+        }
+        constraints.sort_unstable_by_key(|c| key(c.id_a, c.id_b));
+        self.constraints = constraints;
+
+        // Warm starting: merge with last step's impulses (both sorted by key).
+        if settings.warm_starting {
+            let mut j = 0;
+            for c in &mut self.constraints {
+                let k = key(c.id_a, c.id_b);
+                while j < self.cache.len() && self.cache[j].key < k {
+                    j += 1;
+                }
+                if j < self.cache.len() && self.cache[j].key == k {
+                    c.normal_impulse = self.cache[j].normal_impulse;
+                    c.tangent_impulse = self.cache[j].tangent_impulse;
+                }
+            }
+        }
+    }
+
+    /// After the last substep: cache impulses for warm starting, find which
+    /// bodies are inside sensors now, and work out which pairs began and
+    /// ended touching.
+    pub fn end_step(&mut self, dynamic: &DynamicBodies, statics: &StaticBodies) {
+        self.sensors.clear();
+        for c in &self.sensor_candidates {
+            let (shape_s, pos_s) = collider_at(c.sensor, dynamic, statics);
+            let (shape_v, pos_v) = collider_at(c.visitor, dynamic, statics);
+            if collide(&shape_s, pos_s, &shape_v, pos_v, 0.0).is_some_and(|m| m.separation < 0.0) {
+                self.sensors.push(c.pair);
+            }
+        }
+        self.cache.clear();
+        self.touching.clear();
+        for c in &self.constraints {
+            let k = key(c.id_a, c.id_b);
+            self.cache.push(Cached {
+                key: k,
+                normal_impulse: c.normal_impulse,
+                tangent_impulse: c.tangent_impulse,
+            });
+            if c.is_touching() {
+                self.touching.push(k);
+            }
+        }
+        self.events.clear();
+        diff(&self.touching_prev, &self.touching, |k, began| {
+            let pair = ContactPair { a: k.0, b: k.1 };
+            if began {
+                self.events.begin.push(pair);
+            } else {
+                self.events.end.push(pair);
+            }
+        });
+        std::mem::swap(&mut self.touching, &mut self.touching_prev);
+        self.sensors.sort_unstable();
+        self.sensors.dedup();
+        diff(&self.sensors_prev, &self.sensors, |&pair, began| {
+            if began {
+                self.events.sensor_begin.push(pair);
+            } else {
+                self.events.sensor_end.push(pair);
+            }
+        });
+        std::mem::swap(&mut self.sensors, &mut self.sensors_prev);
+    }
+
+    /// A step in which the contact stage has nothing to do (its colliders
+    /// were removed): every contact and overlap ends.
+    pub fn idle_step(&mut self, dynamic: &DynamicBodies, statics: &StaticBodies) {
+        self.constraints.clear();
+        self.sensor_candidates.clear();
+        self.end_step(dynamic, statics);
+    }
+
+    /// Sensor overlaps after the last step.
+    pub fn sensor_overlaps(&self) -> &[SensorPair] {
+        &self.sensors_prev
+    }
+}
+
+/// The shape and position of a collider reference.
+fn collider_at(body: u32, dynamic: &DynamicBodies, statics: &StaticBodies) -> (Shape, Vec2) {
+    if body & STATIC_BODY != 0 {
+        let s = (body & !STATIC_BODY) as usize;
+        (
+            statics.meta[s].shape.expect("collider has a shape"),
+            statics.pos[s],
+        )
+    } else {
+        let d = body as usize;
+        (
+            dynamic.meta[d].shape.expect("collider has a shape"),
+            dynamic.pos[d],
+        )
+    }
+}
+
+/// Walks two sorted lists and reports what is only in `now` (`true`) or
+/// only in `before` (`false`).
+fn diff<T: Ord>(before: &[T], now: &[T], mut f: impl FnMut(&T, bool)) {
+    let (mut i, mut j) = (0, 0);
+    while i < before.len() || j < now.len() {
+        match (before.get(i), now.get(j)) {
+            (Some(b), Some(n)) if b == n => {
+                i += 1;
+                j += 1;
+            }
+            (Some(b), Some(n)) if b < n => {
+                f(b, false);
+                i += 1;
+            }
+            (Some(b), None) => {
+                f(b, false);
+                i += 1;
+            }
+            (_, Some(n)) => {
+                f(n, true);
+                j += 1;
+            }
+            (None, None) => unreachable!(),
+        }
+    }
+}

@@ -1,0 +1,370 @@
+//! Narrow phase: the contact manifold between two shapes.
+//!
+//! Every function takes shape A at `pa` and shape B at `pb` and returns the
+//! normal pointing from A to B, the separation along it (negative when the
+//! shapes overlap: minus the penetration depth), and the contact points.
+//! Results are exact for touching, separated and overlapping shapes, and
+//! defined when one contains the other or the centres coincide: the normal
+//! then falls back to +y (up), never NaN.
+
+use crate::Shape;
+use glam::Vec2;
+
+/// Where two shapes touch or would touch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Manifold {
+    /// Unit normal from A to B.
+    pub normal: Vec2,
+    /// Distance between the shapes along `normal`, metres; negative when
+    /// they overlap (its magnitude is then the penetration depth).
+    pub separation: f32,
+    /// Contact points in world space; `point_count` of them are valid.
+    pub points: [Vec2; 2],
+    /// 1 or 2.
+    pub point_count: u8,
+}
+
+impl Manifold {
+    fn one(normal: Vec2, separation: f32, point: Vec2) -> Self {
+        Self {
+            normal,
+            separation,
+            points: [point, point],
+            point_count: 1,
+        }
+    }
+
+    /// The valid contact points.
+    pub fn points(&self) -> &[Vec2] {
+        &self.points[..usize::from(self.point_count)]
+    }
+
+    /// The same contact seen from B: normal reversed, points unchanged.
+    pub fn flipped(mut self) -> Self {
+        self.normal = -self.normal;
+        self
+    }
+}
+
+/// The manifold of two shapes, or `None` if they are farther apart than
+/// `margin` metres (a speculative contact is kept up to that distance).
+pub fn collide(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Option<Manifold> {
+    let m = match (*sa, *sb) {
+        (Shape::Circle { radius: ra }, Shape::Circle { radius: rb }) => {
+            circle_circle(pa, ra, pb, rb)
+        }
+        (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb }) => {
+            box_box(pa, ha, pb, hb)
+        }
+        (Shape::Box { half_extents }, Shape::Circle { radius }) => {
+            box_circle(pa, half_extents, pb, radius)
+        }
+        (Shape::Circle { radius }, Shape::Box { half_extents }) => {
+            box_circle(pb, half_extents, pa, radius).flipped()
+        }
+    };
+    (m.separation <= margin).then_some(m)
+}
+
+/// Two circles: along the line of centres.
+pub fn circle_circle(pa: Vec2, ra: f32, pb: Vec2, rb: f32) -> Manifold {
+    let d = pb - pa;
+    let dist = d.length();
+    let normal = if dist > 0.0 { d / dist } else { Vec2::Y };
+    let separation = dist - ra - rb;
+    // Midway between the two surfaces.
+    let point = pa + normal * (ra + 0.5 * separation);
+    Manifold::one(normal, separation, point)
+}
+
+/// Two axis-aligned boxes: along the axis of least overlap (most
+/// separation); on a tie, the y axis. Two points span the shared face.
+pub fn box_box(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2) -> Manifold {
+    let d = pb - pa;
+    let overlap = ha + hb - d.abs();
+    // Axis 0 = x, 1 = y; ties go to y so stacks get vertical normals.
+    let (axis, tangent_axis) = if overlap.x < overlap.y {
+        (0, 1)
+    } else {
+        (1, 0)
+    };
+    let sign = if d[axis] < 0.0 { -1.0 } else { 1.0 };
+    let mut normal = Vec2::ZERO;
+    normal[axis] = sign;
+    let separation = -overlap[axis];
+
+    // The face midway between A's face and B's face, along the normal axis.
+    let face = 0.5 * ((pa[axis] + sign * ha[axis]) + (pb[axis] - sign * hb[axis]));
+    let lo = (pa[tangent_axis] - ha[tangent_axis]).max(pb[tangent_axis] - hb[tangent_axis]);
+    let hi = (pa[tangent_axis] + ha[tangent_axis]).min(pb[tangent_axis] + hb[tangent_axis]);
+    let point_at = |t: f32| {
+        let mut p = Vec2::ZERO;
+        p[axis] = face;
+        p[tangent_axis] = t;
+        p
+    };
+    if lo < hi {
+        Manifold {
+            normal,
+            separation,
+            points: [point_at(lo), point_at(hi)],
+            point_count: 2,
+        }
+    } else {
+        // Corner to corner (or edge on a single point).
+        Manifold::one(normal, separation, point_at(0.5 * (lo + hi)))
+    }
+}
+
+/// A box (A) and a circle (B): from the closest point of the box to the
+/// circle's centre; a centre inside the box leaves through the nearest face.
+pub fn box_circle(pa: Vec2, ha: Vec2, pb: Vec2, rb: f32) -> Manifold {
+    let local = pb - pa;
+    let closest = local.clamp(-ha, ha);
+    let d = local - closest;
+    let dist_sq = d.length_squared();
+    if dist_sq > 0.0 {
+        let dist = dist_sq.sqrt();
+        let normal = d / dist;
+        Manifold::one(normal, dist - rb, pa + closest)
+    } else {
+        // Centre inside (or on) the box: push out through the nearest face;
+        // on a tie prefer y, then the positive side.
+        let to_face = ha - local.abs();
+        let (axis, depth) = if to_face.x < to_face.y {
+            (0, to_face.x)
+        } else {
+            (1, to_face.y)
+        };
+        let mut normal = Vec2::ZERO;
+        normal[axis] = if local[axis] < 0.0 { -1.0 } else { 1.0 };
+        let mut point = local;
+        point[axis] = normal[axis] * ha[axis];
+        Manifold::one(normal, -depth - rb, pa + point)
+    }
+}
+
+/// Whether a point is inside (or on) a shape at `p`.
+pub fn shape_contains(shape: &Shape, p: Vec2, point: Vec2) -> bool {
+    match *shape {
+        Shape::Circle { radius } => (point - p).length_squared() <= radius * radius,
+        Shape::Box { half_extents } => (point - p).abs().cmple(half_extents).all(),
+    }
+}
+
+/// The first hit of the ray `origin + t dir` (`dir` a unit vector, `t` in
+/// `[0, max_t]`) with a shape at `p`: `(t, outward normal)`. A ray starting
+/// inside a shape hits it at `t = 0` with the normal opposing `dir`.
+pub fn ray_shape(
+    shape: &Shape,
+    p: Vec2,
+    origin: Vec2,
+    dir: Vec2,
+    max_t: f32,
+) -> Option<(f32, Vec2)> {
+    if shape_contains(shape, p, origin) {
+        return Some((0.0, -dir));
+    }
+    match *shape {
+        Shape::Circle { radius } => {
+            // |o + t d - c|^2 = r^2 with |d| = 1: t^2 + 2 b t + c = 0.
+            let m = origin - p;
+            let b = m.dot(dir);
+            let c = m.length_squared() - radius * radius;
+            let disc = b * b - c;
+            if disc < 0.0 {
+                return None;
+            }
+            let t = -b - disc.sqrt();
+            (t >= 0.0 && t <= max_t).then(|| (t, (m + dir * t) / radius))
+        }
+        Shape::Box { half_extents } => {
+            // Slabs: the latest entry over both axes is the hit.
+            let lo = p - half_extents;
+            let hi = p + half_extents;
+            let mut t_enter = 0.0f32;
+            let mut t_exit = max_t;
+            let mut normal = Vec2::ZERO;
+            for axis in 0..2 {
+                if dir[axis] == 0.0 {
+                    if origin[axis] < lo[axis] || origin[axis] > hi[axis] {
+                        return None;
+                    }
+                    continue;
+                }
+                let inv = 1.0 / dir[axis];
+                let (mut t0, mut t1) = (
+                    (lo[axis] - origin[axis]) * inv,
+                    (hi[axis] - origin[axis]) * inv,
+                );
+                let mut n = Vec2::ZERO;
+                n[axis] = -1.0;
+                if t0 > t1 {
+                    std::mem::swap(&mut t0, &mut t1);
+                    n[axis] = 1.0;
+                }
+                if t0 > t_enter {
+                    t_enter = t0;
+                    normal = n;
+                }
+                t_exit = t_exit.min(t1);
+                if t_enter > t_exit {
+                    return None;
+                }
+            }
+            Some((t_enter, normal))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: Vec2, b: Vec2) -> bool {
+        (a - b).length() < 1e-6
+    }
+
+    #[test]
+    fn circles_touching_separated_overlapping_and_coincident() {
+        let touching = circle_circle(Vec2::ZERO, 1.0, Vec2::new(3.0, 0.0), 2.0);
+        assert_eq!((touching.normal, touching.separation), (Vec2::X, 0.0));
+        assert!(close(touching.points[0], Vec2::new(1.0, 0.0)));
+
+        let apart = circle_circle(Vec2::ZERO, 1.0, Vec2::new(0.0, -5.0), 1.0);
+        assert_eq!((apart.normal, apart.separation), (-Vec2::Y, 3.0));
+
+        let overlap = circle_circle(Vec2::ZERO, 1.0, Vec2::new(3.0, 4.0), 4.5);
+        assert!(close(overlap.normal, Vec2::new(0.6, 0.8)));
+        assert!((overlap.separation + 0.5).abs() < 1e-6);
+
+        let same = circle_circle(Vec2::ONE, 1.0, Vec2::ONE, 0.5);
+        assert_eq!((same.normal, same.separation), (Vec2::Y, -1.5));
+        assert!(same.points[0].is_finite());
+    }
+
+    #[test]
+    fn boxes_use_the_axis_of_least_overlap_with_two_face_points() {
+        // B resting on A, offset by half a width: a vertical normal and the
+        // shared stretch of face as the two points.
+        let m = box_box(
+            Vec2::ZERO,
+            Vec2::splat(0.5),
+            Vec2::new(0.5, 0.99),
+            Vec2::splat(0.5),
+        );
+        assert_eq!(m.normal, Vec2::Y);
+        assert!((m.separation + 0.01).abs() < 1e-6);
+        assert_eq!(m.point_count, 2);
+        assert!(close(m.points[0], Vec2::new(0.0, 0.495)));
+        assert!(close(m.points[1], Vec2::new(0.5, 0.495)));
+
+        let side = box_box(
+            Vec2::ZERO,
+            Vec2::splat(0.5),
+            Vec2::new(-1.2, 0.1),
+            Vec2::splat(0.5),
+        );
+        assert_eq!(side.normal, -Vec2::X);
+        assert!((side.separation - 0.2).abs() < 1e-6);
+
+        // Contained and coincident: defined, up by convention.
+        let inside = box_box(Vec2::ZERO, Vec2::splat(2.0), Vec2::ZERO, Vec2::splat(0.5));
+        assert_eq!((inside.normal, inside.separation), (Vec2::Y, -2.5));
+        // A box below: down.
+        let below = box_box(
+            Vec2::ZERO,
+            Vec2::new(2.0, 0.5),
+            Vec2::new(0.0, -0.9),
+            Vec2::splat(0.5),
+        );
+        assert_eq!(below.normal, -Vec2::Y);
+    }
+
+    #[test]
+    fn box_circle_outside_corner_face_and_inside() {
+        let h = Vec2::new(2.0, 1.0);
+        let above = box_circle(Vec2::ZERO, h, Vec2::new(0.5, 1.5), 0.5);
+        assert_eq!((above.normal, above.separation), (Vec2::Y, 0.0));
+        assert!(close(above.points[0], Vec2::new(0.5, 1.0)));
+
+        let corner = box_circle(Vec2::ZERO, h, Vec2::new(5.0, 5.0), 1.0);
+        assert!(close(corner.normal, Vec2::new(0.6, 0.8)));
+        assert!((corner.separation - 4.0).abs() < 1e-6);
+
+        let inside = box_circle(Vec2::ZERO, h, Vec2::new(1.8, 0.0), 0.5);
+        assert_eq!(inside.normal, Vec2::X);
+        assert!((inside.separation + 0.7).abs() < 1e-6);
+
+        let centre = box_circle(Vec2::ZERO, Vec2::splat(1.0), Vec2::ZERO, 0.5);
+        assert_eq!((centre.normal, centre.separation), (Vec2::Y, -1.5));
+
+        // The circle-first order flips the normal.
+        let m = collide(
+            &Shape::circle(0.5),
+            Vec2::new(0.5, 1.5),
+            &Shape::Box { half_extents: h },
+            Vec2::ZERO,
+            0.0,
+        )
+        .unwrap();
+        assert_eq!(m.normal, -Vec2::Y);
+    }
+
+    #[test]
+    fn margin_keeps_speculative_contacts_and_drops_far_ones() {
+        let a = Shape::circle(1.0);
+        assert!(collide(&a, Vec2::ZERO, &a, Vec2::new(2.5, 0.0), 0.5).is_some());
+        assert!(collide(&a, Vec2::ZERO, &a, Vec2::new(2.6, 0.0), 0.5).is_none());
+    }
+
+    #[test]
+    fn rays_hit_circles_and_boxes_at_the_right_distance() {
+        let (t, n) = ray_shape(
+            &Shape::circle(1.0),
+            Vec2::new(5.0, 0.0),
+            Vec2::ZERO,
+            Vec2::X,
+            10.0,
+        )
+        .unwrap();
+        assert!((t - 4.0).abs() < 1e-6);
+        assert_eq!(n, -Vec2::X);
+        assert!(
+            ray_shape(
+                &Shape::circle(1.0),
+                Vec2::new(5.0, 0.0),
+                Vec2::ZERO,
+                Vec2::X,
+                3.0
+            )
+            .is_none()
+        );
+        assert!(
+            ray_shape(
+                &Shape::circle(1.0),
+                Vec2::new(5.0, 2.0),
+                Vec2::ZERO,
+                Vec2::X,
+                10.0
+            )
+            .is_none()
+        );
+
+        let wall = Shape::rect(1.0, 6.0);
+        let dir = Vec2::new(1.0, 1.0).normalize();
+        let (t, n) = ray_shape(&wall, Vec2::new(3.0, 0.0), Vec2::ZERO, dir, 10.0).unwrap();
+        assert!((t - 2.5 * 2f32.sqrt()).abs() < 1e-5);
+        assert_eq!(n, -Vec2::X);
+        let (t, n) = ray_shape(
+            &wall,
+            Vec2::new(3.0, 0.0),
+            Vec2::new(3.0, 6.0),
+            -Vec2::Y,
+            10.0,
+        )
+        .unwrap();
+        assert_eq!((t, n), (3.0, Vec2::Y));
+        assert!(ray_shape(&wall, Vec2::new(3.0, 0.0), Vec2::ZERO, -Vec2::X, 10.0).is_none());
+    }
+}

@@ -1,0 +1,315 @@
+//! The contact solver: sequential impulses in substeps, with split-impulse
+//! position correction.
+//!
+//! Bodies do not rotate, so every point of a manifold has the same
+//! Jacobian: one normal row and one friction row per contact are exactly
+//! what solving each point would give. Per step:
+//!
+//! ```text
+//! prepare contacts (narrow phase, warm-start impulses)
+//! for each substep h = dt / substeps:
+//!     integrate velocities (forces)
+//!     warm start: apply the last substep's impulses
+//!     iterate: friction, normal (velocity), push (position)
+//!     integrate positions with velocity + push; forget the push
+//!     relax: more velocity iterations
+//! restitution
+//! ```
+//!
+//! The normal row is a hard constraint `v_n >= 0` with accumulated-impulse
+//! clamping (`lambda >= 0`) and warm starting, so a resting contact's impulse
+//! converges to exactly the weight it carries and nothing sinks. A contact
+//! still apart (separation `s > 0`) lets the bodies close at most `s / h`:
+//! a speculative contact, which stops fast bodies at the surface. Friction
+//! is Coulomb's: `|lambda_t| <= mu lambda_n`.
+//!
+//! Overlap deeper than the slop is removed by split impulses: a separate
+//! "push" velocity, solved like the normal row with target
+//! `min(beta (-s - slop) / h, push_out_speed)`, moves the bodies apart and is
+//! then discarded. Baumgarte stabilisation (a bias in the real velocity)
+//! would turn every overlap into kinetic energy, so bodies created
+//! overlapping would fly apart; the push never becomes velocity.
+
+use crate::body::{DynamicBodies, StaticBodies};
+use crate::manifold::Manifold;
+use crate::{BodyId, ContactSettings};
+use glam::Vec2;
+
+/// Marks a constraint's body B as static; the low bits are its static index.
+pub(crate) const STATIC_BODY: u32 = 1 << 31;
+
+/// One contact between a dynamic body A and a dynamic or static body B.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Constraint {
+    pub a: u32,
+    pub b: u32,
+    pub id_a: BodyId,
+    pub id_b: BodyId,
+    pub normal: Vec2,
+    /// Separation when the step began.
+    pub base_separation: f32,
+    /// Separation after the last substep.
+    pub separation: f32,
+    pub points: [Vec2; 2],
+    pub point_count: u8,
+    inv_mass_a: f32,
+    inv_mass_b: f32,
+    /// `1 / (1/m_a + 1/m_b)`, the same for the normal and the friction row.
+    mass: f32,
+    friction: f32,
+    restitution: f32,
+    /// `u = v_n + a_n h / 2` at impact (negative when approaching).
+    impact_u: f32,
+    /// `a_n h / 2`.
+    half_an_h: f32,
+    pub normal_impulse: f32,
+    pub tangent_impulse: f32,
+    /// Push (position) impulse of the current substep.
+    push_impulse: f32,
+    max_normal_impulse: f32,
+}
+
+impl Constraint {
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        m: &Manifold,
+        a: u32,
+        b: u32,
+        id_a: BodyId,
+        id_b: BodyId,
+        dynamic: &DynamicBodies,
+        statics: &StaticBodies,
+        gravity: Vec2,
+        h: f32,
+    ) -> Self {
+        let ai = a as usize;
+        let b_static = b & STATIC_BODY != 0;
+        let (inv_mass_b, friction_b, restitution_b, vel_b) = if b_static {
+            let s = (b & !STATIC_BODY) as usize;
+            (
+                0.0,
+                statics.friction[s],
+                statics.meta[s].restitution,
+                Vec2::ZERO,
+            )
+        } else {
+            let bi = b as usize;
+            (
+                dynamic.inv_mass[bi],
+                dynamic.friction[bi],
+                dynamic.meta[bi].restitution,
+                dynamic.vel[bi],
+            )
+        };
+        let inv_mass_a = dynamic.inv_mass[ai];
+        let k = inv_mass_a + inv_mass_b;
+        // Restitution reflects the normal velocity at the moment of impact,
+        // in the form the integrator conserves. With a relative normal
+        // acceleration `a_n` (gravity; only a static B does not fall with A),
+        // semi-implicit Euler over substeps `h` conserves exactly
+        // `Q = 1/2 u^2 - a_n s` with `u = v_n + a_n h / 2`. A contact still
+        // apart closes the gap `s`, so at impact `u^2 = u0^2 - 2 a_n s`; the
+        // bounce sets `u <- -e u`. An elastic ball then keeps `Q`, and so its
+        // height, bounce after bounce, wherever in a step the impact falls.
+        let vn = (vel_b - dynamic.vel[ai]).dot(m.normal);
+        let a_n = if b_static {
+            -gravity.dot(m.normal)
+        } else {
+            0.0
+        };
+        let half_an_h = 0.5 * a_n * h;
+        let u0 = vn + half_an_h;
+        let mut impact_u = u0;
+        if m.separation > 0.0 && (u0 < 0.0 || a_n < 0.0) {
+            let u2 = u0 * u0 - 2.0 * a_n * m.separation;
+            if u2 > 0.0 {
+                impact_u = -u2.sqrt();
+            }
+        }
+        Self {
+            a,
+            b,
+            id_a,
+            id_b,
+            normal: m.normal,
+            base_separation: m.separation,
+            separation: m.separation,
+            points: m.points,
+            point_count: m.point_count,
+            inv_mass_a,
+            inv_mass_b,
+            mass: if k > 0.0 { 1.0 / k } else { 0.0 },
+            friction: (dynamic.friction[ai] * friction_b).sqrt(),
+            restitution: dynamic.meta[ai].restitution.max(restitution_b),
+            impact_u,
+            half_an_h,
+            normal_impulse: 0.0,
+            tangent_impulse: 0.0,
+            push_impulse: 0.0,
+            max_normal_impulse: 0.0,
+        }
+    }
+
+    pub fn is_static(&self) -> bool {
+        self.b & STATIC_BODY != 0
+    }
+
+    /// Touching: the solver pushed the bodies apart this step, or they overlap.
+    pub fn is_touching(&self) -> bool {
+        self.max_normal_impulse > 0.0 || self.separation < 0.0
+    }
+}
+
+/// The solver's view of the bodies during one step.
+pub(crate) struct SolverBodies<'a> {
+    pub vel: &'a mut [Vec2],
+    /// Push velocities of this substep (split impulses).
+    pub push: &'a mut [Vec2],
+    pub pos: &'a [Vec2],
+    pub start: &'a [Vec2],
+}
+
+impl SolverBodies<'_> {
+    #[inline(always)]
+    fn velocity(&self, c: &Constraint) -> (Vec2, Vec2) {
+        let va = self.vel[c.a as usize];
+        let vb = if c.is_static() {
+            Vec2::ZERO
+        } else {
+            self.vel[c.b as usize]
+        };
+        (va, vb)
+    }
+
+    #[inline(always)]
+    fn apply(&mut self, c: &Constraint, impulse: Vec2) {
+        self.vel[c.a as usize] -= impulse * c.inv_mass_a;
+        if !c.is_static() {
+            self.vel[c.b as usize] += impulse * c.inv_mass_b;
+        }
+    }
+
+    #[inline(always)]
+    fn push_velocity(&self, c: &Constraint) -> (Vec2, Vec2) {
+        let pa = self.push[c.a as usize];
+        let pb = if c.is_static() {
+            Vec2::ZERO
+        } else {
+            self.push[c.b as usize]
+        };
+        (pa, pb)
+    }
+
+    #[inline(always)]
+    fn apply_push(&mut self, c: &Constraint, impulse: Vec2) {
+        self.push[c.a as usize] -= impulse * c.inv_mass_a;
+        if !c.is_static() {
+            self.push[c.b as usize] += impulse * c.inv_mass_b;
+        }
+    }
+
+    /// Separation now: the step's separation plus the relative displacement
+    /// along the normal since the step began (exact for boxes, first order
+    /// for circles; bodies do not rotate).
+    #[inline(always)]
+    fn separation(&self, c: &Constraint) -> f32 {
+        let da = self.pos[c.a as usize] - self.start[c.a as usize];
+        let db = if c.is_static() {
+            Vec2::ZERO
+        } else {
+            self.pos[c.b as usize] - self.start[c.b as usize]
+        };
+        c.base_separation + (db - da).dot(c.normal)
+    }
+}
+
+/// Applies the impulses carried from the last substep (or step).
+pub(crate) fn warm_start(constraints: &[Constraint], bodies: &mut SolverBodies<'_>) {
+    for c in constraints {
+        let tangent = c.normal.perp();
+        bodies.apply(c, c.normal * c.normal_impulse + tangent * c.tangent_impulse);
+    }
+}
+
+/// Starts a substep's push: no push impulse yet.
+pub(crate) fn reset_push(constraints: &mut [Constraint]) {
+    for c in constraints {
+        c.push_impulse = 0.0;
+    }
+}
+
+/// One Gauss-Seidel pass over every contact: friction, the normal row, and
+/// (with `push`) the split-impulse push out of overlap deeper than the slop.
+pub(crate) fn solve(
+    constraints: &mut [Constraint],
+    bodies: &mut SolverBodies<'_>,
+    settings: &ContactSettings,
+    h: f32,
+    push: bool,
+) {
+    let inv_h = 1.0 / h;
+    let push_rate = settings.position_correction * inv_h;
+    for c in constraints.iter_mut() {
+        let tangent = c.normal.perp();
+
+        // Coulomb friction: |lambda_t| <= mu lambda_n.
+        let (va, vb) = bodies.velocity(c);
+        let vt = (vb - va).dot(tangent);
+        let max_friction = c.friction * c.normal_impulse;
+        let new_t = (c.tangent_impulse - c.mass * vt).clamp(-max_friction, max_friction);
+        let dt_impulse = new_t - c.tangent_impulse;
+        c.tangent_impulse = new_t;
+        bodies.apply(c, tangent * dt_impulse);
+
+        // Non-penetration: v_n >= 0, or >= -s / h while still apart.
+        let s = bodies.separation(c);
+        let bias = if s > 0.0 { s * inv_h } else { 0.0 };
+        let (va, vb) = bodies.velocity(c);
+        let vn = (vb - va).dot(c.normal);
+        let new_n = (c.normal_impulse - c.mass * (vn + bias)).max(0.0);
+        let dn = new_n - c.normal_impulse;
+        c.normal_impulse = new_n;
+        c.max_normal_impulse = c.max_normal_impulse.max(new_n);
+        bodies.apply(c, c.normal * dn);
+
+        // Push out of overlap deeper than the slop.
+        if push {
+            let target = (push_rate * (-s - settings.slop)).clamp(0.0, settings.push_out_speed);
+            let (pa, pb) = bodies.push_velocity(c);
+            let pn = (pb - pa).dot(c.normal);
+            let new_p = (c.push_impulse + c.mass * (target - pn)).max(0.0);
+            let dp = new_p - c.push_impulse;
+            c.push_impulse = new_p;
+            bodies.apply_push(c, c.normal * dp);
+        }
+    }
+}
+
+/// After the substeps: contacts hit faster than the threshold bounce,
+/// `u <- -e u_impact` (see [`Constraint::new`]).
+pub(crate) fn restitution(
+    constraints: &mut [Constraint],
+    bodies: &mut SolverBodies<'_>,
+    threshold: f32,
+) {
+    for c in constraints.iter_mut() {
+        if c.restitution == 0.0 || c.impact_u > -threshold || c.max_normal_impulse == 0.0 {
+            continue;
+        }
+        let (va, vb) = bodies.velocity(c);
+        let vn = (vb - va).dot(c.normal);
+        let target = -c.restitution * c.impact_u - c.half_an_h;
+        let new_n = (c.normal_impulse + c.mass * (target - vn)).max(0.0);
+        let dn = new_n - c.normal_impulse;
+        c.normal_impulse = new_n;
+        c.max_normal_impulse = c.max_normal_impulse.max(new_n);
+        bodies.apply(c, c.normal * dn);
+    }
+}
+
+/// Records each contact's separation at the end of the step.
+pub(crate) fn store_separations(constraints: &mut [Constraint], bodies: &SolverBodies<'_>) {
+    for c in constraints.iter_mut() {
+        c.separation = bodies.separation(c);
+    }
+}

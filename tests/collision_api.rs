@@ -1,0 +1,221 @@
+//! What a game reads from collisions: events, sensors, filters, queries.
+
+use passo_physics::glam::Vec2;
+use passo_physics::{
+    Aabb, BodyDef, CollisionFilter, ContactPair, ForceModels, SensorPair, Shape, Stage, World,
+    WorldSettings,
+};
+use passo_tests::{add_box, add_circle, add_static_box};
+
+const DT: f32 = 1.0 / 60.0;
+
+#[test]
+fn a_falling_ball_reports_begin_on_landing_and_end_when_thrown_up() {
+    let mut w = World::default();
+    let ground = add_static_box(&mut w, Vec2::new(-5.0, -1.0), Vec2::new(5.0, 0.0));
+    let ball = add_circle(&mut w, Vec2::new(0.0, 1.5), 0.5, 1.0);
+    let mut began = None;
+    for n in 0..120 {
+        w.step(DT);
+        if !w.events().begin.is_empty() {
+            assert_eq!(w.events().begin, [ContactPair { a: ground, b: ball }]);
+            began.get_or_insert(n);
+        }
+    }
+    // Falling 1 m takes 0.45 s: 27 steps.
+    let began = began.expect("the ball landed");
+    assert!((25..=29).contains(&began), "began at step {began}");
+    assert!(w.is_standing(ball, 0.8));
+    assert_eq!(w.standing_on(ball, 0.8), Some(ground));
+    let contact = w.contacts_of(ball).next().unwrap();
+    assert_eq!(contact.a, ball);
+    assert_eq!(contact.normal, -Vec2::Y, "from the ball down to the ground");
+    assert!(contact.touching);
+    // Weight over a substep: m g h = 9.81 / 240 N s.
+    assert!((contact.normal_impulse - 9.81 / 240.0).abs() < 1e-4);
+
+    w.apply_impulse(ball, Vec2::new(0.0, 8.0)).unwrap();
+    w.step(DT);
+    assert_eq!(w.events().end, [ContactPair { a: ground, b: ball }]);
+    w.step(DT);
+    assert!(w.events().end.is_empty(), "an end is reported once");
+    assert!(!w.is_standing(ball, 0.8));
+}
+
+#[test]
+fn standing_needs_a_support_within_the_slope_cone() {
+    let mut w = World::default();
+    add_static_box(&mut w, Vec2::new(-5.0, -1.0), Vec2::new(5.0, 0.0));
+    // A box resting against a wall on its right: touching, but not standing on it.
+    add_static_box(&mut w, Vec2::new(0.5, 0.0), Vec2::new(1.0, 5.0));
+    let b = add_box(&mut w, Vec2::new(0.0, 2.0), Vec2::ONE, 1.0);
+    w.apply_force(b, Vec2::new(200.0, 0.0)).unwrap();
+    w.step(DT);
+    assert!(
+        !w.is_standing(b, 0.8),
+        "in the air, pressed against the wall"
+    );
+    assert!(w.contacts_of(b).any(|c| c.touching && c.normal == Vec2::X));
+}
+
+#[test]
+fn removing_a_body_ends_its_contacts() {
+    let mut w = World::default();
+    let ground = add_static_box(&mut w, Vec2::new(-5.0, -1.0), Vec2::new(5.0, 0.0));
+    let b = add_box(&mut w, Vec2::new(0.0, 0.5), Vec2::ONE, 1.0);
+    w.step(DT);
+    assert_eq!(w.events().begin.len(), 1);
+    w.remove_body(b).unwrap();
+    w.step(DT);
+    assert_eq!(w.events().end, [ContactPair { a: ground, b }]);
+}
+
+#[test]
+fn filters_let_layers_pass_through_each_other() {
+    let mut w = World::default();
+    let ground = add_static_box(&mut w, Vec2::new(-5.0, -1.0), Vec2::new(5.0, 0.0));
+    let ghost = w
+        .add_body(BodyDef {
+            position: Vec2::new(0.0, 0.5),
+            shape: Some(Shape::circle(0.5)),
+            filter: CollisionFilter {
+                layers: 2,
+                mask: !1,
+            },
+            ..Default::default()
+        })
+        .unwrap();
+    let ball = add_circle(&mut w, Vec2::new(3.0, 0.5), 0.5, 1.0);
+    for _ in 0..60 {
+        w.step(DT);
+    }
+    assert!(
+        w.body(ghost).unwrap().position.y < -1.0,
+        "the ghost fell through the ground"
+    );
+    assert!((w.body(ball).unwrap().position.y - 0.5).abs() < 0.01);
+    assert!(w.contacts().all(|c| c.a != ghost && c.b != ghost));
+    let _ = ground;
+}
+
+#[test]
+fn sensors_report_visitors_and_never_push() {
+    let mut w = World::new(WorldSettings {
+        forces: ForceModels::none(),
+        ..Default::default()
+    })
+    .unwrap();
+    let zone = w
+        .add_body(BodyDef {
+            sensor: true,
+            ..BodyDef::fixed(Vec2::new(5.0, 0.0), Shape::rect(2.0, 2.0))
+        })
+        .unwrap();
+    let ball = w
+        .add_body(BodyDef {
+            velocity: Vec2::new(6.0, 0.0),
+            shape: Some(Shape::circle(0.25)),
+            ..Default::default()
+        })
+        .unwrap();
+    let (mut entered, mut left) = (None, None);
+    for n in 0..120 {
+        w.step(DT);
+        let pair = SensorPair {
+            sensor: zone,
+            visitor: ball,
+        };
+        if w.events().sensor_begin.contains(&pair) {
+            entered = Some(n);
+            assert_eq!(w.sensor_overlaps(), [pair]);
+        }
+        if w.events().sensor_end.contains(&pair) {
+            left = Some(n);
+        }
+    }
+    // Enters when x > 5 - 1 - 0.25 = 3.75 (0.625 s), leaves when x > 6.25 (1.04 s).
+    assert_eq!(entered, Some(37));
+    assert_eq!(left, Some(62));
+    assert_eq!(
+        w.body(ball).unwrap().velocity,
+        Vec2::new(6.0, 0.0),
+        "never pushed"
+    );
+}
+
+#[test]
+fn point_box_and_ray_queries() {
+    let mut w = World::new(WorldSettings {
+        forces: ForceModels::none(),
+        ..Default::default()
+    })
+    .unwrap();
+    let wall = add_static_box(&mut w, Vec2::new(4.0, -2.0), Vec2::new(5.0, 2.0));
+    let ball = add_circle(&mut w, Vec2::new(2.0, 0.0), 0.5, 1.0);
+    let other = add_circle(&mut w, Vec2::new(-3.0, 0.0), 1.0, 1.0);
+    w.add_body(BodyDef::dynamic(Vec2::new(2.0, 0.0))).unwrap(); // no shape: never found
+
+    assert_eq!(w.query_point(Vec2::new(2.2, 0.1)), [ball]);
+    assert_eq!(w.query_point(Vec2::new(4.5, 1.9)), [wall]);
+    assert!(w.query_point(Vec2::new(0.0, 0.0)).is_empty());
+    let around = Aabb {
+        min: Vec2::new(1.0, -1.0),
+        max: Vec2::new(4.2, 1.0),
+    };
+    assert_eq!(w.query_aabb(around), [wall, ball]);
+
+    let hit = w.ray_cast(Vec2::ZERO, Vec2::X, 100.0).unwrap();
+    assert_eq!(hit.body, ball);
+    assert!((hit.distance - 1.5).abs() < 1e-6);
+    assert_eq!(hit.normal, -Vec2::X);
+    let hit = w
+        .ray_cast(Vec2::new(0.0, 1.0), Vec2::new(2.0, 0.0), 100.0)
+        .unwrap();
+    assert_eq!((hit.body, hit.distance, hit.normal), (wall, 4.0, -Vec2::X));
+    assert_eq!(w.ray_cast(Vec2::ZERO, -Vec2::X, 100.0).unwrap().body, other);
+    assert!(w.ray_cast(Vec2::ZERO, -Vec2::X, 1.5).is_none());
+    assert!(w.ray_cast(Vec2::ZERO, Vec2::ZERO, 10.0).is_none());
+    assert!(
+        w.ray_cast(Vec2::new(f32::NAN, 0.0), Vec2::X, 10.0)
+            .is_none()
+    );
+}
+
+#[test]
+fn the_contact_stage_runs_only_with_colliders() {
+    let mut w = World::default();
+    let a = w.add_body(BodyDef::dynamic(Vec2::ZERO)).unwrap();
+    w.add_body(BodyDef::dynamic(Vec2::ZERO)).unwrap();
+    assert!(!w.active_stages().contains(&Stage::Contacts));
+    w.step(DT);
+    assert!(w.contacts().next().is_none());
+    // One shaped body alone has nothing to touch.
+    let b = add_circle(&mut w, Vec2::new(5.0, 0.0), 1.0, 1.0);
+    assert!(!w.active_stages().contains(&Stage::Contacts));
+    add_static_box(&mut w, Vec2::new(-5.0, -10.0), Vec2::new(5.0, -9.0));
+    assert!(w.active_stages().contains(&Stage::Contacts));
+    w.remove_body(b).unwrap();
+    assert!(!w.active_stages().contains(&Stage::Contacts));
+    let _ = a;
+}
+
+#[test]
+fn the_same_scene_twice_gives_the_same_bits() {
+    let run = || {
+        let mut w = World::default();
+        add_static_box(&mut w, Vec2::new(-10.0, -1.0), Vec2::new(10.0, 0.0));
+        for i in 0..200 {
+            let p = Vec2::new((i % 20) as f32 * 0.9 - 9.0, 1.0 + (i / 20) as f32 * 0.9);
+            if i % 3 == 0 {
+                add_box(&mut w, p, Vec2::splat(0.8), 1.0);
+            } else {
+                add_circle(&mut w, p, 0.4, 1.0);
+            }
+        }
+        for _ in 0..300 {
+            w.step(DT);
+        }
+        w.state_hash()
+    };
+    assert_eq!(run(), run());
+}
