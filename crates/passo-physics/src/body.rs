@@ -249,9 +249,18 @@ pub(crate) struct BodyMeta {
     pub user_data: u64,
 }
 
+/// Flushes velocity components smaller than the smallest normal `f32`
+/// (1.2e-38 m/s) to zero. A component that decays under drag while the
+/// other does not (the horizontal speed of a body falling at terminal
+/// speed) would otherwise become a subnormal float and stay one, and
+/// arithmetic on subnormals makes the whole step several times slower.
+#[inline(always)]
+pub(crate) fn flush_subnormal(v: Vec2) -> Vec2 {
+    Vec2::select(v.abs().cmplt(Vec2::splat(f32::MIN_POSITIVE)), Vec2::ZERO, v)
+}
+
 /// Speed limits of one body, resolved from its overrides and the world's
-/// defaults. `max_sq` is at most `f32::MAX` so that a squared speed that
-/// overflowed still counts as too fast.
+/// defaults (`max_sq` is at most `f32::MAX`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct SpeedLimits {
     pub min_sq: f32,
@@ -265,6 +274,20 @@ impl SpeedLimits {
             min_sq: min * min,
             max,
             max_sq: (max * max).min(f32::MAX),
+        }
+    }
+
+    /// Snaps a velocity below the minimum speed to exactly zero and scales
+    /// one above the maximum to the maximum speed (`v * max / |v|`). `v`
+    /// must have a finite `|v|^2` (see `guard_finite`).
+    #[inline(always)]
+    pub fn apply(&self, v: &mut Vec2) {
+        let s2 = v.length_squared();
+        if s2 > self.max_sq {
+            *v *= self.max / s2.sqrt();
+        }
+        if s2 < self.min_sq {
+            *v = Vec2::ZERO;
         }
     }
 }

@@ -40,6 +40,7 @@ mod contact;
 mod error;
 mod forces;
 mod integrator;
+mod kernel;
 mod manifold;
 mod query;
 mod shape;

@@ -81,6 +81,13 @@ impl World {
             .map(|c| c.b)
     }
 
+    /// Whether the contact stage has allocated its buffers (broad phase,
+    /// contacts, warm-start cache). It does so the first time it runs, so a
+    /// world without colliders never holds any.
+    pub fn has_contact_state(&self) -> bool {
+        self.contacts.is_some()
+    }
+
     /// Contact and sensor events of the last step.
     pub fn events(&self) -> &ContactEvents {
         self.contacts.as_ref().map_or(&NO_EVENTS, |cw| &cw.events)

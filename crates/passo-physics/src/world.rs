@@ -1,11 +1,14 @@
 //! The world: owns every body, runs the step stage by stage.
 
-use crate::body::{BodyMeta, DynamicBodies, SpeedLimits, StaticBodies, check_max_speed};
+use crate::body::{
+    BodyMeta, DynamicBodies, SpeedLimits, StaticBodies, check_max_speed, flush_subnormal,
+};
 use crate::constants::{DEFAULT_MAX_SPEED, DEFAULT_MIN_SPEED};
 use crate::contact::ContactWorld;
 use crate::error::{finite_vec, non_negative};
 use crate::forces::{BodyParams, Dissipation, Drive, potential_energy};
 use crate::integrator::{Forces, integrate_body};
+use crate::kernel::PointMassKernel;
 use crate::solver::{self, SolverBodies};
 use crate::{
     Body, BodyDef, BodyId, BodyKind, ContactSettings, ForceForm, ForceModel, ForceModels,
@@ -491,9 +494,9 @@ impl World {
         p
     }
 
-    /// A 64-bit FNV-1a hash of every body's id, position and velocity bits
-    /// in id order. Equal states give equal hashes on every platform; use it
-    /// to check determinism.
+    /// A 64-bit FNV-1a hash of every body's position and velocity bits, in
+    /// id order. Equal states give equal hashes on every platform; use it to
+    /// check determinism.
     pub fn state_hash(&self) -> u64 {
         const PRIME: u64 = 0x0000_0100_0000_01b3;
         let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -503,8 +506,6 @@ impl World {
             }
         };
         for b in self.bodies() {
-            eat(b.id.index);
-            eat(b.id.generation);
             for x in [b.position.x, b.position.y, b.velocity.x, b.velocity.y] {
                 eat(x.to_bits());
             }
@@ -602,14 +603,25 @@ impl World {
     /// time: a single pass over the arrays.
     fn step_bodies(&mut self, dt: f32) {
         let integrator = self.settings.integrator;
-        let forces = forces(&self.settings, &self.custom, self.game_friction);
         let limits = self.speed_limits();
+        let kernel = PointMassKernel::new(
+            &self.settings.forces,
+            integrator,
+            self.settings.force_form,
+            !self.custom.is_empty() || self.game_friction,
+            limits,
+        );
+        if let Some(kernel) = kernel {
+            self.stats.non_finite_resets += kernel.run(&mut self.dynamic, dt);
+            return;
+        }
+        let forces = forces(&self.settings, &self.custom, self.game_friction);
         let b = &mut self.dynamic;
         let mut resets = 0;
         for i in 0..b.pos.len() {
             let (mut v, c) = integrate_velocity(integrator, &forces, b, i, dt, &mut resets);
             if let Some(uniform) = limits {
-                limit_speed(&mut v, uniform.unwrap_or(b.limits[i]));
+                uniform.unwrap_or(b.limits[i]).apply(&mut v);
             }
             b.vel[i] = v;
             b.pos[i] += v * dt + c;
@@ -674,7 +686,7 @@ impl World {
             for i in 0..b.pos.len() {
                 let mut v = b.vel[i];
                 if let Some(uniform) = limits {
-                    limit_speed(&mut v, uniform.unwrap_or(b.limits[i]));
+                    uniform.unwrap_or(b.limits[i]).apply(&mut v);
                     b.vel[i] = v;
                 }
                 let c = if corrects { correction[i] } else { Vec2::ZERO };
@@ -702,7 +714,7 @@ impl World {
         solver::store_separations(constraints, &bodies);
         if let Some(uniform) = limits {
             for i in 0..b.vel.len() {
-                limit_speed(&mut b.vel[i], uniform.unwrap_or(b.limits[i]));
+                uniform.unwrap_or(b.limits[i]).apply(&mut b.vel[i]);
             }
         }
         cw.end_step(&self.dynamic, &self.statics);
@@ -815,30 +827,20 @@ fn integrate_velocity(
         friction_force: b.friction_force[i],
     };
     let (v, c) = integrate_body(integrator, forces, b.pos[i], b.vel[i], &params, h);
-    if v.is_finite() && c.is_finite() {
-        (v, c)
+    guard_finite(v, c, resets)
+}
+
+/// Drops a step that produced a non-finite velocity or correction, or a
+/// speed whose square overflows `f32` (over 1.8e19 m/s): the body stays
+/// where it was with zero velocity, and the reset is counted. Subnormal
+/// velocity components are flushed to zero.
+#[inline(always)]
+fn guard_finite(v: Vec2, c: Vec2, resets: &mut u64) -> (Vec2, Vec2) {
+    if v.length_squared().is_finite() && c.is_finite() {
+        (flush_subnormal(v), c)
     } else {
         *resets += 1;
         (Vec2::ZERO, Vec2::ZERO)
-    }
-}
-
-/// Snaps a finite velocity below the minimum speed to exactly zero and
-/// scales one above the maximum to the maximum speed (to the last bit of
-/// `max / |v|`).
-#[inline(always)]
-fn limit_speed(v: &mut Vec2, limits: SpeedLimits) {
-    let s2 = v.length_squared();
-    if s2 < limits.min_sq {
-        *v = Vec2::ZERO;
-    } else if s2 > limits.max_sq {
-        if s2.is_finite() {
-            *v *= limits.max / s2.sqrt();
-        } else {
-            // |v|^2 overflowed although v is finite: rescale before measuring.
-            let unit = (*v / v.abs().max_element()).normalize();
-            *v = unit * limits.max;
-        }
     }
 }
 
@@ -1117,8 +1119,7 @@ mod tests {
         assert!(b.position.is_finite() && b.velocity.is_finite());
         assert_eq!(world.stats().non_finite_resets, 1);
 
-        // With a finite maximum a finite velocity whose square overflows is
-        // still scaled down to the maximum speed.
+        // A finite velocity whose square overflows (1e30 m/s) is dropped too.
         let mut world = World::new(WorldSettings {
             forces: ForceModels::none(),
             ..Default::default()
@@ -1127,9 +1128,16 @@ mod tests {
         let id = world.add_body(ball(0.0)).unwrap();
         world.apply_force(id, Vec2::new(1e30, 1e30)).unwrap();
         world.step(1.0);
+        assert_eq!(world.body(id).unwrap().velocity, Vec2::ZERO);
+        assert_eq!(world.stats().non_finite_resets, 1);
+
+        // A large but sane velocity is clamped to exactly the maximum speed.
+        let id = world.add_body(ball(0.0)).unwrap();
+        world.apply_force(id, Vec2::new(3e6, 4e6)).unwrap();
+        world.step(1.0);
         let v = world.body(id).unwrap().velocity;
-        assert!((v.length() - DEFAULT_MAX_SPEED).abs() < 1e-3, "{v}");
-        assert!((v.x - v.y).abs() < 1e-3);
+        assert_eq!(v, Vec2::new(600.0, 800.0));
+        assert_eq!(v.length(), DEFAULT_MAX_SPEED);
     }
 
     #[test]

@@ -1,1 +1,54 @@
-fn main() {}
+//! `passo`: the interactive demo and the command-line tools of Passo.
+
+mod progress;
+mod scenes;
+mod simulate;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+
+/// Passo: 2D game physics on a fixed-timestep loop.
+///
+/// With no command, opens the interactive demo. The other commands run
+/// without a window.
+#[derive(Parser, Debug)]
+#[command(name = "passo", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run a scene headlessly for N ticks; write CSV, print the state hash.
+    Simulate(simulate::SimulateArgs),
+    /// List the built-in scenes.
+    Scenes,
+}
+
+fn main() {
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    let cli = Cli::parse();
+    if let Err(e) = run(cli) {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Some(Command::Simulate(args)) => simulate::run(&args),
+        Some(Command::Scenes) => {
+            for name in scenes::names() {
+                let scene = scenes::load(name)?;
+                println!("{name:16} {}", scene.file.description);
+            }
+            Ok(())
+        }
+        None => {
+            use clap::CommandFactory;
+            Cli::command().print_help()?;
+            Ok(())
+        }
+    }
+}

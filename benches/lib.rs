@@ -1,0 +1,1 @@
+//! Criterion benchmarks of Passo: `cargo bench -p passo-benches`.

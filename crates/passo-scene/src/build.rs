@@ -1,0 +1,169 @@
+//! Building a physics world from a scene.
+
+use crate::error::SceneError;
+use crate::format::{BodySpec, Colour, SceneFile};
+use crate::generate::generate;
+use passo_physics::glam::Vec2;
+use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, ForceModels, World, WorldSettings};
+
+/// Most bodies a scene may make (explicit and generated together).
+pub const MAX_BODIES: usize = 1_000_000;
+
+/// Dynamic bodies without a colour cycle through these (sRGB).
+const PALETTE: [[u8; 4]; 6] = [
+    [0xe4, 0x6c, 0x3a, 0xff],
+    [0x3a, 0x8e, 0xe4, 0xff],
+    [0x5c, 0xb8, 0x5c, 0xff],
+    [0xe4, 0xb8, 0x3a, 0xff],
+    [0xa3, 0x5c, 0xd6, 0xff],
+    [0x3a, 0xc8, 0xc0, 0xff],
+];
+
+/// Static bodies without a colour.
+const STATIC_COLOUR: Colour = Colour([0x6b, 0x70, 0x7a, 0xff]);
+
+/// What the renderer and the game need to know about a scene body.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneBody {
+    /// The body in the world.
+    pub id: BodyId,
+    /// Its name in the scene, if any.
+    pub name: Option<String>,
+    /// Its colour.
+    pub colour: Colour,
+}
+
+/// A scene turned into a world, with what the world does not hold.
+#[derive(Clone, Debug)]
+pub struct BuiltScene {
+    /// The physics world, running only the stages the scene declared.
+    pub world: World,
+    /// Every body with its name and colour, in creation order.
+    pub bodies: Vec<SceneBody>,
+    /// The region to show.
+    pub camera: Aabb,
+}
+
+impl BuiltScene {
+    /// The body with this name, if any.
+    pub fn body_named(&self, name: &str) -> Option<BodyId> {
+        self.bodies
+            .iter()
+            .find(|b| b.name.as_deref() == Some(name))
+            .map(|b| b.id)
+    }
+
+    /// The scene body record of an id (binary search: ids are in order).
+    pub fn scene_body(&self, id: BodyId) -> Option<&SceneBody> {
+        self.bodies
+            .binary_search_by_key(&id, |b| b.id)
+            .ok()
+            .map(|i| &self.bodies[i])
+    }
+}
+
+/// The world settings a scene declares.
+pub(crate) fn settings(file: &SceneFile) -> WorldSettings {
+    let f = &file.forces;
+    WorldSettings {
+        forces: ForceModels {
+            gravity: f.gravity,
+            quadratic_drag: f.quadratic_drag,
+            linear_drag: f.linear_drag,
+            air_velocity: f.wind,
+            surface_friction: f.surface_friction,
+            force_field: f.force_field,
+            spring: f.spring,
+            central_gravity: f.central_gravity,
+        },
+        integrator: file.integrator,
+        force_form: file.force_form,
+        min_speed: file.min_speed,
+        max_speed: file.max_speed,
+        interpolation: false,
+        contacts: file.collisions,
+    }
+}
+
+/// The physics definition of a body spec placed at `position`.
+fn body_def(spec: &BodySpec, position: Vec2) -> BodyDef {
+    let mass = match (spec.mass, spec.density, &spec.shape) {
+        (Some(mass), _, _) => mass,
+        (None, Some(density), Some(shape)) => density * shape.area(),
+        _ => 1.0,
+    };
+    BodyDef {
+        kind: spec.kind,
+        position,
+        velocity: spec.velocity,
+        mass,
+        shape: spec.shape,
+        drag_area: spec.material.drag_area,
+        friction: spec.material.friction,
+        restitution: spec.material.restitution,
+        filter: spec.filter.unwrap_or_default(),
+        sensor: spec.sensor,
+        min_speed: spec.min_speed,
+        max_speed: spec.max_speed,
+        user_data: 0,
+    }
+}
+
+pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneError> {
+    let invalid = |field: String, e: passo_physics::PhysicsError| SceneError::Invalid {
+        source_name: source.to_owned(),
+        field,
+        message: e.to_string(),
+    };
+    let mut world = World::new(settings(file)).map_err(|e| invalid("settings".into(), e))?;
+    let mut bodies = Vec::new();
+    let mut bounds: Option<Aabb> = None;
+    let mut add = |spec: &BodySpec, position: Vec2, path: &dyn Fn() -> String| {
+        let def = body_def(spec, position);
+        let id = world.add_body(def).map_err(|e| invalid(path(), e))?;
+        let half = spec.shape.map_or(Vec2::ZERO, |s| s.half_extents());
+        let aabb = Aabb::from_centre(position, half);
+        bounds = Some(bounds.map_or(aabb, |b| b.union(&aabb)));
+        let colour = spec.colour.unwrap_or(match spec.kind {
+            BodyKind::Static => STATIC_COLOUR,
+            BodyKind::Dynamic => Colour(PALETTE[bodies.len() % PALETTE.len()]),
+        });
+        bodies.push(SceneBody {
+            id,
+            name: spec.name.clone(),
+            colour,
+        });
+        Ok::<(), SceneError>(())
+    };
+    for (i, spec) in file.bodies.iter().enumerate() {
+        add(spec, spec.position, &|| format!("bodies[{i}]"))?;
+    }
+    for (i, g) in file.generators.iter().enumerate() {
+        let mut result = Ok(());
+        generate(g, |spec, position| {
+            if result.is_ok() {
+                result = add(spec, position, &|| format!("generators[{i}]"));
+            }
+        });
+        result?;
+    }
+    let camera = match &file.camera {
+        Some(c) => Aabb {
+            min: c.min,
+            max: c.max,
+        },
+        None => {
+            let b = bounds.unwrap_or(Aabb::from_centre(Vec2::ZERO, Vec2::splat(10.0)));
+            let pad = (b.size() * 0.1).max(Vec2::splat(1.0));
+            Aabb {
+                min: b.min - pad,
+                max: b.max + pad,
+            }
+        }
+    };
+    Ok(BuiltScene {
+        world,
+        bodies,
+        camera,
+    })
+}

@@ -1,0 +1,778 @@
+//! The scene file format: what a RON scene may say, its defaults, parsing
+//! with precise errors, and validation with the allowed ranges.
+
+use crate::error::{SceneError, closest};
+use passo_physics::constants::{
+    DEFAULT_DRAG_AREA, DEFAULT_FRICTION, DEFAULT_MAX_SPEED, DEFAULT_MIN_SPEED,
+};
+use passo_physics::glam::Vec2;
+use passo_physics::{
+    BodyKind, CentralGravity, CollisionFilter, ContactSettings, ForceForm, Integrator, LinearDrag,
+    QuadraticDrag, Shape, Spring, SurfaceFriction,
+};
+use ron::extensions::Extensions;
+use serde::{Deserialize, Serialize};
+
+/// A whole scene file. Only `name` is required.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Shown in the demo's scene list.
+    pub name: String,
+    /// One or two sentences on what the scene shows. Default empty.
+    #[serde(default)]
+    pub description: String,
+    /// Fixed ticks per second, in [1, 10000]. Default 60.
+    #[serde(default = "default_rate")]
+    pub rate_hz: f64,
+    /// Time-stepping method. Default `SemiImplicitEuler`.
+    #[serde(default)]
+    pub integrator: Integrator,
+    /// `Stable` (default) or `Explicit` drag and friction.
+    #[serde(default)]
+    pub force_form: ForceForm,
+    /// The force models the scene uses; each is off unless listed.
+    #[serde(default)]
+    pub forces: Forces,
+    /// Collisions and their solver settings (substeps, iterations, ...);
+    /// absent means bodies never touch.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collisions: Option<ContactSettings>,
+    /// Below this speed a velocity snaps to zero, m/s, >= 0. Default 0.001.
+    #[serde(default = "default_min_speed")]
+    pub min_speed: f32,
+    /// Speeds are clamped to this, m/s, > 0 (`inf` for none). Default 1000.
+    #[serde(default = "default_max_speed")]
+    pub max_speed: f32,
+    /// The region to show; absent fits every body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera: Option<Camera>,
+    /// Bodies listed one by one.
+    #[serde(default)]
+    pub bodies: Vec<BodySpec>,
+    /// Bodies made by pattern.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub generators: Vec<Generator>,
+}
+
+fn default_rate() -> f64 {
+    60.0
+}
+fn default_min_speed() -> f32 {
+    DEFAULT_MIN_SPEED
+}
+fn default_max_speed() -> f32 {
+    DEFAULT_MAX_SPEED
+}
+
+/// Force models. Unlike the physics API (gravity on by default), a scene
+/// switches on only what it lists.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Forces {
+    /// Gravitational acceleration, m/s², e.g. `(0, -9.81)`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gravity: Option<Vec2>,
+    /// Quadratic drag, `(density: 1.225)` kg/m³.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub quadratic_drag: Option<QuadraticDrag>,
+    /// Linear drag, `(coefficient: b)` kg/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub linear_drag: Option<LinearDrag>,
+    /// Air velocity (wind) that both drags act relative to, m/s. Default (0, 0).
+    pub wind: Vec2,
+    /// Top-down friction, `(gravity: 9.81)` m/s².
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surface_friction: Option<SurfaceFriction>,
+    /// A constant force on every dynamic body, N.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub force_field: Option<Vec2>,
+    /// A spring to an anchor, `(anchor: (x, y), stiffness: k)`, N/m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spring: Option<Spring>,
+    /// Attraction to a centre, `(centre: (x, y), gm: GM)`, m³/s².
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub central_gravity: Option<CentralGravity>,
+}
+
+/// The region the camera shows at first, metres.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Camera {
+    /// Lower-left corner.
+    pub min: Vec2,
+    /// Upper-right corner.
+    pub max: Vec2,
+}
+
+/// Material of a body.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Material {
+    /// Bounciness in [0, 1]. Default 0.
+    pub restitution: f32,
+    /// Friction coefficient, >= 0. Default 0.6.
+    pub friction: f32,
+    /// Drag area `Cd A`, m², >= 0. Default 0.1.
+    pub drag_area: f32,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Self {
+            restitution: 0.0,
+            friction: DEFAULT_FRICTION,
+            drag_area: DEFAULT_DRAG_AREA,
+        }
+    }
+}
+
+/// An sRGB colour with alpha, written `"#rrggbb"` or `"#rrggbbaa"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Colour(pub [u8; 4]);
+
+impl Colour {
+    /// Parses `#rrggbb` or `#rrggbbaa`.
+    pub fn parse(text: &str) -> Option<Self> {
+        let hex = text.strip_prefix('#')?;
+        if !(hex.len() == 6 || hex.len() == 8) || !hex.is_ascii() {
+            return None;
+        }
+        let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok();
+        let alpha = if hex.len() == 8 { byte(6)? } else { 255 };
+        Some(Self([byte(0)?, byte(2)?, byte(4)?, alpha]))
+    }
+
+    /// `#rrggbb`, or `#rrggbbaa` when not opaque.
+    pub fn to_hex(self) -> String {
+        let [r, g, b, a] = self.0;
+        if a == 255 {
+            format!("#{r:02x}{g:02x}{b:02x}")
+        } else {
+            format!("#{r:02x}{g:02x}{b:02x}{a:02x}")
+        }
+    }
+}
+
+impl Serialize for Colour {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.to_hex())
+    }
+}
+
+impl<'de> Deserialize<'de> for Colour {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let text = String::deserialize(d)?;
+        Self::parse(&text).ok_or_else(|| {
+            serde::de::Error::custom(format!(
+                "colour must be \"#rrggbb\" or \"#rrggbbaa\" (hex digits), got {text:?}"
+            ))
+        })
+    }
+}
+
+/// One body. Everything has a default: `()` is a 1 kg dynamic point mass at
+/// the origin.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BodySpec {
+    /// A name for the demo and for game code. Default none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// `Dynamic` (default) or `Static`.
+    pub kind: BodyKind,
+    /// `Circle(radius: r)` or `Box(half_extents: (hx, hy))`, metres. Default
+    /// none: a point mass that touches nothing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shape: Option<Shape>,
+    /// Mass, kg, > 0. Give `mass` or `density`, not both. Default 1 kg.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f32>,
+    /// Area density, kg/m², > 0: mass = density × shape area.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub density: Option<f32>,
+    /// Position of the centre, m (an offset from the pattern's place in a
+    /// generator). Default (0, 0).
+    pub position: Vec2,
+    /// Velocity, m/s. Default (0, 0).
+    pub velocity: Vec2,
+    /// Restitution, friction and drag area.
+    pub material: Material,
+    /// Drawing colour. Default: grey for static bodies, a palette colour
+    /// for dynamic ones.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub colour: Option<Colour>,
+    /// A sensor reports overlaps and pushes nothing. Default false.
+    pub sensor: bool,
+    /// Collision layers and mask. Default: layer 1, collides with all.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub filter: Option<CollisionFilter>,
+    /// Own minimum speed, m/s, >= 0. Default: the scene's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_speed: Option<f32>,
+    /// Own maximum speed, m/s, > 0. Default: the scene's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_speed: Option<f32>,
+}
+
+/// Patterns that make many bodies from one template `body`, whose
+/// `position` is added to each generated place.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Generator {
+    /// `columns × rows` bodies, the first at `origin`, `spacing` apart.
+    Grid {
+        /// Centre of the first body, m.
+        origin: Vec2,
+        /// Bodies per row, >= 1.
+        columns: u32,
+        /// Rows, >= 1.
+        rows: u32,
+        /// Distance between centres along x and y, m.
+        spacing: Vec2,
+        /// The template.
+        body: BodySpec,
+    },
+    /// A pyramid of `base` bodies at the bottom, one fewer per row, resting
+    /// on `origin` (the bottom centre). Bodies are placed edge to edge by
+    /// their shape's size plus `gap`.
+    Pyramid {
+        /// Bodies in the bottom row, >= 1.
+        base: u32,
+        /// Bottom centre of the pyramid, m.
+        origin: Vec2,
+        /// Horizontal gap between neighbours, m, >= 0. Default 0.
+        #[serde(default)]
+        gap: f32,
+        /// The template (needs a shape).
+        body: BodySpec,
+    },
+    /// `count` bodies on a grid of `columns` columns from `origin`,
+    /// `spacing` apart, each moved by a random offset of up to `jitter` m
+    /// along x and y (seeded: the same seed gives the same scene).
+    Rain {
+        /// Number of bodies.
+        count: u32,
+        /// Centre of the first place, m.
+        origin: Vec2,
+        /// Places per row, >= 1.
+        columns: u32,
+        /// Distance between places, m.
+        spacing: Vec2,
+        /// Largest random offset, m, >= 0. Default 0.
+        #[serde(default)]
+        jitter: f32,
+        /// Random seed. Default 1.
+        #[serde(default = "default_seed")]
+        seed: u64,
+        /// The template.
+        body: BodySpec,
+    },
+}
+
+fn default_seed() -> u64 {
+    1
+}
+
+impl Generator {
+    /// How many bodies the pattern makes.
+    pub fn count(&self) -> u64 {
+        match self {
+            Self::Grid { columns, rows, .. } => u64::from(*columns) * u64::from(*rows),
+            Self::Pyramid { base, .. } => u64::from(*base) * (u64::from(*base) + 1) / 2,
+            Self::Rain { count, .. } => u64::from(*count),
+        }
+    }
+}
+
+/// Parses scene text, turning RON errors into messages with line, column
+/// and field.
+pub(crate) fn parse(text: &str, source: &str) -> Result<SceneFile, SceneError> {
+    ron::Options::default()
+        .with_default_extension(Extensions::IMPLICIT_SOME)
+        .from_str(text)
+        .map_err(|e| syntax_error(&e, text, source))
+}
+
+fn syntax_error(e: &ron::error::SpannedError, text: &str, source: &str) -> SceneError {
+    use ron::Error as E;
+    let start = e.span.start;
+    let within = |outer: &Option<String>| {
+        outer
+            .as_ref()
+            .map(|o| format!(" in `{o}`"))
+            .unwrap_or_default()
+    };
+    let (field, message) = match &e.code {
+        E::NoSuchStructField {
+            expected,
+            found,
+            outer,
+        } => {
+            let hint = match closest(found, expected) {
+                Some(best) => format!("did you mean `{best}`? "),
+                None => String::new(),
+            };
+            (
+                Some(found.clone()),
+                format!(
+                    "unknown field `{found}`{}; {hint}valid fields: {}",
+                    within(outer),
+                    expected.join(", ")
+                ),
+            )
+        }
+        E::NoSuchEnumVariant {
+            expected,
+            found,
+            outer,
+        } => {
+            let hint = match closest(found, expected) {
+                Some(best) => format!("did you mean `{best}`? "),
+                None => String::new(),
+            };
+            (
+                field_before(text, start.line, start.col),
+                format!(
+                    "unknown variant `{found}`{}; {hint}valid variants: {}",
+                    within(outer),
+                    expected.join(", ")
+                ),
+            )
+        }
+        E::MissingStructField { field, outer } => (
+            Some((*field).to_owned()),
+            format!("missing field `{field}`{}", within(outer)),
+        ),
+        E::DuplicateStructField { field, outer } => (
+            Some((*field).to_owned()),
+            format!("field `{field}` given twice{}", within(outer)),
+        ),
+        other => (field_before(text, start.line, start.col), other.to_string()),
+    };
+    SceneError::Syntax {
+        source_name: source.to_owned(),
+        line: start.line,
+        column: start.col,
+        field,
+        message,
+    }
+}
+
+/// The last `identifier:` before a 1-based line and column: the field whose
+/// value was being read.
+fn field_before(text: &str, line: usize, col: usize) -> Option<String> {
+    let mut offset = 0;
+    for (i, l) in text.split_inclusive('\n').enumerate() {
+        if i + 1 == line {
+            offset += l
+                .char_indices()
+                .nth(col.saturating_sub(1))
+                .map_or(l.len(), |(b, _)| b);
+            break;
+        }
+        offset += l.len();
+    }
+    let before = &text[..offset.min(text.len())];
+    let bytes = before.as_bytes();
+    let mut i = bytes.len();
+    while i > 0 {
+        i -= 1;
+        if bytes[i] != b':' {
+            continue;
+        }
+        let mut end = i;
+        while end > 0 && bytes[end - 1].is_ascii_whitespace() {
+            end -= 1;
+        }
+        let mut begin = end;
+        while begin > 0 && (bytes[begin - 1].is_ascii_alphanumeric() || bytes[begin - 1] == b'_') {
+            begin -= 1;
+        }
+        if begin < end && !bytes[begin].is_ascii_digit() {
+            return Some(before[begin..end].to_owned());
+        }
+    }
+    None
+}
+
+/// The scene as pretty RON, readable back by [`parse`].
+pub(crate) fn to_ron(file: &SceneFile) -> String {
+    let config = ron::ser::PrettyConfig::new()
+        .struct_names(false)
+        .extensions(Extensions::IMPLICIT_SOME);
+    ron::ser::to_string_pretty(file, config).expect("a scene always serializes")
+}
+
+// ----- validation -----
+
+struct Check<'a> {
+    source: &'a str,
+}
+
+impl Check<'_> {
+    fn fail(&self, field: &str, message: String) -> SceneError {
+        SceneError::Invalid {
+            source_name: self.source.to_owned(),
+            field: field.to_owned(),
+            message,
+        }
+    }
+
+    fn range(&self, field: &str, v: f32, ok: bool, allowed: &str) -> Result<(), SceneError> {
+        if !(v.is_finite() || v == f32::INFINITY && allowed.contains("inf")) {
+            return Err(self.fail(field, format!("must be finite ({allowed}), got {v}")));
+        }
+        if ok {
+            Ok(())
+        } else {
+            Err(self.fail(field, format!("must be {allowed}, got {v}")))
+        }
+    }
+
+    fn positive(&self, field: &str, v: f32, unit: &str) -> Result<(), SceneError> {
+        self.range(field, v, v > 0.0, &format!("> 0 {unit}"))
+    }
+
+    fn non_negative(&self, field: &str, v: f32, unit: &str) -> Result<(), SceneError> {
+        self.range(field, v, v >= 0.0, &format!(">= 0 {unit}"))
+    }
+
+    fn finite_vec(&self, field: &str, v: Vec2) -> Result<(), SceneError> {
+        if v.is_finite() {
+            Ok(())
+        } else {
+            Err(self.fail(field, format!("must be finite, got ({}, {})", v.x, v.y)))
+        }
+    }
+}
+
+impl SceneFile {
+    /// Checks every value; the error names the field and the allowed range.
+    pub fn validate(&self, source: &str) -> Result<(), SceneError> {
+        let c = Check { source };
+        if !(self.rate_hz.is_finite() && (1.0..=10_000.0).contains(&self.rate_hz)) {
+            return Err(c.fail(
+                "rate_hz",
+                format!("must be in [1, 10000] Hz, got {:?}", self.rate_hz),
+            ));
+        }
+        c.non_negative("min_speed", self.min_speed, "m/s")?;
+        c.range(
+            "max_speed",
+            self.max_speed,
+            self.max_speed > 0.0,
+            "> 0 m/s or inf",
+        )?;
+        self.validate_forces(&c)?;
+        if let Some(contacts) = &self.collisions {
+            contacts
+                .validate()
+                .map_err(|e| c.fail("collisions", physics_message(&e)))?;
+            if contacts.substeps > 64 {
+                return Err(c.fail(
+                    "collisions.substeps",
+                    format!("must be in [1, 64], got {}", contacts.substeps),
+                ));
+            }
+        }
+        if let Some(camera) = &self.camera {
+            c.finite_vec("camera.min", camera.min)?;
+            c.finite_vec("camera.max", camera.max)?;
+            if !(camera.min.x < camera.max.x && camera.min.y < camera.max.y) {
+                return Err(c.fail("camera", "must have min < max on both axes".to_owned()));
+            }
+        }
+        for (i, body) in self.bodies.iter().enumerate() {
+            body.validate(&c, &format!("bodies[{i}]"))?;
+        }
+        let mut total = self.bodies.len() as u64;
+        for (i, g) in self.generators.iter().enumerate() {
+            let path = format!("generators[{i}]");
+            g.validate(&c, &path)?;
+            total = total.saturating_add(g.count());
+        }
+        if total > crate::MAX_BODIES as u64 {
+            return Err(c.fail(
+                "generators",
+                format!(
+                    "make {total} bodies; at most {} are allowed",
+                    crate::MAX_BODIES
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    fn validate_forces(&self, c: &Check<'_>) -> Result<(), SceneError> {
+        let f = &self.forces;
+        if let Some(g) = f.gravity {
+            c.finite_vec("forces.gravity", g)?;
+        }
+        if let Some(d) = &f.quadratic_drag {
+            c.non_negative("forces.quadratic_drag.density", d.density, "kg/m³")?;
+        }
+        if let Some(d) = &f.linear_drag {
+            c.non_negative("forces.linear_drag.coefficient", d.coefficient, "kg/s")?;
+        }
+        c.finite_vec("forces.wind", f.wind)?;
+        if let Some(s) = &f.surface_friction {
+            c.non_negative("forces.surface_friction.gravity", s.gravity, "m/s²")?;
+        }
+        if let Some(v) = f.force_field {
+            c.finite_vec("forces.force_field", v)?;
+        }
+        if let Some(s) = &f.spring {
+            c.finite_vec("forces.spring.anchor", s.anchor)?;
+            c.non_negative("forces.spring.stiffness", s.stiffness, "N/m")?;
+        }
+        if let Some(g) = &f.central_gravity {
+            c.finite_vec("forces.central_gravity.centre", g.centre)?;
+            c.range("forces.central_gravity.gm", g.gm, true, "finite m³/s²")?;
+        }
+        Ok(())
+    }
+}
+
+/// A physics error's message without the Rust type prefix.
+fn physics_message(e: &passo_physics::PhysicsError) -> String {
+    let text = e.to_string();
+    match text.split_once("::") {
+        Some((_, rest)) => format!("field {rest}"),
+        None => text,
+    }
+}
+
+impl BodySpec {
+    fn validate(&self, c: &Check<'_>, path: &str) -> Result<(), SceneError> {
+        let at = |field: &str| format!("{path}.{field}");
+        if let Some(shape) = &self.shape {
+            match *shape {
+                Shape::Circle { radius } => c.positive(&at("shape.radius"), radius, "m")?,
+                Shape::Box { half_extents } => {
+                    c.positive(&at("shape.half_extents.x"), half_extents.x, "m")?;
+                    c.positive(&at("shape.half_extents.y"), half_extents.y, "m")?;
+                }
+            }
+        }
+        if self.mass.is_some() && self.density.is_some() {
+            return Err(c.fail(path, "gives both `mass` and `density`; give one".to_owned()));
+        }
+        if let Some(mass) = self.mass {
+            c.positive(&at("mass"), mass, "kg")?;
+        }
+        if let Some(density) = self.density {
+            c.positive(&at("density"), density, "kg/m²")?;
+            match &self.shape {
+                None => {
+                    return Err(c.fail(
+                        &at("density"),
+                        "needs a `shape` to give the area".to_owned(),
+                    ));
+                }
+                Some(shape) => {
+                    let mass = density * shape.area();
+                    if !(mass.is_finite() && mass > 0.0) {
+                        return Err(c.fail(
+                            &at("density"),
+                            format!("gives a mass of {mass} kg; it must be finite and > 0"),
+                        ));
+                    }
+                }
+            }
+        }
+        c.finite_vec(&at("position"), self.position)?;
+        c.finite_vec(&at("velocity"), self.velocity)?;
+        let m = &self.material;
+        c.range(
+            &at("material.restitution"),
+            m.restitution,
+            (0.0..=1.0).contains(&m.restitution),
+            "in [0, 1]",
+        )?;
+        c.non_negative(&at("material.friction"), m.friction, "")?;
+        c.non_negative(&at("material.drag_area"), m.drag_area, "m²")?;
+        if let Some(v) = self.min_speed {
+            c.non_negative(&at("min_speed"), v, "m/s")?;
+        }
+        if let Some(v) = self.max_speed {
+            c.range(&at("max_speed"), v, v > 0.0, "> 0 m/s or inf")?;
+        }
+        if self.sensor && self.shape.is_none() {
+            return Err(c.fail(&at("sensor"), "needs a `shape`".to_owned()));
+        }
+        Ok(())
+    }
+}
+
+impl Generator {
+    fn validate(&self, c: &Check<'_>, path: &str) -> Result<(), SceneError> {
+        let at = |field: &str| format!("{path}.{field}");
+        let count = |field: &str, n: u32| {
+            if n >= 1 {
+                Ok(())
+            } else {
+                Err(c.fail(&at(field), "must be >= 1, got 0".to_owned()))
+            }
+        };
+        match self {
+            Self::Grid {
+                origin,
+                columns,
+                rows,
+                spacing,
+                body,
+            } => {
+                count("columns", *columns)?;
+                count("rows", *rows)?;
+                c.finite_vec(&at("origin"), *origin)?;
+                c.finite_vec(&at("spacing"), *spacing)?;
+                body.validate(c, &at("body"))
+            }
+            Self::Pyramid {
+                base,
+                origin,
+                gap,
+                body,
+            } => {
+                count("base", *base)?;
+                c.finite_vec(&at("origin"), *origin)?;
+                c.non_negative(&at("gap"), *gap, "m")?;
+                if body.shape.is_none() {
+                    return Err(c.fail(&at("body.shape"), "is needed to stack bodies".to_owned()));
+                }
+                body.validate(c, &at("body"))
+            }
+            Self::Rain {
+                count: n,
+                origin,
+                columns,
+                spacing,
+                jitter,
+                body,
+                ..
+            } => {
+                count("count", *n)?;
+                count("columns", *columns)?;
+                c.finite_vec(&at("origin"), *origin)?;
+                c.finite_vec(&at("spacing"), *spacing)?;
+                c.non_negative(&at("jitter"), *jitter, "m")?;
+                body.validate(c, &at("body"))
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn error(text: &str) -> String {
+        crate::Scene::parse(text, "test.ron")
+            .unwrap_err()
+            .to_string()
+    }
+
+    #[test]
+    fn the_smallest_scene_takes_every_default() {
+        let scene = crate::Scene::parse("(name: \"empty\")", "test.ron").unwrap();
+        assert_eq!(scene.file.rate_hz, 60.0);
+        assert_eq!(scene.file.forces, Forces::default());
+        assert!(scene.file.collisions.is_none());
+        assert!(scene.file.bodies.is_empty());
+    }
+
+    #[test]
+    fn syntax_errors_name_line_column_and_field() {
+        let text = "(\n    name: \"x\",\n    rate_hz: 60,\n    bodies: [(mass: \"heavy\")],\n)";
+        assert_eq!(
+            error(text),
+            "test.ron:4:20: in field `mass`: Expected float"
+        );
+        let text = "(\n  name: \"x\",\n  bodies: [(position: (0, 1)]\n)";
+        let msg = error(text);
+        assert!(msg.starts_with("test.ron:3:"), "{msg}");
+    }
+
+    #[test]
+    fn unknown_fields_suggest_the_closest_valid_one() {
+        let msg = error("(name: \"x\", bodies: [(mas: 2)])");
+        assert!(msg.contains("unknown field `mas`"), "{msg}");
+        assert!(msg.contains("did you mean `mass`?"), "{msg}");
+        assert!(msg.starts_with("test.ron:1:"), "{msg}");
+        let msg = error("(name: \"x\", rate: 30)");
+        assert!(msg.contains("did you mean `rate_hz`?"), "{msg}");
+        let msg = error("(name: \"x\", integrator: Rk5)");
+        assert!(msg.contains("unknown variant `Rk5`"), "{msg}");
+        assert!(msg.contains("did you mean `Rk4`?"), "{msg}");
+        assert!(error("(description: \"no name\")").contains("missing field `name`"));
+    }
+
+    #[test]
+    fn values_out_of_range_name_the_field_and_the_range() {
+        let cases = [
+            (
+                "(name: \"x\", rate_hz: 0)",
+                "`rate_hz` must be in [1, 10000] Hz, got 0.0",
+            ),
+            (
+                "(name: \"x\", rate_hz: 1e-300)",
+                "`rate_hz` must be in [1, 10000] Hz, got 1e-300",
+            ),
+            (
+                "(name: \"x\", bodies: [(), (mass: -1)])",
+                "`bodies[1].mass` must be > 0 kg, got -1",
+            ),
+            (
+                "(name: \"x\", bodies: [(shape: Circle(radius: 0))])",
+                "`bodies[0].shape.radius` must be > 0 m, got 0",
+            ),
+            (
+                "(name: \"x\", bodies: [(material: (restitution: 1.5))])",
+                "`bodies[0].material.restitution` must be in [0, 1], got 1.5",
+            ),
+            (
+                "(name: \"x\", bodies: [(position: (inf, 0))])",
+                "`bodies[0].position` must be finite, got (inf, 0)",
+            ),
+            (
+                "(name: \"x\", bodies: [(mass: NaN)])",
+                "`bodies[0].mass` must be finite (> 0 kg), got NaN",
+            ),
+            (
+                "(name: \"x\", bodies: [(mass: 1, density: 2)])",
+                "`bodies[0]` gives both `mass` and `density`; give one",
+            ),
+            (
+                "(name: \"x\", collisions: (substeps: 0))",
+                "`collisions` field substeps must be in [1, 1024], got 0",
+            ),
+            (
+                "(name: \"x\", generators: [Grid(origin: (0,0), columns: 0, rows: 1, spacing: (1,1), body: ())])",
+                "`generators[0].columns` must be >= 1, got 0",
+            ),
+            (
+                "(name: \"x\", generators: [Rain(origin: (0,0), count: 4000000000, columns: 10, spacing: (1,1), body: ())])",
+                "`generators` make 4000000000 bodies; at most 1000000 are allowed",
+            ),
+            (
+                "(name: \"x\", bodies: [(colour: \"red\")])",
+                "test.ron:1:32: in field `colour`: colour must be \"#rrggbb\" or \"#rrggbbaa\" (hex digits), got \"red\"",
+            ),
+        ];
+        for (text, want) in cases {
+            let msg = error(text);
+            assert!(msg.ends_with(want), "{text}\n  got:  {msg}\n  want: {want}");
+        }
+    }
+
+    #[test]
+    fn colours_parse_and_print_as_hex() {
+        assert_eq!(Colour::parse("#ff8000"), Some(Colour([255, 128, 0, 255])));
+        assert_eq!(Colour::parse("#ff800080"), Some(Colour([255, 128, 0, 128])));
+        assert_eq!(Colour([1, 2, 3, 255]).to_hex(), "#010203");
+        for bad in ["ff8000", "#ff80", "#gg8000", "#ff8000ff00", "#ééé"] {
+            assert_eq!(Colour::parse(bad), None, "{bad}");
+        }
+    }
+}

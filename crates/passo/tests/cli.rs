@@ -1,0 +1,109 @@
+//! The command line, run as a user runs it.
+
+use std::process::{Command, Output};
+
+fn passo(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_passo"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .output()
+        .expect("the passo binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn help_documents_every_subcommand() {
+    let out = passo(&["--help"]);
+    assert!(out.status.success());
+    let text = stdout(&out);
+    for command in ["simulate", "scenes"] {
+        assert!(text.contains(command), "--help lacks {command}:\n{text}");
+    }
+    let out = passo(&["simulate", "--help"]);
+    for flag in ["--ticks", "--csv", "--every", "--hash"] {
+        assert!(stdout(&out).contains(flag), "simulate --help lacks {flag}");
+    }
+}
+
+#[test]
+fn simulate_prints_the_same_hash_for_the_same_run() {
+    let a = passo(&["simulate", "pyramid", "--ticks", "120", "--hash"]);
+    let b = passo(&[
+        "simulate",
+        "assets/scenes/pyramid.ron",
+        "--ticks",
+        "120",
+        "--hash",
+    ]);
+    assert!(a.status.success(), "{}", stderr(&a));
+    let hash = stdout(&a);
+    assert_eq!(hash.trim().len(), 16, "{hash}");
+    assert_eq!(hash, stdout(&b));
+    // A resting pyramid is exactly at rest: one more tick changes no bit.
+    let c = passo(&["simulate", "pyramid", "--ticks", "121", "--hash"]);
+    assert_eq!(hash, stdout(&c));
+    // Falling rain is not.
+    let d = passo(&["simulate", "rain", "--ticks", "20", "--hash"]);
+    let e = passo(&["simulate", "rain", "--ticks", "21", "--hash"]);
+    assert_ne!(stdout(&d), stdout(&e));
+}
+
+#[test]
+fn simulate_writes_csv_rows_at_the_chosen_interval() {
+    let dir = std::env::temp_dir().join(format!("passo-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("projectile.csv");
+    let out = passo(&[
+        "simulate",
+        "projectile",
+        "--ticks",
+        "60",
+        "--every",
+        "25",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "tick,body,x,y,vx,vy");
+    // Two bodies at ticks 0, 25, 50 and 60.
+    let ticks: Vec<&str> = lines[1..]
+        .iter()
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(ticks, ["0", "0", "25", "25", "50", "50", "60", "60"]);
+    // The ball (body 1) after 25 ticks of 1/60 s in free flight: x = 10.6066 t.
+    let row: Vec<f32> = lines[4].split(',').map(|v| v.parse().unwrap()).collect();
+    assert_eq!(row[1], 1.0);
+    assert!((row[2] - 10.6066 * 25.0 / 60.0).abs() < 1e-3, "{row:?}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn bad_input_gives_a_clear_error_and_a_non_zero_exit() {
+    let out = passo(&["simulate", "no_such_scene"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("no scene named `no_such_scene`"));
+
+    let dir = std::env::temp_dir().join(format!("passo-cli-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("bad.ron");
+    std::fs::write(&file, "(name: \"bad\", bodies: [(mas: 1)])").unwrap();
+    let out = passo(&["simulate", file.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = stderr(&out);
+    assert!(err.contains("bad.ron:1:"), "{err}");
+    assert!(err.contains("did you mean `mass`?"), "{err}");
+    std::fs::remove_dir_all(dir).unwrap();
+
+    let out = passo(&["simulate", "rain", "--every", "0"]);
+    assert_eq!(out.status.code(), Some(2), "clap rejects a zero interval");
+}
