@@ -452,6 +452,29 @@ impl World {
 
     // ----- diagnostics -----
 
+    /// The force the world's force models exert on a body in its current
+    /// state, newtons: weight, drag, friction, fields, springs, custom
+    /// models, in their plain form (not the forces game code applied). For
+    /// drawing force vectors; zero for a static body.
+    pub fn model_force(&self, id: BodyId) -> Option<Vec2> {
+        let i = match self.locate(id)? {
+            Location::Dynamic(i) => i as usize,
+            _ => return Some(Vec2::ZERO),
+        };
+        let b = &self.dynamic;
+        let params = BodyParams {
+            inv_mass: b.inv_mass[i],
+            force: Vec2::ZERO,
+            drag_area: b.drag_area[i],
+            friction: b.friction[i],
+            friction_force: 0.0,
+        };
+        let drive = Drive::new(&self.settings.forces, &self.custom);
+        let dissipation = Dissipation::new(&self.settings.forces, false);
+        let a = drive.accel(b.pos[i], b.vel[i], &params) + dissipation.accel(b.vel[i], &params);
+        Some(a * b.meta[i].mass)
+    }
+
     /// Kinetic energy `sum 1/2 m |v|^2`, joules (summed in f64, in storage order).
     pub fn kinetic_energy(&self) -> f64 {
         (0..self.dynamic.len())
@@ -1217,6 +1240,30 @@ mod tests {
                 Stage::Integrate(Integrator::Rk4),
                 Stage::SpeedLimits
             ]
+        );
+    }
+
+    #[test]
+    fn model_force_is_weight_plus_drag() {
+        let mut settings = WorldSettings::default();
+        settings.forces.quadratic_drag = Some(crate::QuadraticDrag { density: 2.0 });
+        let mut world = World::new(settings).unwrap();
+        let id = world
+            .add_body(BodyDef {
+                mass: 3.0,
+                velocity: Vec2::new(0.0, -4.0),
+                drag_area: 0.5,
+                ..Default::default()
+            })
+            .unwrap();
+        // m g = -29.43 N; drag 1/2 rho v^2 CdA = 8 N upward.
+        let f = world.model_force(id).unwrap();
+        assert!((f - Vec2::new(0.0, -29.43 + 8.0)).length() < 1e-4, "{f}");
+        world.apply_force(id, Vec2::new(100.0, 0.0)).unwrap();
+        assert_eq!(
+            world.model_force(id).unwrap().x,
+            0.0,
+            "game forces are not included"
         );
     }
 

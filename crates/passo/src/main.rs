@@ -1,11 +1,8 @@
 //! `passo`: the interactive demo and the command-line tools of Passo.
 
-mod progress;
-mod scenes;
-mod simulate;
-
 use anyhow::Result;
 use clap::{Parser, Subcommand};
+use passo::{bench, render_cmd, scenes, simulate};
 
 /// Passo: 2D game physics on a fixed-timestep loop.
 ///
@@ -22,12 +19,21 @@ struct Cli {
 enum Command {
     /// Run a scene headlessly for N ticks; write CSV, print the state hash.
     Simulate(simulate::SimulateArgs),
+    /// Simulate a scene headlessly, then render it off-screen to a PNG.
+    Render(render_cmd::RenderArgs),
+    /// Measure: off-screen rendering speed (and more, see its help).
+    Bench(bench::BenchArgs),
     /// List the built-in scenes.
     Scenes,
 }
 
 fn main() {
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    // wgpu probes every backend; on a machine without a GL driver the EGL
+    // probe logs a harmless error before Vulkan is chosen. RUST_LOG overrides.
+    env_logger::Builder::from_env(
+        env_logger::Env::default().default_filter_or("warn,wgpu_hal::gles::egl=off"),
+    )
+    .init();
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
         eprintln!("error: {e:#}");
@@ -38,6 +44,8 @@ fn main() {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Some(Command::Simulate(args)) => simulate::run(&args),
+        Some(Command::Render(args)) => render_cmd::run(&args),
+        Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::Scenes) => {
             for name in scenes::names() {
                 let scene = scenes::load(name)?;

@@ -27,6 +27,7 @@ pub struct SimulateArgs {
     pub hash: bool,
 }
 
+/// Runs `passo simulate`.
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let scene = crate::scenes::load(&args.scene)?;
     let mut built = scene.build()?;

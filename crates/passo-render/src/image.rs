@@ -1,0 +1,93 @@
+//! RGBA images read back from the GPU, saved and loaded as PNG.
+
+use crate::RenderError;
+use std::path::Path;
+
+/// An 8-bit RGBA image, rows top to bottom, sRGB-encoded like a PNG.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RgbaImage {
+    /// Width, pixels.
+    pub width: u32,
+    /// Height, pixels.
+    pub height: u32,
+    /// `width * height * 4` bytes.
+    pub pixels: Vec<u8>,
+}
+
+impl RgbaImage {
+    /// The pixel at `(x, y)` (origin top left), or `None` outside.
+    pub fn get(&self, x: u32, y: u32) -> Option<[u8; 4]> {
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        let i = ((y * self.width + x) * 4) as usize;
+        self.pixels[i..i + 4].try_into().ok()
+    }
+
+    /// Writes the image as a PNG file.
+    pub fn save_png(&self, path: impl AsRef<Path>) -> Result<(), RenderError> {
+        let path = path.as_ref();
+        let err =
+            |e: &dyn std::fmt::Display| RenderError::Image(format!("{}: {e}", path.display()));
+        let file = std::fs::File::create(path).map_err(|e| err(&e))?;
+        let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), self.width, self.height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        let mut writer = encoder.write_header().map_err(|e| err(&e))?;
+        writer.write_image_data(&self.pixels).map_err(|e| err(&e))?;
+        writer.finish().map_err(|e| err(&e))
+    }
+
+    /// Reads an 8-bit RGBA or RGB PNG file.
+    pub fn load_png(path: impl AsRef<Path>) -> Result<Self, RenderError> {
+        let path = path.as_ref();
+        let err =
+            |e: &dyn std::fmt::Display| RenderError::Image(format!("{}: {e}", path.display()));
+        let file = std::fs::File::open(path).map_err(|e| err(&e))?;
+        let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
+        decoder.set_transformations(png::Transformations::EXPAND);
+        let mut reader = decoder.read_info().map_err(|e| err(&e))?;
+        let mut buf = vec![
+            0;
+            reader
+                .output_buffer_size()
+                .ok_or_else(|| err(&"image too large"))?
+        ];
+        let info = reader.next_frame(&mut buf).map_err(|e| err(&e))?;
+        if info.bit_depth != png::BitDepth::Eight {
+            return Err(err(&format!(
+                "{:?} bits per channel; 8 expected",
+                info.bit_depth
+            )));
+        }
+        let pixels = match info.color_type {
+            png::ColorType::Rgba => buf[..info.buffer_size()].to_vec(),
+            png::ColorType::Rgb => buf[..info.buffer_size()]
+                .chunks_exact(3)
+                .flat_map(|c| [c[0], c[1], c[2], 255])
+                .collect(),
+            other => return Err(err(&format!("{other:?} pixels; RGB or RGBA expected"))),
+        };
+        Ok(Self {
+            width: info.width,
+            height: info.height,
+            pixels,
+        })
+    }
+
+    /// Per-pixel difference: the largest channel difference of each pixel.
+    /// `None` if the sizes differ.
+    pub fn difference(&self, other: &Self) -> Option<Vec<u8>> {
+        if (self.width, self.height) != (other.width, other.height) {
+            return None;
+        }
+        Some(
+            self.pixels
+                .chunks_exact(4)
+                .zip(other.pixels.chunks_exact(4))
+                .map(|(a, b)| (0..4).map(|i| a[i].abs_diff(b[i])).max().unwrap_or(0))
+                .collect(),
+        )
+    }
+}

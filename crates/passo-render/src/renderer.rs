@@ -1,0 +1,285 @@
+//! The renderer: pipelines and buffers for one target format.
+
+use crate::draw_list::{LineInstance, ShapeInstance};
+use crate::{Camera2D, DrawList, Gpu};
+use bytemuck::{Pod, Zeroable};
+
+/// The shape pipeline's WGSL (`shaders/shapes.wgsl`), built in.
+pub const SHAPES_WGSL: &str = include_str!("../../../shaders/shapes.wgsl");
+/// The line pipeline's WGSL (`shaders/lines.wgsl`), built in.
+pub const LINES_WGSL: &str = include_str!("../../../shaders/lines.wgsl");
+
+/// Per-frame constants. Mirrors `Globals` in the WGSL files.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct Globals {
+    centre: [f32; 2],
+    scale: [f32; 2],
+    pixel_size: f32,
+    encode_srgb: u32,
+    _pad: [f32; 2],
+}
+
+/// Draws [`DrawList`]s into texture views of one format.
+///
+/// Owns its pipelines and buffers. Instance buffers grow to the largest
+/// list seen and are reused, so frames that draw no more than before
+/// allocate nothing.
+#[derive(Debug)]
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    format: wgpu::TextureFormat,
+    shapes: wgpu::RenderPipeline,
+    lines: wgpu::RenderPipeline,
+    globals: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    shape_buffer: wgpu::Buffer,
+    shape_capacity: usize,
+    line_buffer: wgpu::Buffer,
+    line_capacity: usize,
+}
+
+impl Renderer {
+    /// A renderer for targets of `format`. With a `*Srgb` format the
+    /// hardware encodes colours and blends in linear light; with a `*Unorm`
+    /// format the shaders encode sRGB themselves, so both give the same
+    /// picture.
+    pub fn new(gpu: &Gpu, format: wgpu::TextureFormat) -> Self {
+        let device = &gpu.device;
+        let globals = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("passo globals"),
+            size: std::mem::size_of::<Globals>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("passo globals layout"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("passo globals bind group"),
+            layout: &layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: globals.as_entire_binding(),
+            }],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("passo pipeline layout"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline =
+            |label: &str, source: &str, stride: usize, attributes: &[wgpu::VertexAttribute]| {
+                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(label),
+                    source: wgpu::ShaderSource::Wgsl(source.into()),
+                });
+                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some(label),
+                    layout: Some(&pipeline_layout),
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some("vs_main"),
+                        compilation_options: Default::default(),
+                        buffers: &[Some(wgpu::VertexBufferLayout {
+                            array_stride: stride as u64,
+                            step_mode: wgpu::VertexStepMode::Instance,
+                            attributes,
+                        })],
+                    },
+                    primitive: wgpu::PrimitiveState::default(),
+                    depth_stencil: None,
+                    multisample: wgpu::MultisampleState::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("fs_main"),
+                        compilation_options: Default::default(),
+                        targets: &[Some(wgpu::ColorTargetState {
+                            format,
+                            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+                            write_mask: wgpu::ColorWrites::ALL,
+                        })],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
+            };
+        let shapes = pipeline(
+            "passo shapes",
+            SHAPES_WGSL,
+            std::mem::size_of::<ShapeInstance>(),
+            &ShapeInstance::ATTRIBUTES,
+        );
+        let lines = pipeline(
+            "passo lines",
+            LINES_WGSL,
+            std::mem::size_of::<LineInstance>(),
+            &LineInstance::ATTRIBUTES,
+        );
+        let shape_buffer = instance_buffer(device, "passo shape instances", 256 * 64);
+        let line_buffer = instance_buffer(device, "passo line instances", 256 * 48);
+        Self {
+            device: device.clone(),
+            queue: gpu.queue.clone(),
+            format,
+            shapes,
+            lines,
+            globals,
+            bind_group,
+            shape_buffer,
+            shape_capacity: 256,
+            line_buffer,
+            line_capacity: 256,
+        }
+    }
+
+    /// The target format the pipelines were built for.
+    pub fn format(&self) -> wgpu::TextureFormat {
+        self.format
+    }
+
+    /// Draws `list` into `view` (of `size` pixels) and submits the work.
+    pub fn render(
+        &mut self,
+        view: &wgpu::TextureView,
+        size: (u32, u32),
+        camera: &Camera2D,
+        list: &DrawList,
+    ) {
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("passo frame"),
+            });
+        self.encode(&mut encoder, view, size, camera, list);
+        self.queue.submit(Some(encoder.finish()));
+    }
+
+    /// Records the drawing of `list` into `encoder`, clearing `view` first,
+    /// so a caller can add its own passes (a user interface) before
+    /// submitting. Uploads go through the queue: encode one list per
+    /// submission. A zero-sized target draws nothing.
+    pub fn encode(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &wgpu::TextureView,
+        size: (u32, u32),
+        camera: &Camera2D,
+        list: &DrawList,
+    ) {
+        if size.0 == 0 || size.1 == 0 {
+            return;
+        }
+        let (centre, scale) = camera.clip_transform(size);
+        let globals = Globals {
+            centre: centre.to_array(),
+            scale: scale.to_array(),
+            pixel_size: camera.pixel_size(size),
+            encode_srgb: u32::from(!self.format.is_srgb()),
+            _pad: [0.0; 2],
+        };
+        self.queue
+            .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+        upload(
+            &self.device,
+            &self.queue,
+            &mut self.shape_buffer,
+            &mut self.shape_capacity,
+            "passo shape instances",
+            &list.shapes,
+        );
+        upload(
+            &self.device,
+            &self.queue,
+            &mut self.line_buffer,
+            &mut self.line_capacity,
+            "passo line instances",
+            &list.lines,
+        );
+        let [r, g, b, a] = list.clear_colour.map(f64::from);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("passo bodies"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(clear_colour(self.format, [r, g, b, a])),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            ..Default::default()
+        });
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        if !list.shapes.is_empty() {
+            pass.set_pipeline(&self.shapes);
+            pass.set_vertex_buffer(0, self.shape_buffer.slice(..));
+            pass.draw(0..6, 0..list.shapes.len() as u32);
+        }
+        if !list.lines.is_empty() {
+            pass.set_pipeline(&self.lines);
+            pass.set_vertex_buffer(0, self.line_buffer.slice(..));
+            pass.draw(0..6, 0..list.lines.len() as u32);
+        }
+    }
+}
+
+/// The clear colour for a target: linear for `*Srgb` formats (the hardware
+/// encodes), sRGB-encoded for `*Unorm` ones.
+fn clear_colour(format: wgpu::TextureFormat, linear: [f64; 4]) -> wgpu::Color {
+    let encode = |c: f64| {
+        if format.is_srgb() {
+            c
+        } else if c <= 0.0031308 {
+            c * 12.92
+        } else {
+            1.055 * c.powf(1.0 / 2.4) - 0.055
+        }
+    };
+    wgpu::Color {
+        r: encode(linear[0]),
+        g: encode(linear[1]),
+        b: encode(linear[2]),
+        a: linear[3],
+    }
+}
+
+fn instance_buffer(device: &wgpu::Device, label: &str, bytes: usize) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: bytes as u64,
+        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+/// Writes instances to `buffer`, first growing it (to the next power of
+/// two) if they do not fit.
+fn upload<T: Pod>(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    buffer: &mut wgpu::Buffer,
+    capacity: &mut usize,
+    label: &str,
+    items: &[T],
+) {
+    if items.is_empty() {
+        return;
+    }
+    if items.len() > *capacity {
+        *capacity = items.len().next_power_of_two();
+        *buffer = instance_buffer(device, label, *capacity * std::mem::size_of::<T>());
+    }
+    queue.write_buffer(buffer, 0, bytemuck::cast_slice(items));
+}

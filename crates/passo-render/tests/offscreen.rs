@@ -1,0 +1,226 @@
+//! Off-screen rendering on the software adapter (Mesa lavapipe): pixels
+//! land where the camera says.
+
+use glam::Vec2;
+use passo_render::{AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer, RgbaImage};
+
+const BACKGROUND: [u8; 4] = [20, 22, 28, 255];
+const RED: [u8; 4] = [228, 108, 58, 255];
+const BLUE: [u8; 4] = [58, 142, 228, 255];
+const GREEN: [u8; 4] = [92, 184, 92, 255];
+
+fn gpu() -> Gpu {
+    Gpu::headless(AdapterChoice::Software).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn draw(gpu: &Gpu, target: &OffscreenTarget, camera: &Camera2D, list: &DrawList) -> RgbaImage {
+    let mut renderer = Renderer::new(gpu, target.format());
+    renderer.render(target.view(), target.size(), camera, list);
+    target.read(gpu).unwrap()
+}
+
+fn at(image: &RgbaImage, p: Vec2) -> [u8; 4] {
+    image.get(p.x as u32, p.y as u32).unwrap()
+}
+
+fn close(a: [u8; 4], b: [u8; 4], tolerance: u8) -> bool {
+    a.iter().zip(b).all(|(x, y)| x.abs_diff(y) <= tolerance)
+}
+
+#[test]
+fn bodies_appear_where_the_camera_projects_them() {
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 320, 240);
+    let camera = Camera2D::fit(Vec2::new(-8.0, -6.0), Vec2::new(8.0, 6.0), target.size());
+    let bodies = [
+        (Vec2::new(-4.0, 2.0), RED, true),
+        (Vec2::new(3.0, -1.5), BLUE, false),
+        (Vec2::new(5.0, 4.0), GREEN, true),
+    ];
+    let mut list = DrawList::new(BACKGROUND);
+    for (p, colour, round) in bodies {
+        if round {
+            list.circle(p, 0.8, colour);
+        } else {
+            list.rect(p, Vec2::new(1.0, 0.6), colour);
+        }
+    }
+    let image = draw(&gpu, &target, &camera, &list);
+    for (p, colour, _) in bodies {
+        let px = camera.world_to_pixel(p, target.size());
+        assert!(
+            close(at(&image, px), colour, 1),
+            "{p} at {px}: {:?}",
+            at(&image, px)
+        );
+    }
+    // Far from every body: the background.
+    for p in [
+        Vec2::new(0.0, 5.0),
+        Vec2::new(-7.0, -5.0),
+        Vec2::new(0.0, 0.0),
+    ] {
+        let px = camera.world_to_pixel(p, target.size());
+        assert!(
+            close(at(&image, px), BACKGROUND, 1),
+            "{p}: {:?}",
+            at(&image, px)
+        );
+    }
+    // The circle's edge is where its radius says: 0.8 m = 16 px at 20 px/m,
+    // with a 1.5 px outline inside it.
+    let c = camera.world_to_pixel(Vec2::new(-4.0, 2.0), target.size());
+    assert!(
+        close(at(&image, c + Vec2::new(12.0, 0.0)), RED, 1),
+        "inside the edge"
+    );
+    let rim = at(&image, c + Vec2::new(15.0, 0.0));
+    // The outline is 0.35 of the fill in linear light: sRGB 142 for 228.
+    assert!(rim[0].abs_diff(142) <= 4, "the outline is darker: {rim:?}");
+    assert!(
+        close(at(&image, c + Vec2::new(18.0, 0.0)), BACKGROUND, 1),
+        "outside the edge"
+    );
+}
+
+#[test]
+fn a_moved_body_moves_its_pixels_by_the_projected_amount() {
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 200, 200);
+    let camera = Camera2D {
+        centre: Vec2::ZERO,
+        height: 10.0, // 20 px per metre
+    };
+    let centroid = |p: Vec2| {
+        let mut list = DrawList::new(BACKGROUND);
+        list.rect(p, Vec2::splat(1.0), RED);
+        let image = draw(&gpu, &target, &camera, &list);
+        let (mut sum, mut n) = (Vec2::ZERO, 0.0);
+        for y in 0..200 {
+            for x in 0..200 {
+                if close(image.get(x, y).unwrap(), RED, 1) {
+                    sum += Vec2::new(x as f32, y as f32);
+                    n += 1.0;
+                }
+            }
+        }
+        sum / n
+    };
+    let a = centroid(Vec2::new(-1.0, 0.5));
+    let b = centroid(Vec2::new(1.5, -1.0));
+    // 2.5 m right and 1.5 m down: 50 px right, 30 px down (y is flipped).
+    assert!(
+        (b - a - Vec2::new(50.0, 30.0)).length() < 0.01,
+        "{a} -> {b}"
+    );
+}
+
+#[test]
+fn srgb_and_linear_targets_give_the_same_picture() {
+    let gpu = gpu();
+    let camera = Camera2D::fit(Vec2::splat(-2.0), Vec2::splat(2.0), (64, 64));
+    let mut list = DrawList::new([90, 90, 90, 255]);
+    list.circle(Vec2::ZERO, 1.0, [200, 120, 40, 255]);
+    list.line(
+        Vec2::new(-2.0, -1.5),
+        Vec2::new(2.0, -1.5),
+        3.0,
+        [30, 200, 255, 255],
+    );
+    let srgb = OffscreenTarget::with_format(&gpu, 64, 64, wgpu::TextureFormat::Rgba8UnormSrgb);
+    let linear = OffscreenTarget::with_format(&gpu, 64, 64, wgpu::TextureFormat::Rgba8Unorm);
+    let a = draw(&gpu, &srgb, &camera, &list);
+    let b = draw(&gpu, &linear, &camera, &list);
+    // Solid areas agree to a unit of rounding; edges blend in different
+    // spaces (linear light on sRGB targets), so they may differ more.
+    for (p, want) in [
+        (Vec2::ZERO, [200, 120, 40, 255]),
+        (Vec2::new(1.8, 1.8), [90, 90, 90, 255]),
+        (Vec2::new(0.0, -1.5), [30, 200, 255, 255]),
+    ] {
+        let px = camera.world_to_pixel(p, (64, 64));
+        assert!(
+            close(at(&a, px), want, 1),
+            "sRGB target at {p}: {:?}",
+            at(&a, px)
+        );
+        assert!(
+            close(at(&b, px), want, 1),
+            "linear target at {p}: {:?}",
+            at(&b, px)
+        );
+    }
+    let diff = a.difference(&b).unwrap();
+    let mean = diff.iter().map(|&d| f64::from(d)).sum::<f64>() / diff.len() as f64;
+    assert!(mean < 1.0, "mean difference {mean}");
+}
+
+#[test]
+fn arrows_draw_their_shaft_and_head() {
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 200, 100);
+    let camera = Camera2D {
+        centre: Vec2::ZERO,
+        height: 10.0,
+    };
+    let mut list = DrawList::new(BACKGROUND);
+    list.arrow(Vec2::new(-4.0, 0.0), Vec2::new(4.0, 0.0), 3.0, GREEN);
+    let image = draw(&gpu, &target, &camera, &list);
+    let on = |p: Vec2| {
+        close(
+            at(&image, camera.world_to_pixel(p, target.size())),
+            GREEN,
+            2,
+        )
+    };
+    assert!(on(Vec2::new(0.0, 0.0)) && on(Vec2::new(-3.5, 0.0)), "shaft");
+    assert!(
+        on(Vec2::new(3.75, 0.125)) && on(Vec2::new(3.75, -0.125)),
+        "head strokes"
+    );
+    assert!(!on(Vec2::new(0.0, 1.0)), "nothing off the line");
+}
+
+#[test]
+fn zero_sized_targets_and_empty_lists_are_fine() {
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 16, 16);
+    let mut renderer = Renderer::new(&gpu, target.format());
+    renderer.render(
+        target.view(),
+        (0, 0),
+        &Camera2D::default(),
+        &DrawList::new(RED),
+    );
+    let list = DrawList::new(BLUE);
+    renderer.render(target.view(), target.size(), &Camera2D::default(), &list);
+    let image = target.read(&gpu).unwrap();
+    assert!(
+        image
+            .pixels
+            .chunks_exact(4)
+            .all(|p| close(p.try_into().unwrap(), BLUE, 1))
+    );
+}
+
+#[test]
+fn many_instances_grow_the_buffers() {
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 100, 100);
+    let camera = Camera2D::fit(Vec2::ZERO, Vec2::splat(100.0), target.size());
+    let mut renderer = Renderer::new(&gpu, target.format());
+    let mut list = DrawList::new(BACKGROUND);
+    for i in 0..5000 {
+        list.circle(
+            Vec2::new((i % 70) as f32 * 1.4 + 1.0, (i / 70) as f32 * 1.4 + 1.0),
+            0.5,
+            RED,
+        );
+    }
+    renderer.render(target.view(), target.size(), &camera, &list);
+    let image = target.read(&gpu).unwrap();
+    // The last circle (row 71, column 29) was drawn (small: only its
+    // outline colour shows).
+    let p = camera.world_to_pixel(Vec2::new(29.0 * 1.4 + 1.0, 71.0 * 1.4 + 1.0), target.size());
+    assert!(!close(at(&image, p), BACKGROUND, 10), "{:?}", at(&image, p));
+}

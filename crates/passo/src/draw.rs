@@ -1,0 +1,113 @@
+//! Turning a physics world into a draw list.
+
+use glam::Vec2;
+use passo_physics::{Shape, World};
+use passo_render::DrawList;
+use passo_scene::SceneBody;
+
+/// Background of every picture (sRGB).
+pub const BACKGROUND: [u8; 4] = [24, 26, 32, 255];
+/// Velocity arrows (sRGB).
+pub const VELOCITY_COLOUR: [u8; 4] = [120, 220, 140, 255];
+/// Force arrows (sRGB).
+pub const FORCE_COLOUR: [u8; 4] = [240, 200, 80, 255];
+/// Contact normals (sRGB).
+pub const CONTACT_COLOUR: [u8; 4] = [240, 90, 200, 255];
+/// Bodies the scene gave no colour (sRGB).
+pub const DEFAULT_COLOUR: [u8; 4] = [200, 200, 210, 255];
+
+/// What to draw besides the bodies.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DrawOptions {
+    /// Interpolation factor between the last two ticks, in `[0, 1]`; only
+    /// has an effect if the world keeps previous positions.
+    pub alpha: f32,
+    /// Draw each body's velocity as an arrow showing where it will be in
+    /// `velocity_scale` seconds.
+    pub velocity_vectors: bool,
+    /// Seconds of travel a velocity arrow shows. Default 0.25.
+    pub velocity_scale: f32,
+    /// Draw the force of the force models on each body (metres per newton
+    /// per kilogram: an arrow of `force_scale * F / m` metres).
+    pub force_vectors: bool,
+    /// Metres of arrow per m/s² of acceleration. Default 0.1.
+    pub force_scale: f32,
+    /// Draw contact normals at contact points.
+    pub contact_normals: bool,
+    /// Radius of a body without a shape, metres.
+    pub point_radius: f32,
+}
+
+impl Default for DrawOptions {
+    fn default() -> Self {
+        Self {
+            alpha: 1.0,
+            velocity_vectors: false,
+            velocity_scale: 0.25,
+            force_vectors: false,
+            force_scale: 0.1,
+            contact_normals: false,
+            point_radius: 0.1,
+        }
+    }
+}
+
+/// Fills `list` with the world's bodies (with their scene colours) and the
+/// chosen debug vectors. Clears the list first, keeping its capacity.
+pub fn draw_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], options: &DrawOptions) {
+    list.clear(BACKGROUND);
+    let colour_of = |id| {
+        bodies
+            .binary_search_by_key(&id, |b: &SceneBody| b.id)
+            .map_or(DEFAULT_COLOUR, |i| bodies[i].colour.0)
+    };
+    // Static bodies first, so moving ones are drawn over them.
+    for pass in [true, false] {
+        for body in world.bodies() {
+            if (body.mass == f32::INFINITY) != pass {
+                continue;
+            }
+            let p = world
+                .interpolated_position(body.id, options.alpha)
+                .unwrap_or(body.position);
+            let colour = colour_of(body.id);
+            match body.shape {
+                Some(Shape::Circle { radius }) => list.circle(p, radius, colour),
+                Some(Shape::Box { half_extents }) => list.rect(p, half_extents, colour),
+                None => list.circle(p, options.point_radius, colour),
+            }
+        }
+    }
+    for body in world.bodies() {
+        let p = world
+            .interpolated_position(body.id, options.alpha)
+            .unwrap_or(body.position);
+        if options.velocity_vectors && body.velocity != Vec2::ZERO {
+            list.arrow(
+                p,
+                p + body.velocity * options.velocity_scale,
+                2.0,
+                VELOCITY_COLOUR,
+            );
+        }
+        if options.force_vectors
+            && body.mass.is_finite()
+            && let Some(force) = world.model_force(body.id)
+            && force != Vec2::ZERO
+        {
+            list.arrow(
+                p,
+                p + force / body.mass * options.force_scale,
+                2.0,
+                FORCE_COLOUR,
+            );
+        }
+    }
+    if options.contact_normals {
+        for contact in world.contacts().filter(|c| c.touching) {
+            for &point in &contact.points[..usize::from(contact.point_count)] {
+                list.arrow(point, point + contact.normal * 0.4, 1.5, CONTACT_COLOUR);
+            }
+        }
+    }
+}

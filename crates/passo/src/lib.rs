@@ -1,0 +1,10 @@
+//! The `passo` app as a library: what the demo and the command-line tools
+//! share, and what the cross-crate tests check (drawing a world, finding
+//! scenes, headless rendering).
+
+pub mod bench;
+pub mod draw;
+pub mod progress;
+pub mod render_cmd;
+pub mod scenes;
+pub mod simulate;

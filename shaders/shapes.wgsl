@@ -1,0 +1,94 @@
+// Instanced shapes: every circle and box is a quad whose fragment shader
+// evaluates the shape's signed distance, giving an anti-aliased edge and an
+// outline at any zoom. Mirrors `Globals` and `ShapeInstance` in
+// crates/passo-render/src/draw_list.rs field for field.
+
+struct Globals {
+    // world -> clip: clip = (world - centre) * scale
+    centre: vec2<f32>,
+    scale: vec2<f32>,
+    // metres per pixel, for edge widths measured in pixels
+    pixel_size: f32,
+    // 1 when the target stores bytes as they are (a *Unorm format) and the
+    // shader must apply the sRGB transfer function itself; 0 for *Srgb
+    // targets, which encode on write.
+    encode_srgb: u32,
+    _pad: vec2<f32>,
+};
+
+@group(0) @binding(0) var<uniform> globals: Globals;
+
+struct Instance {
+    @location(0) centre: vec2<f32>,
+    @location(1) half_extents: vec2<f32>,
+    // linear RGB, straight alpha
+    @location(2) fill: vec4<f32>,
+    @location(3) outline: vec4<f32>,
+    // 0 = circle (radius in half_extents.x), 1 = box
+    @location(4) kind: u32,
+};
+
+struct VsOut {
+    @builtin(position) clip: vec4<f32>,
+    // metres from the shape's centre
+    @location(0) local: vec2<f32>,
+    @location(1) @interpolate(flat) half_extents: vec2<f32>,
+    @location(2) @interpolate(flat) fill: vec4<f32>,
+    @location(3) @interpolate(flat) outline: vec4<f32>,
+    @location(4) @interpolate(flat) kind: u32,
+};
+
+// Outline width and anti-aliasing fringe, pixels.
+const OUTLINE_PX: f32 = 1.5;
+const FRINGE_PX: f32 = 1.0;
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex: u32, instance: Instance) -> VsOut {
+    var corners = array<vec2<f32>, 6>(
+        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, -1.0), vec2<f32>(1.0, 1.0),
+        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, 1.0), vec2<f32>(-1.0, 1.0),
+    );
+    // Grow the quad by the fringe so the anti-aliased edge is not clipped.
+    let grown = instance.half_extents + vec2<f32>(globals.pixel_size * (FRINGE_PX + 0.5));
+    let local = corners[vertex] * grown;
+    let world = instance.centre + local;
+    var out: VsOut;
+    out.clip = vec4<f32>((world - globals.centre) * globals.scale, 0.0, 1.0);
+    out.local = local;
+    out.half_extents = instance.half_extents;
+    out.fill = instance.fill;
+    out.outline = instance.outline;
+    out.kind = instance.kind;
+    return out;
+}
+
+fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
+    let low = c * 12.92;
+    let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(high, low, c <= vec3<f32>(0.0031308));
+}
+
+@fragment
+fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
+    // Signed distance to the edge, metres (negative inside).
+    var d: f32;
+    if in.kind == 0u {
+        d = length(in.local) - in.half_extents.x;
+    } else {
+        let q = abs(in.local) - in.half_extents;
+        d = length(max(q, vec2<f32>(0.0))) + min(max(q.x, q.y), 0.0);
+    }
+    let px = d / globals.pixel_size;
+    let coverage = clamp(0.5 - px, 0.0, 1.0);
+    // 0 on the outline band, 1 inside it.
+    let inner = clamp(-px - OUTLINE_PX + 0.5, 0.0, 1.0);
+    let rgb = mix(in.outline.rgb, in.fill.rgb, inner);
+    let alpha = mix(in.outline.a, in.fill.a, inner) * coverage;
+    if alpha <= 0.0 {
+        discard;
+    }
+    if globals.encode_srgb == 1u {
+        return vec4<f32>(linear_to_srgb(rgb), alpha);
+    }
+    return vec4<f32>(rgb, alpha);
+}
