@@ -176,6 +176,11 @@ fn confined_circles_spread_out_and_stay_inside() {
     }
     run(&mut w, 5.0, |_| {});
     let pen = max_penetration(&w);
+    assert_eq!(
+        pen,
+        w.max_penetration(),
+        "the world's diagnostic agrees with brute force"
+    );
     println!("confined: max penetration {pen} m");
     assert!(pen <= 2.0 * LINEAR_SLOP, "penetration {pen}");
     for id in ids {

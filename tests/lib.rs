@@ -43,7 +43,8 @@ use passo_physics::{BodyDef, BodyId, BodyKind, Shape, World, collide};
 
 /// The deepest overlap between any two shaped bodies (dynamic-dynamic or
 /// dynamic-static, sensors excluded), from exact geometry at the current
-/// positions: not from the solver's cached contact data.
+/// positions: not from the solver's cached contact data. Brute force over
+/// all pairs, so it is independent of the broad phase it checks.
 pub fn max_penetration(world: &World) -> f32 {
     let bodies: Vec<_> = world
         .bodies()

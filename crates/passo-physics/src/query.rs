@@ -1,7 +1,8 @@
 //! What a game asks the world: contacts, events, and shape queries.
 
-use crate::manifold::{ray_shape, shape_contains};
-use crate::{Aabb, BodyId, Contact, ContactEvents, SensorPair, World};
+use crate::broad_phase::BroadPhase;
+use crate::manifold::{collide, ray_shape, shape_contains};
+use crate::{Aabb, BodyId, BodyKind, Contact, ContactEvents, SensorPair, World};
 use glam::Vec2;
 
 /// The first body a ray hits.
@@ -98,6 +99,45 @@ impl World {
         self.contacts
             .as_ref()
             .map_or(&[], |cw| cw.sensor_overlaps())
+    }
+
+    /// The deepest overlap between any two shaped bodies that may touch
+    /// (sensors and static pairs excluded), metres, measured from exact
+    /// geometry at the current positions, not from the solver's contact
+    /// data. Finds candidates with a fresh broad phase: a diagnostic, it
+    /// allocates.
+    pub fn max_penetration(&self) -> f32 {
+        let bodies: Vec<_> = self
+            .bodies()
+            .filter(|b| b.shape.is_some() && !b.sensor)
+            .collect();
+        let boxes: Vec<Aabb> = bodies
+            .iter()
+            .map(|b| {
+                Aabb::from_centre(
+                    b.position,
+                    b.shape.map_or(glam::Vec2::ZERO, |s| s.half_extents()),
+                )
+            })
+            .collect();
+        let mut pairs = Vec::new();
+        BroadPhase::default().find_pairs(&boxes, &mut pairs);
+        let mut deepest = 0.0f32;
+        for (i, j) in pairs {
+            let (a, b) = (&bodies[i as usize], &bodies[j as usize]);
+            if (a.kind == BodyKind::Static && b.kind == BodyKind::Static)
+                || !a.filter.allows(&b.filter)
+            {
+                continue;
+            }
+            let (Some(sa), Some(sb)) = (a.shape, b.shape) else {
+                continue;
+            };
+            if let Some(m) = collide(&sa, a.position, &sb, b.position, 0.0) {
+                deepest = deepest.max(-m.separation);
+            }
+        }
+        deepest
     }
 
     /// Shaped bodies whose shape contains `point`, in id order.

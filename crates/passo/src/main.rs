@@ -21,7 +21,7 @@ enum Command {
     Simulate(simulate::SimulateArgs),
     /// Simulate a scene headlessly, then render it off-screen to a PNG.
     Render(render_cmd::RenderArgs),
-    /// Measure: off-screen rendering speed (and more, see its help).
+    /// Measure speed: collision scenes, off-screen rendering.
     Bench(bench::BenchArgs),
     /// List the built-in scenes.
     Scenes,
