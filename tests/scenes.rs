@@ -74,7 +74,10 @@ fn a_world_runs_only_the_stages_its_scene_declares() {
     let cases = [
         ("spring", vec![Spring, semi, SpeedLimits]),
         ("friction_slide", vec![SurfaceFriction, semi, SpeedLimits]),
-        ("drag_race", vec![Gravity, QuadraticDrag, semi, SpeedLimits]),
+        (
+            "drag_race",
+            vec![Gravity, QuadraticDrag, semi, Contacts, SpeedLimits],
+        ),
         ("projectile", vec![Gravity, semi, Contacts, SpeedLimits]),
         (
             "drag_fall",

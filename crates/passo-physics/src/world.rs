@@ -439,6 +439,51 @@ impl World {
         Ok(())
     }
 
+    /// Sets a body's friction coefficient `mu` (>= 0), for surface friction
+    /// and contacts.
+    pub fn set_friction(&mut self, id: BodyId, mu: f32) -> Result<(), PhysicsError> {
+        non_negative("friction", mu)?;
+        match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
+            Location::Dynamic(i) => self.dynamic.friction[i as usize] = mu,
+            Location::Static(i) => self.statics.friction[i as usize] = mu,
+            Location::Free => unreachable!(),
+        }
+        Ok(())
+    }
+
+    /// Sets a body's restitution, in `[0, 1]`.
+    pub fn set_restitution(&mut self, id: BodyId, restitution: f32) -> Result<(), PhysicsError> {
+        non_negative("restitution", restitution)?;
+        if restitution > 1.0 {
+            return Err(PhysicsError::OutOfRange {
+                what: "restitution",
+                value: restitution,
+                allowed: "in [0, 1]",
+            });
+        }
+        match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
+            Location::Dynamic(i) => self.dynamic.meta[i as usize].restitution = restitution,
+            Location::Static(i) => self.statics.meta[i as usize].restitution = restitution,
+            Location::Free => unreachable!(),
+        }
+        Ok(())
+    }
+
+    /// Sets a body's drag area `Cd A`, square metres (>= 0): a glider
+    /// opening its wings.
+    pub fn set_drag_area(&mut self, id: BodyId, drag_area: f32) -> Result<(), PhysicsError> {
+        non_negative("drag_area", drag_area)?;
+        match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
+            Location::Dynamic(i) => {
+                self.dynamic.drag_area[i as usize] = drag_area;
+                self.dynamic.meta[i as usize].drag_area = drag_area;
+            }
+            Location::Static(i) => self.statics.meta[i as usize].drag_area = drag_area,
+            Location::Free => unreachable!(),
+        }
+        Ok(())
+    }
+
     /// Where to draw a body between the last two steps: `lerp(previous,
     /// current, alpha)` with `alpha` in `[0, 1]` (clamped). Without
     /// [`WorldSettings::interpolation`] this is the current position.
@@ -1240,6 +1285,30 @@ mod tests {
                 Stage::Integrate(Integrator::Rk4),
                 Stage::SpeedLimits
             ]
+        );
+    }
+
+    #[test]
+    fn material_setters_check_their_input_and_take_effect() {
+        let mut world = World::default();
+        let id = world.add_body(ball(0.0)).unwrap();
+        world.set_friction(id, 0.1).unwrap();
+        world.set_restitution(id, 0.9).unwrap();
+        world.set_drag_area(id, 2.0).unwrap();
+        let b = world.body(id).unwrap();
+        assert_eq!((b.friction, b.restitution, b.drag_area), (0.1, 0.9, 2.0));
+        assert!(world.set_friction(id, -1.0).is_err());
+        assert!(world.set_restitution(id, 1.1).is_err());
+        assert!(world.set_drag_area(id, f32::NAN).is_err());
+        let ground = world
+            .add_body(BodyDef::fixed(Vec2::ZERO, Shape::circle(1.0)))
+            .unwrap();
+        world.set_friction(ground, 0.02).unwrap();
+        assert_eq!(world.body(ground).unwrap().friction, 0.02);
+        world.remove_body(id);
+        assert_eq!(
+            world.set_friction(id, 0.5),
+            Err(PhysicsError::StaleBody(id))
         );
     }
 

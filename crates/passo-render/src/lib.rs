@@ -46,7 +46,7 @@ pub use draw_list::{
 };
 pub use gpu::{AdapterChoice, Gpu, RenderError};
 pub use image::RgbaImage;
-pub use offscreen::OffscreenTarget;
+pub use offscreen::{OffscreenTarget, read_texture};
 pub use renderer::{LINES_WGSL, Renderer, SHAPES_WGSL};
 pub use surface::WindowSurface;
 pub use wgpu;

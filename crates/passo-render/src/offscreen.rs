@@ -2,7 +2,7 @@
 
 use crate::{Gpu, RenderError, RgbaImage};
 
-/// A texture to render into, with a buffer to read it back.
+/// A texture to render into and read back.
 ///
 /// Its format is `Rgba8UnormSrgb`: the renderer writes sRGB-encoded bytes,
 /// blended in linear light, exactly what a PNG holds.
@@ -10,9 +10,7 @@ use crate::{Gpu, RenderError, RgbaImage};
 pub struct OffscreenTarget {
     texture: wgpu::Texture,
     view: wgpu::TextureView,
-    readback: wgpu::Buffer,
     size: (u32, u32),
-    padded_row: u32,
 }
 
 /// Texture-to-buffer copies need rows aligned to this many bytes.
@@ -49,19 +47,10 @@ impl OffscreenTarget {
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        let padded_row = (size.0 * 4).div_ceil(ROW_ALIGN) * ROW_ALIGN;
-        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("passo offscreen readback"),
-            size: u64::from(padded_row) * u64::from(size.1),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
         Self {
             texture,
             view,
-            readback,
             size,
-            padded_row,
         }
     }
 
@@ -80,60 +69,86 @@ impl OffscreenTarget {
         self.texture.format()
     }
 
-    /// Copies the texture to memory (waiting for the GPU) and strips the
-    /// row padding the copy needs.
+    /// Copies the texture to memory (waiting for the GPU).
     pub fn read(&self, gpu: &Gpu) -> Result<RgbaImage, RenderError> {
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("passo readback"),
-            });
-        encoder.copy_texture_to_buffer(
-            self.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &self.readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(self.padded_row),
-                    rows_per_image: Some(self.size.1),
-                },
-            },
-            wgpu::Extent3d {
-                width: self.size.0,
-                height: self.size.1,
-                depth_or_array_layers: 1,
-            },
-        );
-        gpu.queue.submit(Some(encoder.finish()));
-        let slice = self.readback.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |result| {
-            let _ = tx.send(result);
-        });
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| RenderError::Readback(e.to_string()))?
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
-        let row = (self.size.0 * 4) as usize;
-        let mut pixels = Vec::with_capacity(row * self.size.1 as usize);
-        {
-            let data = slice
-                .get_mapped_range()
-                .map_err(|e| RenderError::Readback(e.to_string()))?;
-            for chunk in data
-                .chunks(self.padded_row as usize)
-                .take(self.size.1 as usize)
-            {
-                pixels.extend_from_slice(&chunk[..row]);
-            }
-        }
-        self.readback.unmap();
-        Ok(RgbaImage {
-            width: self.size.0,
-            height: self.size.1,
-            pixels,
-        })
+        read_texture(gpu, &self.texture)
     }
+}
+
+/// Copies an RGBA8 or BGRA8 texture (with `COPY_SRC` usage) to memory,
+/// waiting for the GPU: strips the 256-byte row padding the copy needs and
+/// swaps BGRA to RGBA. Used for off-screen targets and window screenshots.
+pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Result<RgbaImage, RenderError> {
+    use wgpu::TextureFormat as F;
+    let bgra = match texture.format() {
+        F::Rgba8Unorm | F::Rgba8UnormSrgb => false,
+        F::Bgra8Unorm | F::Bgra8UnormSrgb => true,
+        other => {
+            return Err(RenderError::Readback(format!(
+                "cannot read back {other:?} textures (RGBA8 or BGRA8 only)"
+            )));
+        }
+    };
+    let (width, height) = (texture.width(), texture.height());
+    let padded_row = (width * 4).div_ceil(ROW_ALIGN) * ROW_ALIGN;
+    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("passo readback"),
+        size: u64::from(padded_row) * u64::from(height),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("passo readback"),
+        });
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded_row),
+                rows_per_image: Some(height),
+            },
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
+    gpu.queue.submit(Some(encoder.finish()));
+    let slice = buffer.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |result| {
+        let _ = tx.send(result);
+    });
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| RenderError::Readback(e.to_string()))?
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    let row = (width * 4) as usize;
+    let mut pixels = Vec::with_capacity(row * height as usize);
+    {
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        for chunk in data.chunks(padded_row as usize).take(height as usize) {
+            pixels.extend_from_slice(&chunk[..row]);
+        }
+    }
+    buffer.unmap();
+    if bgra {
+        for p in pixels.chunks_exact_mut(4) {
+            p.swap(0, 2);
+        }
+    }
+    Ok(RgbaImage {
+        width,
+        height,
+        pixels,
+    })
 }

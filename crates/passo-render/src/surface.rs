@@ -15,6 +15,9 @@ use crate::{Gpu, RenderError};
 pub struct WindowSurface {
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
+    /// The format to draw the scene in: the sRGB view of the surface when
+    /// it has one.
+    srgb_view: Option<wgpu::TextureFormat>,
     /// False while the window is 0×0.
     configured: bool,
     /// The last frame was suboptimal: reconfigure before the next one.
@@ -22,19 +25,32 @@ pub struct WindowSurface {
 }
 
 impl WindowSurface {
-    /// Configures `surface` for a window of `size` pixels, preferring an
-    /// sRGB format.
+    /// Configures `surface` for a window of `size` pixels. With `capture`,
+    /// frames can also be copied out ([`read_texture`](crate::read_texture))
+    /// for screenshots, if the surface allows it.
+    ///
+    /// The surface gets a plain (`*Unorm`) format, which user-interface
+    /// libraries such as egui expect, plus an sRGB view format where the
+    /// adapter allows views of another format: draw the scene through
+    /// [`scene_view`](Self::scene_view) in [`scene_format`](Self::scene_format)
+    /// for blending in linear light. Without such views the scene is drawn
+    /// in the plain format and the renderer encodes sRGB itself.
     pub fn new(
         gpu: &Gpu,
         surface: wgpu::Surface<'static>,
         size: (u32, u32),
+        capture: bool,
     ) -> Result<Self, RenderError> {
         let caps = surface.get_capabilities(&gpu.adapter);
+        let mut usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        if capture && caps.usages.contains(wgpu::TextureUsages::COPY_SRC) {
+            usage |= wgpu::TextureUsages::COPY_SRC;
+        }
         let format = caps
             .formats
             .iter()
             .copied()
-            .find(wgpu::TextureFormat::is_srgb)
+            .find(|f| !f.is_srgb())
             .or_else(|| caps.formats.first().copied())
             .ok_or_else(|| {
                 RenderError::Device(
@@ -43,8 +59,15 @@ impl WindowSurface {
                         .into(),
                 )
             })?;
+        let can_view = gpu
+            .adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::SURFACE_VIEW_FORMATS);
+        let srgb = format.add_srgb_suffix();
+        let srgb_view = (can_view && srgb != format).then_some(srgb);
         let config = wgpu::SurfaceConfiguration {
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            usage,
             format,
             width: size.0.max(1),
             height: size.1.max(1),
@@ -55,12 +78,13 @@ impl WindowSurface {
                 .first()
                 .copied()
                 .unwrap_or(wgpu::CompositeAlphaMode::Auto),
-            view_formats: vec![],
+            view_formats: srgb_view.into_iter().collect(),
             color_space: wgpu::SurfaceColorSpace::Auto,
         };
         let mut this = Self {
             surface,
             config,
+            srgb_view,
             configured: false,
             stale: false,
         };
@@ -68,9 +92,27 @@ impl WindowSurface {
         Ok(this)
     }
 
-    /// The surface's pixel format (build the [`Renderer`](crate::Renderer) for it).
+    /// The surface's pixel format (for a user interface drawn on top).
     pub fn format(&self) -> wgpu::TextureFormat {
         self.config.format
+    }
+
+    /// The format to build the scene's [`Renderer`](crate::Renderer) for.
+    pub fn scene_format(&self) -> wgpu::TextureFormat {
+        self.srgb_view.unwrap_or(self.config.format)
+    }
+
+    /// A view of `frame` in [`scene_format`](Self::scene_format).
+    pub fn scene_view(&self, frame: &wgpu::SurfaceTexture) -> wgpu::TextureView {
+        frame.texture.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(self.scene_format()),
+            ..Default::default()
+        })
+    }
+
+    /// Whether frames can be copied out for screenshots.
+    pub fn can_capture(&self) -> bool {
+        self.config.usage.contains(wgpu::TextureUsages::COPY_SRC)
     }
 
     /// The configured size, pixels.

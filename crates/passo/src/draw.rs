@@ -36,6 +36,8 @@ pub struct DrawOptions {
     pub contact_normals: bool,
     /// Radius of a body without a shape, metres.
     pub point_radius: f32,
+    /// Added to every position: draws several worlds side by side.
+    pub offset: Vec2,
 }
 
 impl Default for DrawOptions {
@@ -48,14 +50,20 @@ impl Default for DrawOptions {
             force_scale: 0.1,
             contact_normals: false,
             point_radius: 0.1,
+            offset: Vec2::ZERO,
         }
     }
 }
 
-/// Fills `list` with the world's bodies (with their scene colours) and the
-/// chosen debug vectors. Clears the list first, keeping its capacity.
+/// Clears `list` (keeping its capacity), then draws the world into it.
 pub fn draw_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], options: &DrawOptions) {
     list.clear(BACKGROUND);
+    add_world(list, world, bodies, options);
+}
+
+/// Adds the world's bodies (with their scene colours) and the chosen debug
+/// vectors to `list`.
+pub fn add_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], options: &DrawOptions) {
     let colour_of = |id| {
         bodies
             .binary_search_by_key(&id, |b: &SceneBody| b.id)
@@ -69,7 +77,8 @@ pub fn draw_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], opti
             }
             let p = world
                 .interpolated_position(body.id, options.alpha)
-                .unwrap_or(body.position);
+                .unwrap_or(body.position)
+                + options.offset;
             let colour = colour_of(body.id);
             match body.shape {
                 Some(Shape::Circle { radius }) => list.circle(p, radius, colour),
@@ -81,7 +90,8 @@ pub fn draw_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], opti
     for body in world.bodies() {
         let p = world
             .interpolated_position(body.id, options.alpha)
-            .unwrap_or(body.position);
+            .unwrap_or(body.position)
+            + options.offset;
         if options.velocity_vectors && body.velocity != Vec2::ZERO {
             list.arrow(
                 p,
@@ -106,6 +116,7 @@ pub fn draw_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], opti
     if options.contact_normals {
         for contact in world.contacts().filter(|c| c.touching) {
             for &point in &contact.points[..usize::from(contact.point_count)] {
+                let point = point + options.offset;
                 list.arrow(point, point + contact.normal * 0.4, 1.5, CONTACT_COLOUR);
             }
         }

@@ -3,6 +3,7 @@
 //! scenes, headless rendering).
 
 pub mod bench;
+pub mod demo;
 pub mod draw;
 pub mod progress;
 pub mod render_cmd;

@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
-use passo::{bench, render_cmd, scenes, simulate};
+use passo::{bench, demo, render_cmd, scenes, simulate};
 
 /// Passo: 2D game physics on a fixed-timestep loop.
 ///
@@ -17,6 +17,8 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Open the interactive demo (the default when no command is given).
+    Demo(demo::DemoArgs),
     /// Run a scene headlessly for N ticks; write CSV, print the state hash.
     Simulate(simulate::SimulateArgs),
     /// Simulate a scene headlessly, then render it off-screen to a PNG.
@@ -53,10 +55,10 @@ fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
-        None => {
-            use clap::CommandFactory;
-            Cli::command().print_help()?;
-            Ok(())
-        }
+        Some(Command::Demo(args)) => demo::run(args),
+        None => demo::run(demo::DemoArgs {
+            size: (1280, 800),
+            ..Default::default()
+        }),
     }
 }

@@ -1,0 +1,391 @@
+//! The demo's panel (egui): scenes, loop controls, force sliders, stats,
+//! a live plot and the controls' help.
+
+use super::Entry;
+use super::sim::Sim;
+use egui::{Color32, Slider, Stroke};
+use passo_physics::Integrator;
+use passo_render::Camera2D;
+use std::time::Duration;
+
+/// Debug drawing switches.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ViewOptions {
+    /// Velocity arrows.
+    pub velocities: bool,
+    /// Force-model arrows.
+    pub forces: bool,
+    /// Contact normals.
+    pub contacts: bool,
+}
+
+/// What the panel asked for this frame.
+#[derive(Clone, Debug, Default)]
+pub struct Actions {
+    /// Open another scene.
+    pub switch_to: Option<Entry>,
+    /// Restart the scene.
+    pub reset: bool,
+    /// Rebuild the rain with this many bodies.
+    pub rain_count: Option<u32>,
+}
+
+/// What the panel shows but does not change.
+pub struct PanelInput<'a> {
+    pub catalogue: &'a [(String, Entry)],
+    pub current: &'a Entry,
+    pub fps: f64,
+    pub message: Option<&'a str>,
+}
+
+const RATES: [f64; 5] = [30.0, 60.0, 64.0, 120.0, 240.0];
+
+/// The left panel. Returns its width in points.
+pub fn panel(
+    ui: &mut egui::Ui,
+    sim: &mut Sim,
+    view: &mut ViewOptions,
+    input: &PanelInput<'_>,
+    actions: &mut Actions,
+) -> f32 {
+    let response = egui::Panel::left("passo panel")
+        .default_size(300.0)
+        .show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                scene_section(ui, sim, input, actions);
+                ui.separator();
+                loop_section(ui, sim);
+                ui.separator();
+                forces_section(ui, sim);
+                ui.separator();
+                stats_section(ui, sim, input.fps);
+                plot(ui, sim);
+                ui.separator();
+                ui.label(egui::RichText::new("Draw").strong());
+                ui.horizontal(|ui| {
+                    ui.checkbox(&mut view.velocities, "velocities");
+                    ui.checkbox(&mut view.forces, "forces");
+                    ui.checkbox(&mut view.contacts, "contacts");
+                });
+                ui.separator();
+                help(ui);
+            });
+        });
+    response.response.rect.width()
+}
+
+fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actions: &mut Actions) {
+    ui.heading("Passo");
+    let current_label = input
+        .catalogue
+        .iter()
+        .find(|(_, e)| e == input.current)
+        .map_or("?", |(l, _)| l.as_str());
+    egui::ComboBox::from_label("scene")
+        .selected_text(current_label)
+        .show_ui(ui, |ui| {
+            for (label, entry) in input.catalogue {
+                if ui.selectable_label(entry == input.current, label).clicked()
+                    && entry != input.current
+                {
+                    actions.switch_to = Some(entry.clone());
+                }
+            }
+        });
+    ui.label(egui::RichText::new(&sim.description).italics());
+    if let Some(count) = sim.rain_count() {
+        let mut n = count;
+        let response = ui.add(
+            Slider::new(&mut n, 100..=20_000)
+                .logarithmic(true)
+                .text("bodies"),
+        );
+        if response.drag_stopped() || (response.changed() && !response.dragged()) {
+            actions.rain_count = Some(n);
+        }
+    }
+    if let Some(message) = input.message {
+        ui.colored_label(Color32::from_rgb(240, 120, 120), message);
+    }
+}
+
+fn loop_section(ui: &mut egui::Ui, sim: &mut Sim) {
+    ui.label(egui::RichText::new("Loop").strong());
+    ui.horizontal(|ui| {
+        let paused = sim.timestep.is_paused();
+        if ui.button(if paused { "resume" } else { "pause" }).clicked() {
+            if paused {
+                sim.timestep.resume();
+            } else {
+                sim.timestep.pause();
+            }
+        }
+        if ui.add_enabled(paused, egui::Button::new("step")).clicked() {
+            sim.timestep.step_once();
+        }
+        if ui.button("reset").clicked() {
+            // Handled like the R key, through a rebuild of the scene.
+            let _ = sim.reset();
+        }
+    });
+    let mut scale = sim.timestep.time_scale();
+    if ui
+        .add(
+            Slider::new(&mut scale, 0.05..=4.0)
+                .logarithmic(true)
+                .text("time scale"),
+        )
+        .changed()
+    {
+        let _ = sim.timestep.set_time_scale(scale);
+    }
+    let mut hz = sim.timestep.hz();
+    egui::ComboBox::from_label("fixed rate")
+        .selected_text(format!("{hz:.0} Hz"))
+        .show_ui(ui, |ui| {
+            for rate in RATES {
+                ui.selectable_value(&mut hz, rate, format!("{rate:.0} Hz"));
+            }
+        });
+    if (hz - sim.timestep.hz()).abs() > 1e-6 {
+        let _ = sim.timestep.set_hz(hz);
+    }
+    let mut interpolation = sim.interpolation();
+    if ui
+        .checkbox(&mut interpolation, "interpolate drawing")
+        .changed()
+    {
+        sim.set_interpolation(interpolation);
+    }
+    if !sim.fixed_integrators {
+        let mut integrator = sim.integrator();
+        egui::ComboBox::from_label("integrator")
+            .selected_text(integrator.name())
+            .show_ui(ui, |ui| {
+                for i in Integrator::ALL {
+                    ui.selectable_value(&mut integrator, i, i.name());
+                }
+            });
+        if integrator != sim.integrator() {
+            sim.set_integrator(integrator);
+        }
+    }
+}
+
+fn forces_section(ui: &mut egui::Ui, sim: &mut Sim) {
+    ui.label(egui::RichText::new("Forces").strong());
+    let k = &mut sim.knobs;
+    let mut changed = false;
+    changed |= ui
+        .add(Slider::new(&mut k.gravity, -30.0..=0.0).text("gravity (m/s²)"))
+        .changed();
+    changed |= ui
+        .add(Slider::new(&mut k.density, 0.0..=5.0).text("air density (kg/m³)"))
+        .changed();
+    ui.horizontal(|ui| {
+        changed |= ui.checkbox(&mut k.wind, "wind").changed();
+        changed |= ui
+            .add(Slider::new(&mut k.wind_speed, -30.0..=30.0).text("m/s"))
+            .changed();
+    });
+    changed |= ui
+        .add(Slider::new(&mut k.min_speed, 0.0..=0.5).text("min speed (m/s)"))
+        .changed();
+    changed |= ui
+        .add(
+            Slider::new(&mut k.max_speed, 1.0..=1000.0)
+                .logarithmic(true)
+                .text("max speed (m/s)"),
+        )
+        .changed();
+    let friction = ui
+        .add(Slider::new(&mut k.friction, 0.0..=1.5).text("friction μ"))
+        .changed();
+    let drag = ui
+        .add(
+            Slider::new(&mut k.drag_scale, 0.1..=20.0)
+                .logarithmic(true)
+                .text("drag area ×"),
+        )
+        .changed();
+    let restitution = ui
+        .add(Slider::new(&mut k.restitution, 0.0..=1.0).text("restitution"))
+        .changed();
+    let has_contacts = sim.has_contacts();
+    if has_contacts {
+        changed |= ui
+            .checkbox(&mut sim.knobs.continuous, "continuous collision")
+            .changed();
+    }
+    if changed {
+        sim.apply_knobs();
+    }
+    if friction {
+        sim.apply_friction();
+    }
+    if drag {
+        sim.apply_drag_scale();
+    }
+    if restitution {
+        sim.apply_restitution();
+    }
+}
+
+fn stats_section(ui: &mut egui::Ui, sim: &Sim, fps: f64) {
+    ui.label(egui::RichText::new("Stats").strong());
+    let s = sim.stats;
+    egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
+        let mut row = |name: &str, value: String| {
+            ui.label(name);
+            ui.label(value);
+            ui.end_row();
+        };
+        row("frames per second", format!("{fps:.0}"));
+        row("ticks this frame", s.ticks.to_string());
+        row("dropped time", format_duration(s.dropped));
+        row(
+            "dropped in all",
+            format_duration(sim.timestep.dropped_total()),
+        );
+        row("step time", format!("{:.2} ms", s.step_ms));
+        row("bodies", sim.body_count().to_string());
+        row("total energy", format!("{:.2} J", sim.energy()));
+        row("tick", sim.timestep.tick().to_string());
+    });
+}
+
+fn format_duration(d: Duration) -> String {
+    format!("{:.1} ms", d.as_secs_f64() * 1e3)
+}
+
+/// Series colours of the plot.
+const SERIES: [Color32; 6] = [
+    Color32::from_rgb(228, 108, 58),
+    Color32::from_rgb(92, 184, 92),
+    Color32::from_rgb(58, 142, 228),
+    Color32::from_rgb(163, 92, 214),
+    Color32::from_rgb(228, 184, 58),
+    Color32::from_rgb(58, 200, 192),
+];
+
+/// A line chart of the history, drawn with egui's painter.
+fn plot(ui: &mut egui::Ui, sim: &Sim) {
+    let h = &sim.history;
+    ui.label(&h.title);
+    let (rect, _) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width(), 130.0),
+        egui::Sense::hover(),
+    );
+    let painter = ui.painter_at(rect);
+    painter.rect_filled(rect, 2.0, Color32::from_gray(20));
+    let values = h
+        .series
+        .iter()
+        .flat_map(|(_, s)| s.iter().copied())
+        .chain(h.lines.iter().map(|(_, v)| *v));
+    let (mut lo, mut hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    if !lo.is_finite() || h.time.len() < 2 {
+        return;
+    }
+    if hi - lo < 1e-6 {
+        hi += 0.5;
+        lo -= 0.5;
+    }
+    let (t0, t1) = (h.time[0], h.time[h.time.len() - 1].max(h.time[0] + 1e-6));
+    let to_screen = |t: f32, v: f32| {
+        egui::pos2(
+            rect.left() + (t - t0) / (t1 - t0) * rect.width(),
+            rect.bottom() - (v - lo) / (hi - lo) * rect.height(),
+        )
+    };
+    for (i, (_, v)) in h.lines.iter().enumerate() {
+        let colour = SERIES[i % SERIES.len()].gamma_multiply(0.6);
+        painter.line_segment(
+            [to_screen(t0, *v), to_screen(t1, *v)],
+            Stroke::new(1.0, colour),
+        );
+    }
+    for (i, (_, series)) in h.series.iter().enumerate() {
+        let points: Vec<egui::Pos2> = h
+            .time
+            .iter()
+            .zip(series)
+            .filter(|(_, v)| v.is_finite())
+            .map(|(t, v)| to_screen(*t, *v))
+            .collect();
+        painter.add(egui::Shape::line(
+            points,
+            Stroke::new(1.5, SERIES[i % SERIES.len()]),
+        ));
+    }
+    painter.text(
+        rect.left_top(),
+        egui::Align2::LEFT_TOP,
+        format!("{hi:.3}"),
+        egui::FontId::monospace(10.0),
+        Color32::GRAY,
+    );
+    painter.text(
+        rect.left_bottom(),
+        egui::Align2::LEFT_BOTTOM,
+        format!("{lo:.3}"),
+        egui::FontId::monospace(10.0),
+        Color32::GRAY,
+    );
+    ui.horizontal_wrapped(|ui| {
+        for (i, (name, _)) in h.series.iter().enumerate() {
+            ui.colored_label(SERIES[i % SERIES.len()], name);
+        }
+    });
+}
+
+fn help(ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Controls")
+        .default_open(true)
+        .show(ui, |ui| {
+            for line in [
+                "A / D or ← / →: walk (Shift: run)",
+                "Space: jump (when standing)",
+                "G (hold): glide, W: wind on/off",
+                "P: pause, N: single step, R: reset",
+                "left click: spawn (Shift: box)",
+                "left drag on a body: fling it",
+                "right drag: pan, wheel: zoom, F: fit",
+                "V: velocity arrows",
+            ] {
+                ui.label(line);
+            }
+        });
+}
+
+/// Names of side-by-side lanes, under each lane.
+pub fn lane_labels(
+    ui: &mut egui::Ui,
+    sim: &Sim,
+    camera: &Camera2D,
+    size: (u32, u32),
+    pixels_per_point: f32,
+) {
+    if sim.lanes.len() < 2 {
+        return;
+    }
+    let painter = ui.ctx().layer_painter(egui::LayerId::new(
+        egui::Order::Foreground,
+        egui::Id::unique("lane labels"),
+    ));
+    for (i, lane) in sim.lanes.iter().enumerate() {
+        let below = lane.offset + glam::Vec2::new(0.0, -2.2);
+        let px = camera.world_to_pixel(below, size) / pixels_per_point;
+        painter.text(
+            egui::pos2(px.x, px.y),
+            egui::Align2::CENTER_TOP,
+            &lane.label,
+            egui::FontId::proportional(15.0),
+            SERIES[i % SERIES.len()],
+        );
+    }
+}

@@ -1,0 +1,227 @@
+//! The demo's movements, driven without a window: walk, run, jump only
+//! when standing, slide on ice, glide, wind.
+
+use passo::demo::sim::{Input, Sim};
+use passo::demo::{Entry, load};
+use passo_physics::glam::Vec2;
+use std::time::Duration;
+
+const FRAME: Duration = Duration::from_nanos(16_666_667);
+
+fn playground() -> Sim {
+    load(&Entry::File("playground".into())).unwrap()
+}
+
+fn run(sim: &mut Sim, frames: usize, input: Input) {
+    for _ in 0..frames {
+        sim.set_input(input);
+        sim.frame(FRAME);
+    }
+}
+
+fn player(sim: &Sim) -> passo_physics::Body {
+    sim.lanes[0].world.body(sim.player.unwrap()).unwrap()
+}
+
+#[test]
+fn walking_and_running_push_against_friction_and_stop_when_released() {
+    let mut sim = playground();
+    run(&mut sim, 30, Input::default()); // settle on the ground
+    let start = player(&sim).position.x;
+    run(
+        &mut sim,
+        90,
+        Input {
+            right: true,
+            ..Default::default()
+        },
+    );
+    let walk = player(&sim).velocity.x;
+    assert!((3.0..=4.6).contains(&walk), "walking speed {walk}");
+    assert!(player(&sim).position.x > start + 3.0);
+    run(
+        &mut sim,
+        60,
+        Input {
+            right: true,
+            run: true,
+            ..Default::default()
+        },
+    );
+    let running = player(&sim).velocity.x;
+    assert!(running > walk + 2.0, "running {running} vs walking {walk}");
+    // Released: kinetic friction (mu 0.8 with the ground's 0.6) stops the
+    // player within v / (mu g) = about 1.3 s.
+    run(&mut sim, 90, Input::default());
+    assert_eq!(player(&sim).velocity.x, 0.0);
+}
+
+#[test]
+fn jumping_works_only_when_standing() {
+    let mut sim = playground();
+    run(&mut sim, 30, Input::default());
+    let ground_y = player(&sim).position.y;
+    run(
+        &mut sim,
+        1,
+        Input {
+            jump: true,
+            ..Default::default()
+        },
+    );
+    assert!(
+        player(&sim).velocity.y > 5.0,
+        "the jump impulse gives 6.5 m/s"
+    );
+    run(&mut sim, 10, Input::default());
+    let vy = player(&sim).velocity.y;
+    // In the air, jump does nothing: vertical speed only changes by gravity.
+    run(
+        &mut sim,
+        1,
+        Input {
+            jump: true,
+            ..Default::default()
+        },
+    );
+    let dv = player(&sim).velocity.y - vy;
+    assert!(
+        (dv + 9.81 / 60.0).abs() < 0.02,
+        "a jump in the air changed vy by {dv}"
+    );
+    let mut top = 0.0f32;
+    for _ in 0..60 {
+        run(&mut sim, 1, Input::default());
+        top = top.max(player(&sim).position.y - ground_y);
+    }
+    assert!(
+        (1.8..=2.3).contains(&top),
+        "jump height {top} (v^2 / 2g = 2.15 m)"
+    );
+}
+
+#[test]
+fn the_ice_patch_lets_the_player_slide_much_further() {
+    let stop_distance = |x: f32| {
+        let mut sim = playground();
+        let id = sim.player.unwrap();
+        let world = &mut sim.lanes[0].world;
+        world.set_position(id, Vec2::new(x, 0.81)).unwrap();
+        run(&mut sim, 10, Input::default());
+        sim.lanes[0]
+            .world
+            .set_velocity(id, Vec2::new(5.0, 0.0))
+            .unwrap();
+        let start = player(&sim).position.x;
+        run(&mut sim, 120, Input::default());
+        player(&sim).position.x - start
+    };
+    let on_ground = stop_distance(-6.0);
+    let on_ice = stop_distance(5.5);
+    // Ground: mu = sqrt(0.8 * 0.6) = 0.69, v^2 / (2 mu g) = 1.8 m.
+    assert!((1.5..=2.1).contains(&on_ground), "ground {on_ground}");
+    assert!(
+        on_ice > 4.0 * on_ground,
+        "ice {on_ice} vs ground {on_ground}"
+    );
+}
+
+#[test]
+fn gliding_opens_a_large_drag_area_and_falls_slowly() {
+    let fall_speed = |glide: bool| {
+        let mut sim = playground();
+        let id = sim.player.unwrap();
+        sim.lanes[0]
+            .world
+            .set_position(id, Vec2::new(-12.0, 12.0))
+            .unwrap();
+        run(
+            &mut sim,
+            90,
+            Input {
+                glide,
+                ..Default::default()
+            },
+        );
+        -player(&sim).velocity.y
+    };
+    let (falling, gliding) = (fall_speed(false), fall_speed(true));
+    // Gliding: Cd A = 0.5 * 40 = 20 m², terminal speed sqrt(2 m g / (rho Cd A)) = 7.5 m/s.
+    assert!(falling > 12.0, "falling at {falling}");
+    assert!((6.5..=8.0).contains(&gliding), "gliding at {gliding}");
+}
+
+#[test]
+fn wind_pushes_through_drag() {
+    let mut sim = playground();
+    let id = sim.player.unwrap();
+    sim.lanes[0]
+        .world
+        .set_position(id, Vec2::new(-12.0, 12.0))
+        .unwrap();
+    sim.knobs.wind = true;
+    sim.knobs.wind_speed = 20.0;
+    sim.apply_knobs();
+    run(
+        &mut sim,
+        30,
+        Input {
+            glide: true,
+            ..Default::default()
+        },
+    );
+    assert!(player(&sim).velocity.x > 5.0, "{}", player(&sim).velocity.x);
+}
+
+#[test]
+fn every_listed_scene_loads_and_the_integrators_differ_as_theory_says() {
+    for (name, entry) in passo::demo::catalogue() {
+        let mut sim = load(&entry).unwrap_or_else(|e| panic!("{name}: {e}"));
+        run(&mut sim, 5, Input::default());
+    }
+    let mut sim = load(&Entry::Integrators).unwrap();
+    let e0: Vec<f64> = sim.lanes.iter().map(|l| l.world.total_energy()).collect();
+    run(&mut sim, 300, Input::default());
+    let drift: Vec<f64> = sim
+        .lanes
+        .iter()
+        .zip(&e0)
+        .map(|(l, e)| (l.world.total_energy() - e) / e)
+        .collect();
+    // explicit Euler, semi-implicit Euler, Verlet, RK4 after 5 s at 60 Hz.
+    assert!(drift[0] > 10.0, "explicit Euler gains energy: {drift:?}");
+    assert!(
+        drift[1].abs() < 0.2,
+        "semi-implicit Euler stays bounded: {drift:?}"
+    );
+    assert!(drift[2].abs() < 0.01 && drift[3].abs() < 0.001, "{drift:?}");
+    assert_eq!(sim.history.series.len(), 4);
+    assert_eq!(sim.history.time.len(), 300);
+}
+
+#[test]
+fn spawning_and_flinging_bodies() {
+    let mut sim = playground();
+    let n = sim.body_count();
+    let id = sim.spawn(Vec2::new(0.0, 10.0), true).unwrap();
+    assert_eq!(sim.body_count(), n + 1);
+    assert_eq!(sim.pick(Vec2::new(0.1, 10.0)), Some(id));
+    assert_eq!(sim.pick(Vec2::new(0.0, 13.0)), None);
+    sim.fling(id, Vec2::new(3.0, 4.0));
+    assert_eq!(
+        sim.lanes[0].world.body(id).unwrap().velocity,
+        Vec2::new(3.0, 4.0)
+    );
+    // Scene bodies stay sorted by id for colour lookups.
+    let ids: Vec<_> = sim.lanes[0].bodies.iter().map(|b| b.id).collect();
+    assert!(ids.windows(2).all(|w| w[0] < w[1]));
+}
+
+#[test]
+fn the_rain_count_slider_rebuilds_the_scene() {
+    let mut sim = load(&Entry::File("rain".into())).unwrap();
+    assert_eq!(sim.rain_count(), Some(2000));
+    sim.set_rain_count(300).unwrap();
+    assert_eq!(sim.rain_count(), Some(300));
+    assert_eq!(sim.lanes[0].world.dynamic_len(), 300);
+}
