@@ -91,40 +91,14 @@ fn same_state_at_every_tick_whatever_the_render_rate() {
     assert_eq!(hashes_by_tick(jitter), reference, "jittery rendering");
 }
 
-/// Highest point of a jump (5 m/s up). `frame` advances the world by one
-/// render frame, calling `tick` on it after every physics step it takes.
-fn apex(mut frame: impl FnMut(&mut World, &mut dyn FnMut(&World))) -> f32 {
-    let mut world = World::new(WorldSettings {
-        min_speed: 0.0,
-        ..Default::default()
-    })
-    .unwrap();
-    let id = world.add_body(BodyDef::default()).unwrap();
-    world.apply_impulse(id, Vec2::new(0.0, 5.0)).unwrap();
-    let mut top = 0.0f32;
-    let mut falling = false;
-    while !falling {
-        frame(&mut world, &mut |w: &World| {
-            let body = w.body(id).unwrap();
-            top = top.max(body.position.y);
-            falling |= body.velocity.y < 0.0;
-        });
-    }
-    top
-}
-
 #[test]
 fn variable_dt_jumps_reach_different_heights_the_fixed_loop_does_not() {
-    // One variable step per frame: the apex depends on the frame rate.
-    let variable = |hz: u64| {
-        apex(|w, tick| {
-            w.step(frame_time(hz).as_secs_f32());
-            tick(w);
-        })
-    };
-    let (slow, fast) = (variable(30), variable(144));
-    // Semi-implicit Euler falls short of the exact 1.274 m apex by about
-    // v0 dt / 2: 8 cm at 30 FPS, 2 cm at 144 FPS.
+    // The accuracy report's table: a 5 m/s jump at 30, 60, 144, 240 FPS.
+    let table = passo::report::apex_table();
+    let at = |fps: u32| table.iter().find(|a| a.fps == fps).unwrap();
+    // One variable step per frame: semi-implicit Euler falls short of the
+    // exact 1.274 m apex by about v0 dt / 2: 8 cm at 30 FPS, 2 cm at 144.
+    let (slow, fast) = (at(30).variable, at(144).variable);
     assert!(
         fast - slow > 0.05,
         "30 FPS apex {slow}, 144 FPS apex {fast}"
@@ -133,21 +107,9 @@ fn variable_dt_jumps_reach_different_heights_the_fixed_loop_does_not() {
         (slow - (1.2742 - 5.0 / 60.0)).abs() < 0.01,
         "30 FPS apex {slow}"
     );
-
-    // The fixed loop at 60 Hz, rendered at 30, 144 or 240 FPS: the same
-    // apex, to the bit.
-    let fixed = |hz: u64| {
-        let mut timestep = FixedTimestep::from_hz(60.0).unwrap();
-        apex(move |w, tick| {
-            let frame = timestep.advance(frame_time(hz));
-            for _ in 0..frame.ticks {
-                w.step(frame.dt);
-                tick(w);
-            }
-        })
-    };
-    let reference = fixed(60);
-    for hz in [30, 144, 240] {
-        assert_eq!(fixed(hz).to_bits(), reference.to_bits(), "{hz} FPS");
+    // The fixed 60 Hz loop: the same apex at every frame rate, to the bit.
+    let reference = at(60).fixed;
+    for a in &table {
+        assert_eq!(a.fixed.to_bits(), reference.to_bits(), "{} FPS", a.fps);
     }
 }

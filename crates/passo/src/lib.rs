@@ -7,5 +7,6 @@ pub mod demo;
 pub mod draw;
 pub mod progress;
 pub mod render_cmd;
+pub mod report;
 pub mod scenes;
 pub mod simulate;

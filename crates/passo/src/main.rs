@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
-use passo::{bench, demo, render_cmd, scenes, simulate};
+use passo::{bench, demo, render_cmd, report, scenes, simulate};
 
 /// Passo: 2D game physics on a fixed-timestep loop.
 ///
@@ -23,6 +23,8 @@ enum Command {
     Simulate(simulate::SimulateArgs),
     /// Simulate a scene headlessly, then render it off-screen to a PNG.
     Render(render_cmd::RenderArgs),
+    /// Measure speed against error for every integrator and force model.
+    Report(report::ReportArgs),
     /// Measure speed: collision scenes, off-screen rendering.
     Bench(bench::BenchArgs),
     /// List the built-in scenes.
@@ -48,6 +50,7 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Simulate(args)) => simulate::run(&args),
         Some(Command::Render(args)) => render_cmd::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
+        Some(Command::Report(args)) => report::run(&args),
         Some(Command::Scenes) => {
             for name in scenes::names() {
                 let scene = scenes::load(name)?;
