@@ -49,13 +49,23 @@ fn input(world: &mut World, ids: &[BodyId], tick: u64) {
     }
 }
 
-/// Runs the scene to `TICKS` with the given frame times (cycled) and
-/// returns the state hash after every tick.
+/// Runs the scene to `TICKS` with the given frame times and returns the
+/// state hash after every tick.
 fn hashes_by_tick(frames: impl Iterator<Item = Duration>) -> Vec<u64> {
+    hashes_with(frames, |_, _| {})
+}
+
+/// Like [`hashes_by_tick`], letting `control` change the loop (time scale,
+/// pause, single steps) before each frame.
+fn hashes_with(
+    frames: impl Iterator<Item = Duration>,
+    mut control: impl FnMut(usize, &mut FixedTimestep),
+) -> Vec<u64> {
     let (mut world, ids) = scene();
     let mut timestep = FixedTimestep::from_hz(60.0).unwrap();
     let mut hashes = Vec::new();
-    for frame_time in frames {
+    for (n, frame_time) in frames.enumerate() {
+        control(n, &mut timestep);
         let frame = timestep.advance(frame_time);
         for tick in frame.tick_numbers() {
             if tick == TICKS {
@@ -112,4 +122,22 @@ fn variable_dt_jumps_reach_different_heights_the_fixed_loop_does_not() {
     for a in &table {
         assert_eq!(a.fixed.to_bits(), reference.to_bits(), "{} FPS", a.fps);
     }
+}
+
+#[test]
+fn same_state_at_every_tick_whatever_the_time_scale_and_pauses() {
+    let reference = hashes_by_tick(std::iter::repeat(frame_time(60)));
+    // Slow motion, fast forward, a pause with single steps, and back.
+    let hashes = hashes_with(std::iter::repeat(frame_time(144)), |n, t| match n {
+        50 => t.set_time_scale(0.25).unwrap(),
+        150 => t.set_time_scale(3.0).unwrap(),
+        200 => t.pause(),
+        210 | 211 | 215 => t.step_once(),
+        230 => {
+            t.resume();
+            t.set_time_scale(1.0).unwrap();
+        }
+        _ => {}
+    });
+    assert_eq!(hashes, reference);
 }

@@ -31,6 +31,8 @@ pub enum LoopError {
     InvalidStep(f64),
     /// A time scale outside `[0, 1000]` or not finite.
     InvalidTimeScale(f64),
+    /// A cap of zero ticks per frame.
+    InvalidMaxTicks,
 }
 
 impl fmt::Display for LoopError {
@@ -51,6 +53,7 @@ impl fmt::Display for LoopError {
                     "time scale must be finite and in [0, {MAX_TIME_SCALE}], got {s}"
                 )
             }
+            Self::InvalidMaxTicks => f.write_str("the most ticks per frame must be at least 1"),
         }
     }
 }
@@ -59,6 +62,7 @@ impl std::error::Error for LoopError {}
 
 /// What one call to [`FixedTimestep::advance`] decided.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Frame {
     /// Fixed ticks to run now.
     pub ticks: u32,
@@ -91,7 +95,11 @@ impl Frame {
 /// [`Duration`]s, so the accumulator never drifts: after any sequence of
 /// frames, ticks run + time dropped + remainder equals the total scaled
 /// time, to the nanosecond.
-#[derive(Clone, Debug)]
+///
+/// With the `serde` feature the whole state (tick, accumulator, settings)
+/// serializes, for snapshots.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FixedTimestep {
     step: Duration,
     accumulator: Duration,
@@ -275,6 +283,38 @@ impl FixedTimestep {
     /// The last frame [`advance`](Self::advance) returned, if any.
     pub fn last_frame(&self) -> Option<Frame> {
         self.last_frame
+    }
+
+    /// Counts exactly `n` ticks without any time passing, for headless
+    /// drivers that step a fixed number of ticks (simulations, replays):
+    /// the accumulator, pause state and guards are untouched.
+    pub fn advance_ticks(&mut self, n: u32) -> Frame {
+        let frame = Frame {
+            ticks: n,
+            first_tick: self.tick,
+            dt: self.dt(),
+            step: self.step,
+            alpha: self.alpha(),
+            dropped: Duration::ZERO,
+        };
+        self.tick += u64::from(n);
+        self.last_frame = Some(frame);
+        frame
+    }
+
+    /// Checks a timestep read from outside (a snapshot file): a step of at
+    /// least 1 ns, a cap of at least one tick, a valid time scale.
+    pub fn validate(&self) -> Result<(), LoopError> {
+        if self.step.is_zero() {
+            return Err(LoopError::InvalidStep(0.0));
+        }
+        if self.max_ticks_per_frame == 0 {
+            return Err(LoopError::InvalidMaxTicks);
+        }
+        if !(self.time_scale.is_finite() && (0.0..=MAX_TIME_SCALE).contains(&self.time_scale)) {
+            return Err(LoopError::InvalidTimeScale(self.time_scale));
+        }
+        Ok(())
     }
 
     /// Forgets the accumulated remainder (after loading a level, say).

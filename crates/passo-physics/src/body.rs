@@ -235,7 +235,8 @@ impl Body {
 }
 
 /// What the step never touches: kept apart from the hot arrays.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct BodyMeta {
     pub id: BodyId,
     pub mass: f32,
@@ -262,6 +263,7 @@ pub(crate) fn flush_subnormal(v: Vec2) -> Vec2 {
 /// Speed limits of one body, resolved from its overrides and the world's
 /// defaults (`max_sq` is at most `f32::MAX`).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct SpeedLimits {
     pub min_sq: f32,
     pub max: f32,
@@ -295,7 +297,8 @@ impl SpeedLimits {
 /// Dynamic bodies in structure-of-arrays form: the step walks these slices.
 ///
 /// Removal swaps the last body into the hole, so the arrays stay packed.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct DynamicBodies {
     pub pos: Vec<Vec2>,
     pub vel: Vec<Vec2>,
@@ -373,7 +376,8 @@ impl DynamicBodies {
 }
 
 /// Static bodies: never integrated.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct StaticBodies {
     pub pos: Vec<Vec2>,
     pub friction: Vec<f32>,

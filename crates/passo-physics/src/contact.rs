@@ -175,6 +175,7 @@ impl Contact {
 
 /// Two bodies that started or stopped touching during the last step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactPair {
     /// One body (the one with the lower index).
     pub a: BodyId,
@@ -184,6 +185,7 @@ pub struct ContactPair {
 
 /// A body that entered or left a sensor during the last step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SensorPair {
     /// The sensor.
     pub sensor: BodyId,
@@ -214,8 +216,9 @@ impl ContactEvents {
 }
 
 /// Impulses a contact carries to the next step.
-#[derive(Clone, Copy, Debug)]
-struct Cached {
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct Cached {
     key: (BodyId, BodyId),
     normal_impulse: f32,
     tangent_impulse: f32,
@@ -505,6 +508,38 @@ impl ContactWorld {
     pub fn sensor_overlaps(&self) -> &[SensorPair] {
         &self.sensors_prev
     }
+
+    /// What the next step needs from the last one: warm-start impulses,
+    /// and who touched whom (for begin and end events).
+    pub fn carried_state(&self) -> ContactState {
+        ContactState {
+            cache: self.cache.clone(),
+            touching: self.touching_prev.clone(),
+            sensors: self.sensors_prev.clone(),
+        }
+    }
+
+    /// A contact stage resuming from a carried state.
+    pub fn resume(state: ContactState) -> Self {
+        Self {
+            cache: state.cache,
+            touching_prev: state.touching,
+            sensors_prev: state.sensors,
+            ..Self::new()
+        }
+    }
+}
+
+/// The contact state a step hands to the next one.
+#[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct ContactState {
+    /// Impulses by body pair, sorted by pair.
+    pub cache: Vec<Cached>,
+    /// Touching pairs, sorted.
+    pub touching: Vec<(BodyId, BodyId)>,
+    /// Sensor overlaps, sorted.
+    pub sensors: Vec<SensorPair>,
 }
 
 /// The shape and position of a collider reference.

@@ -26,6 +26,8 @@ pub enum PhysicsError {
     },
     /// The id names a body that was removed (or never existed in this world).
     StaleBody(BodyId),
+    /// A snapshot that no world could have produced (a damaged file).
+    InvalidSnapshot(String),
 }
 
 impl fmt::Display for PhysicsError {
@@ -38,6 +40,7 @@ impl fmt::Display for PhysicsError {
                 allowed,
             } => write!(f, "{what} must be {allowed}, got {value}"),
             Self::StaleBody(id) => write!(f, "{id:?} does not name a body in this world"),
+            Self::InvalidSnapshot(why) => write!(f, "invalid world snapshot: {why}"),
         }
     }
 }

@@ -106,6 +106,7 @@ pub enum Stage {
 
 /// Counters the world keeps across steps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StepStats {
     /// Steps taken since the world was made.
     pub steps: u64,
@@ -118,16 +119,18 @@ pub struct StepStats {
 
 /// Where a live body's data sits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Location {
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) enum Location {
     Dynamic(u32),
     Static(u32),
     Free,
 }
 
-#[derive(Clone, Copy, Debug)]
-struct Slot {
-    generation: u32,
-    location: Location,
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct Slot {
+    pub(crate) generation: u32,
+    pub(crate) location: Location,
 }
 
 /// A 2D physics world: bodies in packed arrays, force models, an integrator.
@@ -146,25 +149,25 @@ struct Slot {
 #[derive(Clone)]
 pub struct World {
     settings: WorldSettings,
-    custom: Vec<Arc<dyn ForceModel>>,
-    slots: Vec<Slot>,
-    free: Vec<u32>,
-    dynamic: DynamicBodies,
-    statics: StaticBodies,
+    pub(crate) custom: Vec<Arc<dyn ForceModel>>,
+    pub(crate) slots: Vec<Slot>,
+    pub(crate) free: Vec<u32>,
+    pub(crate) dynamic: DynamicBodies,
+    pub(crate) statics: StaticBodies,
     /// Number of dynamic bodies with their own speed limits.
-    speed_overrides: usize,
+    pub(crate) speed_overrides: usize,
     /// Whether game code applied friction since the last step.
-    game_friction: bool,
+    pub(crate) game_friction: bool,
     /// Shaped bodies of each kind: the contact stage runs only with some.
-    shaped_dynamic: usize,
-    shaped_static: usize,
+    pub(crate) shaped_dynamic: usize,
+    pub(crate) shaped_static: usize,
     /// Static bodies were added, removed or moved since the last step.
-    statics_dirty: bool,
+    pub(crate) statics_dirty: bool,
     /// The contact stage's state, made the first time it runs.
     pub(crate) contacts: Option<Box<ContactWorld>>,
     /// Position corrections of the multi-stage integrators, with contacts.
     correction: Vec<Vec2>,
-    stats: StepStats,
+    pub(crate) stats: StepStats,
 }
 
 impl Default for World {

@@ -10,3 +10,4 @@ pub mod render_cmd;
 pub mod report;
 pub mod scenes;
 pub mod simulate;
+pub mod snapshot;

@@ -1,6 +1,7 @@
 //! `passo simulate`: run a scene headlessly for a number of ticks.
 
 use crate::progress::Progress;
+use crate::snapshot::GameSnapshot;
 use anyhow::{Context, Result};
 use passo_loop::FixedTimestep;
 use passo_physics::World;
@@ -25,13 +26,25 @@ pub struct SimulateArgs {
     /// Print the 64-bit hash of the final state (equal bits, equal hash).
     #[arg(long)]
     pub hash: bool,
+    /// Start from this snapshot (world and loop) instead of the scene's
+    /// first state.
+    #[arg(long)]
+    pub resume: Option<PathBuf>,
+    /// After the run, save a snapshot (`.ron`: readable; else binary).
+    #[arg(long)]
+    pub save: Option<PathBuf>,
 }
 
 /// Runs `passo simulate`.
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let scene = crate::scenes::load(&args.scene)?;
     let mut built = scene.build()?;
-    let timestep = FixedTimestep::from_hz(scene.file.rate_hz)?;
+    let mut timestep = FixedTimestep::from_hz(scene.file.rate_hz)?;
+    if let Some(path) = &args.resume {
+        let (world, resumed) = GameSnapshot::load(path)?.restore()?;
+        built.world = world;
+        timestep = resumed;
+    }
     let dt = timestep.dt();
     let world = &mut built.world;
     eprintln!(
@@ -56,7 +69,11 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
 
     let started = Instant::now();
     let mut progress = Progress::new("simulating", args.ticks);
+    let first = timestep.tick();
     for tick in 1..=args.ticks {
+        // The loop counts the tick too, so a saved snapshot's tick follows
+        // the world.
+        timestep.advance_ticks(1);
         world.step(dt);
         if let Some(w) = &mut csv
             && (tick % args.every == 0 || tick == args.ticks)
@@ -68,6 +85,10 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     progress.finish();
     if let Some(mut w) = csv {
         w.flush()?;
+    }
+    debug_assert_eq!(timestep.tick() - first, args.ticks);
+    if let Some(path) = &args.save {
+        GameSnapshot::capture(world, &timestep).save(path)?;
     }
     let wall = started.elapsed();
     eprintln!(

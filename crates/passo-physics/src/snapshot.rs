@@ -1,0 +1,211 @@
+//! Snapshots: the whole state of a world, to save, send or roll back to.
+
+use crate::body::{DynamicBodies, StaticBodies};
+use crate::contact::{ContactState, ContactWorld};
+use crate::world::{Location, Slot};
+use crate::{PhysicsError, StepStats, World, WorldSettings};
+
+/// Everything a world needs to continue exactly where it was: settings,
+/// every body (position, velocity, accumulated force, material, ids and
+/// their generations) and the contact state a step hands to the next
+/// (warm-start impulses, touching pairs, sensor overlaps).
+///
+/// Stepping a world restored from a snapshot gives, bit for bit, what
+/// stepping the original would have given: the rollback pattern of
+/// networked games. With the `serde` feature a snapshot serializes to any
+/// format (RON for people, a binary format for the wire).
+///
+/// Custom [`ForceModel`](crate::ForceModel)s are code, not data: a snapshot
+/// records how many the world had, and the game adds them again after
+/// [`World::from_snapshot`].
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct WorldSnapshot {
+    pub(crate) settings: WorldSettings,
+    pub(crate) slots: Vec<Slot>,
+    pub(crate) free: Vec<u32>,
+    pub(crate) dynamic: DynamicBodies,
+    pub(crate) statics: StaticBodies,
+    pub(crate) speed_overrides: usize,
+    pub(crate) game_friction: bool,
+    pub(crate) shaped_dynamic: usize,
+    pub(crate) shaped_static: usize,
+    pub(crate) stats: StepStats,
+    pub(crate) contacts: Option<ContactState>,
+    pub(crate) custom_force_models: usize,
+}
+
+impl WorldSnapshot {
+    /// Custom force models the world had (to add again after a restore).
+    pub fn custom_force_models(&self) -> usize {
+        self.custom_force_models
+    }
+
+    /// Steps the world had taken.
+    pub fn steps(&self) -> u64 {
+        self.stats.steps
+    }
+
+    /// Checks that the snapshot is one a world could have produced: array
+    /// lengths agree, ids and slots point at each other, every number is
+    /// finite and in range. Snapshots from files pass through this before a
+    /// world is made from them.
+    pub fn validate(&self) -> Result<(), PhysicsError> {
+        let bad = |why: String| Err(PhysicsError::InvalidSnapshot(why));
+        self.settings.validate()?;
+        let d = &self.dynamic;
+        let n = d.pos.len();
+        let lengths = [
+            d.vel.len(),
+            d.force.len(),
+            d.inv_mass.len(),
+            d.drag_area.len(),
+            d.friction.len(),
+            d.friction_force.len(),
+            d.limits.len(),
+            d.meta.len(),
+        ];
+        if lengths.iter().any(|&l| l != n) {
+            return bad(format!(
+                "dynamic arrays of different lengths: {n} positions, {lengths:?}"
+            ));
+        }
+        if !(d.prev_pos.is_empty() || d.prev_pos.len() == n) {
+            return bad(format!(
+                "{} previous positions for {n} bodies",
+                d.prev_pos.len()
+            ));
+        }
+        if d.prev_pos.is_empty() == self.settings.interpolation && n > 0 {
+            return bad("previous positions do not match the interpolation setting".into());
+        }
+        let s = &self.statics;
+        if s.friction.len() != s.pos.len() || s.meta.len() != s.pos.len() {
+            return bad("static arrays of different lengths".into());
+        }
+        for i in 0..n {
+            let finite = d.pos[i].is_finite()
+                && d.vel[i].is_finite()
+                && d.force[i].is_finite()
+                && d.prev_pos.get(i).is_none_or(|p| p.is_finite());
+            let ranges = d.inv_mass[i].is_finite()
+                && d.inv_mass[i] > 0.0
+                && d.drag_area[i] >= 0.0
+                && d.friction[i] >= 0.0
+                && d.friction_force[i] >= 0.0
+                && (d.meta[i].mass * d.inv_mass[i] - 1.0).abs() < 1e-3;
+            if !(finite && ranges) {
+                return bad(format!(
+                    "dynamic body {i} has a non-finite or out-of-range value"
+                ));
+            }
+            self.check_slot(d.meta[i].id, Location::Dynamic(i as u32))?;
+        }
+        for i in 0..s.pos.len() {
+            if !(s.pos[i].is_finite() && s.friction[i] >= 0.0) {
+                return bad(format!(
+                    "static body {i} has a non-finite or out-of-range value"
+                ));
+            }
+            self.check_slot(s.meta[i].id, Location::Static(i as u32))?;
+        }
+        let live = self
+            .slots
+            .iter()
+            .filter(|s| s.location != Location::Free)
+            .count();
+        if live != n + s.pos.len() {
+            return bad(format!("{live} live slots for {} bodies", n + s.pos.len()));
+        }
+        for &f in &self.free {
+            if self
+                .slots
+                .get(f as usize)
+                .is_none_or(|s| s.location != Location::Free)
+            {
+                return bad(format!("free list names slot {f}, which is not free"));
+            }
+        }
+        let overrides = d
+            .meta
+            .iter()
+            .filter(|m| m.min_speed.is_some() || m.max_speed.is_some())
+            .count();
+        let shaped_dynamic = d.meta.iter().filter(|m| m.shape.is_some()).count();
+        let shaped_static = s.meta.iter().filter(|m| m.shape.is_some()).count();
+        if (overrides, shaped_dynamic, shaped_static)
+            != (
+                self.speed_overrides,
+                self.shaped_dynamic,
+                self.shaped_static,
+            )
+        {
+            return bad("body counters disagree with the bodies".into());
+        }
+        for meta in d.meta.iter().chain(&s.meta) {
+            if let Some(shape) = &meta.shape {
+                shape.validate()?;
+            }
+        }
+        Ok(())
+    }
+
+    fn check_slot(&self, id: crate::BodyId, location: Location) -> Result<(), PhysicsError> {
+        match self.slots.get(id.index as usize) {
+            Some(slot) if slot.generation == id.generation && slot.location == location => Ok(()),
+            _ => Err(PhysicsError::InvalidSnapshot(format!(
+                "{id:?} and its slot disagree"
+            ))),
+        }
+    }
+}
+
+impl World {
+    /// The world's whole state (see [`WorldSnapshot`]).
+    pub fn snapshot(&self) -> WorldSnapshot {
+        WorldSnapshot {
+            settings: *self.settings(),
+            slots: self.slots.clone(),
+            free: self.free.clone(),
+            dynamic: self.dynamic.clone(),
+            statics: self.statics.clone(),
+            speed_overrides: self.speed_overrides,
+            game_friction: self.game_friction,
+            shaped_dynamic: self.shaped_dynamic,
+            shaped_static: self.shaped_static,
+            stats: self.stats(),
+            contacts: self.contacts.as_ref().map(|c| c.carried_state()),
+            custom_force_models: self.custom.len(),
+        }
+    }
+
+    /// A world in the state of `snapshot`, after checking it
+    /// ([`WorldSnapshot::validate`]). Custom force models must be added
+    /// again.
+    pub fn from_snapshot(snapshot: WorldSnapshot) -> Result<World, PhysicsError> {
+        snapshot.validate()?;
+        let mut world = World::new(snapshot.settings)?;
+        world.slots = snapshot.slots;
+        world.free = snapshot.free;
+        world.dynamic = snapshot.dynamic;
+        world.statics = snapshot.statics;
+        world.speed_overrides = snapshot.speed_overrides;
+        world.game_friction = snapshot.game_friction;
+        world.shaped_dynamic = snapshot.shaped_dynamic;
+        world.shaped_static = snapshot.shaped_static;
+        world.stats = snapshot.stats;
+        world.statics_dirty = true;
+        world.contacts = snapshot.contacts.map(|c| Box::new(ContactWorld::resume(c)));
+        Ok(world)
+    }
+
+    /// Puts this world back in the state of `snapshot` (a rollback), keeping
+    /// its custom force models.
+    pub fn restore(&mut self, snapshot: WorldSnapshot) -> Result<(), PhysicsError> {
+        let custom = std::mem::take(&mut self.custom);
+        let mut restored = World::from_snapshot(snapshot)?;
+        restored.custom = custom;
+        *self = restored;
+        Ok(())
+    }
+}

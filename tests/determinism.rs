@@ -1,0 +1,69 @@
+//! Determinism in the spirit of Box2D's `test_determinism.c`: a busy scene
+//! runs a fixed number of ticks and the hash of its final state must equal
+//! a constant written here. Any change to the physics that moves a single
+//! bit of any body changes the hash.
+//!
+//! When a change is *meant* to alter the simulation (a new solver feature,
+//! a different constant), run this test, check that the other tests still
+//! pass, and replace `EXPECTED` with the hash the failure message prints,
+//! saying in the commit why the bits moved. A change that was not meant to
+//! alter the simulation must leave the constant alone.
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, Shape, World};
+use passo_scene::Scene;
+use std::path::PathBuf;
+
+/// State hash of the scene below after `TICKS` ticks.
+const EXPECTED: u64 = 0xa76a_ebcf_6b7c_0b7e;
+const TICKS: usize = 300;
+
+/// Rain (2 000 circles in a box) with a pyramid of boxes beside it and a
+/// few fast balls thrown through: every stage of the step runs.
+fn busy() -> World {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
+    let mut world = Scene::load(&path).unwrap().build().unwrap().world;
+    for row in 0..8 {
+        for col in 0..(8 - row) {
+            let p = Vec2::new(14.0 + col as f32 - (7 - row) as f32 * 0.5, 0.5 + row as f32);
+            let def = BodyDef {
+                position: p,
+                shape: Some(Shape::rect(1.0, 1.0)),
+                ..Default::default()
+            };
+            world.add_body(def).unwrap();
+        }
+    }
+    world
+        .add_body(BodyDef::fixed(
+            Vec2::new(14.0, -0.5),
+            Shape::rect(12.0, 1.0),
+        ))
+        .unwrap();
+    for i in 0..5 {
+        let def = BodyDef {
+            position: Vec2::new(30.0, 2.0 + i as f32),
+            velocity: Vec2::new(-40.0, 3.0),
+            shape: Some(Shape::circle(0.3)),
+            restitution: 0.5,
+            mass: 3.0,
+            ..Default::default()
+        };
+        world.add_body(def).unwrap();
+    }
+    world
+}
+
+#[test]
+fn a_busy_scene_reaches_the_same_bits_as_always() {
+    let mut world = busy();
+    for _ in 0..TICKS {
+        world.step(1.0 / 60.0);
+    }
+    let hash = world.state_hash();
+    assert_eq!(
+        hash, EXPECTED,
+        "the state after {TICKS} ticks changed: hash {hash:#018x}. If the change was intended, \
+         set EXPECTED to {hash:#018x} (see the comment at the top of this file)"
+    );
+}

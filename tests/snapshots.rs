@@ -1,0 +1,191 @@
+//! Snapshots: restoring a world (and its loop) and stepping on gives, bit
+//! for bit, what the uninterrupted run gives: the rollback pattern. Through
+//! RON text and through the binary form alike; damaged snapshots are
+//! refused, never trusted.
+
+use passo::snapshot::GameSnapshot;
+use passo_loop::FixedTimestep;
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, ContactEvents, PhysicsError, Shape, World, WorldSnapshot};
+use passo_scene::Scene;
+use proptest::prelude::*;
+use std::path::PathBuf;
+use std::time::Duration;
+
+const DT: f32 = 1.0 / 60.0;
+
+/// A busy world: the rain scene (2 000 circles, contacts, warm starting)
+/// plus a sensor and a body with its own speed limit.
+fn busy() -> World {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
+    let mut world = Scene::load(&path).unwrap().build().unwrap().world;
+    world
+        .add_body(BodyDef {
+            sensor: true,
+            ..BodyDef::fixed(Vec2::new(0.0, 2.0), Shape::rect(6.0, 2.0))
+        })
+        .unwrap();
+    world
+        .add_body(BodyDef {
+            position: Vec2::new(3.0, 30.0),
+            shape: Some(Shape::circle(0.3)),
+            max_speed: Some(6.0),
+            ..Default::default()
+        })
+        .unwrap();
+    world
+}
+
+/// Steps `n` times, returning the state hash and the events after each step.
+fn run(world: &mut World, n: usize) -> Vec<(u64, ContactEvents)> {
+    (0..n)
+        .map(|_| {
+            world.step(DT);
+            (world.state_hash(), world.events().clone())
+        })
+        .collect()
+}
+
+#[test]
+fn rolling_back_to_a_snapshot_replays_the_same_bits_and_events() {
+    let mut world = busy();
+    run(&mut world, 90); // the rain has landed: contacts and warm starting
+    let snapshot = world.snapshot();
+    let ahead = run(&mut world, 60);
+    assert!(
+        ahead.iter().any(|(_, e)| !e.begin.is_empty()),
+        "contacts began"
+    );
+    assert!(
+        ahead
+            .iter()
+            .any(|(_, e)| !e.sensor_begin.is_empty() || !e.sensor_end.is_empty())
+    );
+
+    world.restore(snapshot.clone()).unwrap();
+    assert_eq!(run(&mut world, 60), ahead, "rollback in place");
+
+    let mut fresh = World::from_snapshot(snapshot).unwrap();
+    assert_eq!(run(&mut fresh, 60), ahead, "a new world from the snapshot");
+}
+
+#[test]
+fn ron_and_binary_snapshots_of_world_and_loop_continue_exactly() {
+    let mut world = busy();
+    let mut timestep = FixedTimestep::from_hz(60.0).unwrap();
+    // Uneven frames leave a remainder in the accumulator.
+    let frames = [11u64, 23, 17, 31, 9, 40, 16, 16, 25];
+    let step_frames = |world: &mut World, timestep: &mut FixedTimestep, count: usize| {
+        let mut hashes = Vec::new();
+        for ms in frames.iter().cycle().take(count) {
+            let frame = timestep.advance(Duration::from_millis(*ms));
+            for _ in 0..frame.ticks {
+                world.step(frame.dt);
+            }
+            hashes.push((world.state_hash(), timestep.tick(), timestep.remainder()));
+        }
+        hashes
+    };
+    step_frames(&mut world, &mut timestep, 100);
+    let saved = GameSnapshot::capture(&world, &timestep);
+    let ahead = step_frames(&mut world, &mut timestep, 50);
+
+    let text = saved.to_ron();
+    let bytes = saved.to_bytes();
+    assert!(
+        bytes.len() < text.len() / 2,
+        "binary {} bytes, RON {}",
+        bytes.len(),
+        text.len()
+    );
+    for copy in [
+        GameSnapshot::from_ron(&text).unwrap(),
+        GameSnapshot::from_bytes(&bytes).unwrap(),
+    ] {
+        assert_eq!(copy, saved);
+        let (mut w, mut t) = copy.restore().unwrap();
+        assert_eq!(step_frames(&mut w, &mut t, 50), ahead);
+    }
+
+    let dir = std::env::temp_dir().join(format!("passo-snapshots-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in ["game.ron", "game.bin"] {
+        saved.save(&dir.join(name)).unwrap();
+        assert_eq!(
+            GameSnapshot::load(&dir.join(name)).unwrap(),
+            saved,
+            "{name}"
+        );
+    }
+    std::fs::write(dir.join("junk.bin"), b"not a snapshot").unwrap();
+    let err = GameSnapshot::load(&dir.join("junk.bin")).unwrap_err();
+    assert!(
+        format!("{err:#}").contains("is not a Passo snapshot"),
+        "{err:#}"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn damaged_snapshots_are_refused_with_the_reason() {
+    let mut world = busy();
+    run(&mut world, 5);
+    let good = world.snapshot();
+    let text = ron::to_string(&good).unwrap();
+
+    // A NaN written into a position.
+    let nan = text.replacen("pos:[(", "pos:[(NaN,0.0),(", 1);
+    let err = World::from_snapshot(ron::from_str::<WorldSnapshot>(&nan).unwrap()).unwrap_err();
+    assert!(matches!(err, PhysicsError::InvalidSnapshot(_)), "{err}");
+    assert!(
+        err.to_string().starts_with("invalid world snapshot:"),
+        "{err}"
+    );
+
+    // A loop with a zero step.
+    let mut game = GameSnapshot::capture(&world, &FixedTimestep::default());
+    let ron_game = game.to_ron().replace("16666667", "0");
+    assert!(
+        GameSnapshot::from_ron(&ron_game)
+            .unwrap()
+            .restore()
+            .is_err()
+    );
+    game.world = good;
+    assert!(game.restore().is_ok());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// Random edits of a snapshot's text: refused or accepted, never a
+    /// panic, and an accepted one steps without producing a NaN.
+    #[test]
+    fn edited_snapshot_text_is_refused_or_steps_safely(
+        edits in prop::collection::vec((any::<prop::sample::Index>(), "[0-9.eE,\\-]{1,3}"), 1..4)
+    ) {
+        let mut world = World::default();
+        world.add_body(BodyDef::fixed(Vec2::ZERO, Shape::rect(10.0, 1.0))).unwrap();
+        for i in 0..5 {
+            world.add_body(BodyDef {
+                position: Vec2::new(i as f32, 2.0),
+                shape: Some(Shape::circle(0.4)),
+                ..Default::default()
+            }).unwrap();
+        }
+        world.step(DT);
+        let mut text = ron::to_string(&world.snapshot()).unwrap();
+        for (at, insert) in edits {
+            let i = at.index(text.len());
+            if text.is_char_boundary(i) {
+                text.insert_str(i, &insert);
+            }
+        }
+        if let Ok(snapshot) = ron::from_str::<WorldSnapshot>(&text) {
+            if let Ok(mut w) = World::from_snapshot(snapshot) {
+                w.step(DT);
+                prop_assert!(w.bodies().all(|b| b.position.is_finite() && b.velocity.is_finite()));
+            }
+        }
+    }
+}
