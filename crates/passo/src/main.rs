@@ -29,6 +29,13 @@ enum Command {
     Bench(bench::BenchArgs),
     /// List the built-in scenes.
     Scenes,
+    /// Play a replay file headlessly; print the final state hash and check
+    /// it against the recorded one.
+    Replay {
+        /// A replay saved by the demo (`passo demo --record FILE`, or the
+        /// panel's record button).
+        file: std::path::PathBuf,
+    },
 }
 
 fn main() {
@@ -59,6 +66,23 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Some(Command::Demo(args)) => demo::run(args),
+        Some(Command::Replay { file }) => {
+            let replay = demo::replay::Replay::load(&file)?;
+            let hash = demo::run_replay(&replay)?;
+            println!("{hash:016x}");
+            if hash != replay.final_hash {
+                anyhow::bail!(
+                    "the replay ended in state {hash:016x}, not the recorded {:016x}",
+                    replay.final_hash
+                );
+            }
+            eprintln!(
+                "{}: {} ticks, same final state as recorded",
+                file.display(),
+                replay.ticks
+            );
+            Ok(())
+        }
         None => demo::run(demo::DemoArgs {
             size: (1280, 800),
             ..Default::default()

@@ -107,3 +107,34 @@ fn bad_input_gives_a_clear_error_and_a_non_zero_exit() {
     let out = passo(&["simulate", "rain", "--every", "0"]);
     assert_eq!(out.status.code(), Some(2), "clap rejects a zero interval");
 }
+
+#[test]
+fn a_saved_snapshot_resumes_to_the_same_hash_as_an_uninterrupted_run() {
+    let dir = std::env::temp_dir().join(format!("passo-cli-snap-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let whole = passo(&["simulate", "rain", "--ticks", "50", "--hash"]);
+    for name in ["rain.bin", "rain.ron"] {
+        let file = dir.join(name);
+        let first = passo(&[
+            "simulate",
+            "rain",
+            "--ticks",
+            "30",
+            "--save",
+            file.to_str().unwrap(),
+        ]);
+        assert!(first.status.success(), "{}", stderr(&first));
+        let rest = passo(&[
+            "simulate",
+            "rain",
+            "--ticks",
+            "20",
+            "--resume",
+            file.to_str().unwrap(),
+            "--hash",
+        ]);
+        assert!(rest.status.success(), "{}", stderr(&rest));
+        assert_eq!(stdout(&rest), stdout(&whole), "{name}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}

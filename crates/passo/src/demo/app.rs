@@ -1,5 +1,6 @@
 //! The window: winit events, the wgpu surface, egui, and the frame loop.
 
+use super::replay::{Command, Replay};
 use super::sim::{Input, Sim};
 use super::ui::{self, Actions, ViewOptions};
 use super::{DemoArgs, Entry};
@@ -92,6 +93,10 @@ struct Running {
     message: Option<String>,
     /// A frame time to use instead of the clock's for the next frame.
     hitch: Option<Duration>,
+    /// Where `--record` saves the replay on exit.
+    record_to: Option<std::path::PathBuf>,
+    /// The last replay saved with the panel's button.
+    last_replay: Option<Replay>,
 }
 
 /// The winit application.
@@ -127,6 +132,17 @@ impl App {
     pub fn finish(mut self) -> Result<()> {
         if let Some(e) = self.error.take() {
             return Err(e);
+        }
+        if let Some(r) = self.running.as_mut()
+            && let Some(path) = r.record_to.clone()
+            && let Some(replay) = r.sim.stop_recording()
+        {
+            replay.save(&path)?;
+            eprintln!(
+                "replay of {} ticks saved to {}",
+                replay.ticks,
+                path.display()
+            );
         }
         if let Some(path) = &self.args.screenshot {
             let image = self
@@ -220,7 +236,18 @@ impl App {
             panel_px: 0.0,
             message: None,
             hitch: None,
+            record_to: self.args.record.clone(),
+            last_replay: None,
         });
+        let r = self.running.as_mut().expect("just made");
+        if let Some(path) = &self.args.replay {
+            let replay = Replay::load(path)?;
+            r.sim = super::load(&super::entry_named(&replay.scene))?;
+            r.entry = super::entry_named(&replay.scene);
+            r.sim.start_playback(replay)?;
+        } else if r.record_to.is_some() {
+            r.sim.start_recording()?;
+        }
         Ok(())
     }
 }
@@ -263,8 +290,12 @@ impl ApplicationHandler for App {
                     Ok(None) => self.skipped += 1,
                     Err(e) => return self.fail(event_loop, e),
                 }
+                let replay_done = self.args.replay.is_some()
+                    && r.sim
+                        .playback_status()
+                        .is_some_and(|(_, _, result, _)| result.is_some());
                 if let Some(n) = self.args.frames {
-                    if self.presented >= n {
+                    if self.presented >= n || replay_done {
                         self.summary = Some(r.summary(self.presented, self.skipped));
                         event_loop.exit();
                     } else if self.attempted > n * 10 + 100 {
@@ -343,8 +374,18 @@ impl Running {
             KeyCode::KeyG => self.keys.glide = down,
             KeyCode::Space if down && !repeat => self.keys.jump = true,
             KeyCode::KeyW if down && !repeat => {
-                self.sim.knobs.wind = !self.sim.knobs.wind;
-                self.sim.apply_knobs();
+                let mut knobs = self.sim.knobs;
+                knobs.wind = !knobs.wind;
+                let command = Command::Knobs {
+                    knobs,
+                    friction: false,
+                    restitution: false,
+                    drag: false,
+                };
+                self.act(Actions {
+                    commands: vec![command],
+                    ..Default::default()
+                });
             }
             KeyCode::KeyP if down && !repeat => {
                 if self.sim.timestep.is_paused() {
@@ -355,7 +396,7 @@ impl Running {
             }
             KeyCode::KeyN if down => self.sim.timestep.step_once(),
             KeyCode::KeyR if down && !repeat => self.act(Actions {
-                reset: true,
+                commands: vec![Command::Reset],
                 ..Default::default()
             }),
             KeyCode::KeyF if down && !repeat => self.camera_moved = false,
@@ -372,14 +413,28 @@ impl Running {
             (MouseButton::Left, true) => match self.sim.pick(world_at) {
                 Some(id) => self.mouse.fling = Some((id, world_at)),
                 None => {
-                    let round = !self.keys.run;
-                    self.sim.spawn(world_at, round);
+                    let command = Command::Spawn {
+                        at: world_at.to_array(),
+                        round: !self.keys.run,
+                    };
+                    self.act(Actions {
+                        commands: vec![command],
+                        ..Default::default()
+                    });
                 }
             },
             (MouseButton::Left, false) => {
                 if let Some((id, from)) = self.mouse.fling.take() {
                     // A slingshot: 4 m/s for every metre dragged.
-                    self.sim.fling(id, (world_at - from) * 4.0);
+                    let command = Command::Fling {
+                        index: id.index(),
+                        generation: id.generation(),
+                        velocity: ((world_at - from) * 4.0).to_array(),
+                    };
+                    self.act(Actions {
+                        commands: vec![command],
+                        ..Default::default()
+                    });
                 }
             }
             (MouseButton::Right | MouseButton::Middle, pressed) => self.mouse.panning = pressed,
@@ -387,23 +442,46 @@ impl Running {
         }
     }
 
-    /// Switches scene, resets, or rebuilds with another body count.
+    /// Switches scene, applies commands, records and replays.
     fn act(&mut self, actions: Actions) {
-        let result = if let Some(entry) = actions.switch_to {
-            super::load(&entry).map(|sim| {
+        let mut result = Ok(());
+        if let Some(entry) = actions.switch_to {
+            result = super::load(&entry).map(|sim| {
                 self.sim = sim;
                 self.entry = entry;
                 self.camera_moved = false;
                 self.window.set_title(&format!("Passo: {}", self.sim.name));
-            })
-        } else if actions.reset {
-            self.sim.reset()
-        } else if let Some(n) = actions.rain_count {
-            self.sim.set_rain_count(n)
-        } else {
-            Ok(())
-        };
-        self.message = result.err().map(|e| format!("{e:#}"));
+            });
+        }
+        for command in actions.commands {
+            if result.is_ok() {
+                result = self.sim.command(command);
+            }
+        }
+        if actions.record {
+            result = result.and_then(|()| self.sim.start_recording());
+        }
+        if actions.stop_recording
+            && let Some(replay) = self.sim.stop_recording()
+        {
+            let dir = std::path::Path::new("replays");
+            let path = dir.join(format!("{}-{}.ron", replay.scene, replay.ticks));
+            result = result
+                .and_then(|()| std::fs::create_dir_all(dir).map_err(Into::into))
+                .and_then(|()| replay.save(&path));
+            if result.is_ok() {
+                self.message = Some(format!("replay saved to {}", path.display()));
+            }
+            self.last_replay = Some(replay);
+        }
+        if actions.replay_last
+            && let Some(replay) = self.last_replay.clone()
+        {
+            result = result.and_then(|()| self.sim.start_playback(replay));
+        }
+        if let Err(e) = result {
+            self.message = Some(format!("{e:#}"));
+        }
     }
 
     /// Fits the scene into the part of the window beside the panel.
@@ -440,6 +518,7 @@ impl Running {
             current: &self.entry,
             fps: self.fps.value,
             message: self.message.as_deref(),
+            last_replay: self.last_replay.is_some(),
         };
         let camera = self.camera;
         let size = self.surface.size();
@@ -533,17 +612,25 @@ impl Running {
         result
     }
 
-    /// A line for tests and logs: frames, ticks, window and camera.
+    /// A line for tests and logs: frames, ticks, window, camera, the state
+    /// hash and how a replay ended.
     fn summary(&self, presented: u64, skipped: u64) -> String {
         let (w, h) = self.surface.size();
+        let replay = match self.sim.playback_status() {
+            Some((_, _, Some(hash), recorded)) if hash == recorded => "; replay matched",
+            Some((_, _, Some(_), _)) => "; replay differed",
+            Some((_, _, None, _)) => "; replay unfinished",
+            None => "",
+        };
         format!(
             "presented {presented} frames; skipped {skipped}; ticks {}; dropped {:.3} s; window {w}x{h}; \
-             camera centre ({}, {}) height {}",
+             camera centre ({}, {}) height {}; hash {:016x}{replay}",
             self.sim.timestep.tick(),
             self.sim.timestep.dropped_total().as_secs_f64(),
             self.camera.centre.x,
             self.camera.centre.y,
-            self.camera.height
+            self.camera.height,
+            self.sim.state_hash()
         )
     }
 }

@@ -2,6 +2,7 @@
 //! (egui), and scenes driven by the fixed-timestep loop.
 
 mod app;
+pub mod replay;
 pub mod sim;
 mod ui;
 
@@ -28,6 +29,13 @@ pub struct DemoArgs {
     /// Render on the software adapter (Mesa lavapipe).
     #[arg(long)]
     pub software: bool,
+    /// Record the player's input and commands from the start, and save the
+    /// replay to this file on exit.
+    #[arg(long, conflicts_with = "replay")]
+    pub record: Option<PathBuf>,
+    /// Play this replay file in the window; with --frames, exit when it ends.
+    #[arg(long)]
+    pub replay: Option<PathBuf>,
     /// With --frames: resize the window, minimise it (0×0), restore it and
     /// inject a 400 ms frame along the way (for the window test).
     #[arg(long, hide = true, requires = "frames")]
@@ -80,9 +88,23 @@ pub fn load(entry: &Entry) -> Result<Sim> {
         Entry::Integrators => Ok(Sim::integrators()),
         Entry::File(name) => {
             let scene: Scene = crate::scenes::load(name)?;
-            Sim::from_scene(&scene)
+            let mut sim = Sim::from_scene(&scene)?;
+            sim.entry_name = name.clone();
+            Ok(sim)
         }
     }
+}
+
+/// Plays a replay headlessly, one tick after the other, and returns the
+/// final state hash (which matches the recorded one if all is well).
+pub fn run_replay(replay: &replay::Replay) -> Result<u64> {
+    let mut sim = load(&entry_named(&replay.scene))?;
+    sim.start_playback(replay.clone())?;
+    for _ in 0..replay.ticks {
+        sim.timestep.advance_ticks(1);
+        sim.tick();
+    }
+    Ok(sim.state_hash())
 }
 
 /// The entry for a `--scene` value.

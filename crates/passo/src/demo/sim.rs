@@ -2,6 +2,7 @@
 //! loop, the player's controls, the panel's knobs and the plotted history.
 //! Nothing here touches a window, so tests drive it with exact frame times.
 
+use super::replay::{Command, Playback, Recorder, Replay};
 use anyhow::Result;
 use glam::Vec2;
 use passo_loop::{FixedTimestep, Frame};
@@ -10,6 +11,7 @@ use passo_physics::{
     WorldSettings,
 };
 use passo_scene::{Colour, Generator, Scene, SceneBody, SceneFile};
+use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
@@ -33,7 +35,7 @@ pub struct Lane {
 }
 
 /// The keys held or pressed this frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Input {
     /// Walk left (A or Left).
     pub left: bool,
@@ -48,7 +50,7 @@ pub struct Input {
 }
 
 /// Values of the panel's sliders, applied to every lane when changed.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Knobs {
     /// Vertical gravity, m/s² (0 turns gravity off).
     pub gravity: f32,
@@ -150,6 +152,12 @@ pub struct Sim {
     plot: PlotKind,
     /// Game input for the next tick (jump is consumed by it).
     input: Input,
+    /// The name the scene was loaded by (for replays).
+    pub entry_name: String,
+    /// Ticks run since the scene was loaded.
+    ticks_run: u64,
+    recorder: Option<Recorder>,
+    playback: Option<Playback>,
 }
 
 /// The colour a spawned body gets, by count.
@@ -197,9 +205,13 @@ impl Sim {
             fixed_integrators: false,
             stats: Stats::default(),
             history: History::default(),
+            entry_name: file.name.to_lowercase().replace(' ', "_"),
             file: Some(file),
             plot,
             input: Input::default(),
+            ticks_run: 0,
+            recorder: None,
+            playback: None,
         };
         sim.set_interpolation(true);
         sim.reset_history();
@@ -298,6 +310,10 @@ impl Sim {
             file: None,
             plot: PlotKind::Energy,
             input: Input::default(),
+            entry_name: "integrators".into(),
+            ticks_run: 0,
+            recorder: None,
+            playback: None,
         };
         sim.reset_history();
         sim
@@ -375,7 +391,11 @@ impl Sim {
         let frame = self.timestep.advance(frame_time);
         let started = Instant::now();
         for _ in frame.tick_numbers() {
-            self.tick(frame.dt);
+            // A finished playback holds its final state.
+            if self.playback.as_ref().is_some_and(|p| p.result.is_some()) {
+                break;
+            }
+            self.tick();
         }
         self.stats = Stats {
             ticks: frame.ticks,
@@ -386,8 +406,12 @@ impl Sim {
         frame
     }
 
-    /// One fixed tick: the player's forces, the step, a plot sample.
-    fn tick(&mut self, dt: f32) {
+    /// One fixed tick: replayed commands and input, the player's forces,
+    /// the step, a plot sample. The step length is read after replayed
+    /// commands, one of which may change the rate.
+    pub fn tick(&mut self) {
+        self.before_tick();
+        let dt = self.timestep.dt();
         self.control_player();
         for lane in &mut self.lanes {
             lane.world.step(dt);
@@ -409,6 +433,182 @@ impl Sim {
             }
         };
         self.history.push(t, &values);
+        self.ticks_run += 1;
+        self.after_tick();
+    }
+
+    /// In playback, applies the commands due and takes the recorded input;
+    /// when recording, notes the input used.
+    fn before_tick(&mut self) {
+        if let Some(mut p) = self.playback.take() {
+            let rel = self.ticks_run - p.start;
+            while let Some((tick, command)) = p.replay.commands.get(p.next_command).cloned() {
+                if tick > rel {
+                    break;
+                }
+                p.next_command += 1;
+                if let Err(e) = self.apply(&command) {
+                    log::warn!("replayed command failed: {e:#}");
+                }
+            }
+            while let Some(&(tick, input)) = p.replay.inputs.get(p.next_input) {
+                if tick > rel {
+                    break;
+                }
+                p.input = input;
+                p.next_input += 1;
+            }
+            self.input = p.input;
+            // A recorded jump lasts one tick.
+            p.input.jump = false;
+            self.playback = Some(p);
+        }
+        let input = self.input;
+        if let Some(r) = &mut self.recorder {
+            let rel = self.ticks_run - r.start;
+            if r.inputs.last().is_none_or(|(_, last)| *last != input) {
+                r.inputs.push((rel, input));
+            }
+        }
+    }
+
+    /// Ends a playback after its last tick, keeping the final hash.
+    fn after_tick(&mut self) {
+        let done = self
+            .playback
+            .as_ref()
+            .is_some_and(|p| p.result.is_none() && self.ticks_run - p.start >= p.replay.ticks);
+        if done {
+            let hash = self.state_hash();
+            if let Some(p) = &mut self.playback {
+                p.result = Some(hash);
+            }
+            self.timestep.pause();
+        }
+    }
+
+    /// A 64-bit hash of every lane's state (see `World::state_hash`).
+    pub fn state_hash(&self) -> u64 {
+        self.lanes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, l| {
+            (h ^ l.world.state_hash()).wrapping_mul(0x0000_0100_0000_01b3)
+        })
+    }
+
+    /// Applies a command from the player or the panel, recording it when
+    /// recording. In playback, live commands are ignored.
+    pub fn command(&mut self, command: Command) -> Result<()> {
+        if self.playback.is_some() {
+            return Ok(());
+        }
+        if let Some(r) = &mut self.recorder {
+            r.commands.push((self.ticks_run - r.start, command.clone()));
+        }
+        self.apply(&command)
+    }
+
+    fn apply(&mut self, command: &Command) -> Result<()> {
+        match command {
+            Command::Spawn { at, round } => {
+                self.spawn(Vec2::from_array(*at), *round);
+            }
+            Command::Fling {
+                index,
+                generation,
+                velocity,
+            } => {
+                let id = self.lanes[0]
+                    .world
+                    .bodies()
+                    .map(|b| b.id)
+                    .find(|id| id.index() == *index && id.generation() == *generation);
+                if let Some(id) = id {
+                    self.fling(id, Vec2::from_array(*velocity));
+                }
+            }
+            Command::Knobs {
+                knobs,
+                friction,
+                restitution,
+                drag,
+            } => {
+                self.knobs = *knobs;
+                self.apply_knobs();
+                if *friction {
+                    self.apply_friction();
+                }
+                if *restitution {
+                    self.apply_restitution();
+                }
+                if *drag {
+                    self.apply_drag_scale();
+                }
+            }
+            Command::Rate(hz) => self.timestep.set_hz(*hz)?,
+            Command::Integrator(integrator) => self.set_integrator(*integrator),
+            Command::Reset => self.reset()?,
+            Command::RainCount(n) => self.set_rain_count(*n)?,
+        }
+        Ok(())
+    }
+
+    /// Starts recording from the scene's first state (the scene restarts).
+    pub fn start_recording(&mut self) -> Result<()> {
+        self.playback = None;
+        self.recorder = None;
+        self.reset()?;
+        self.recorder = Some(Recorder {
+            start: self.ticks_run,
+            inputs: Vec::new(),
+            commands: Vec::new(),
+        });
+        Ok(())
+    }
+
+    /// Whether a recording is under way.
+    pub fn is_recording(&self) -> bool {
+        self.recorder.is_some()
+    }
+
+    /// Stops recording; the replay reproduces the state hash of now.
+    pub fn stop_recording(&mut self) -> Option<Replay> {
+        let r = self.recorder.take()?;
+        Some(Replay {
+            scene: self.entry_name.clone(),
+            ticks: self.ticks_run - r.start,
+            inputs: r.inputs,
+            commands: r.commands,
+            final_hash: self.state_hash(),
+        })
+    }
+
+    /// Plays `replay` from the scene's first state: its inputs and commands
+    /// replace the live ones until its last tick, when the loop pauses.
+    pub fn start_playback(&mut self, replay: Replay) -> Result<()> {
+        self.recorder = None;
+        self.playback = None;
+        self.reset()?;
+        self.playback = Some(Playback {
+            replay,
+            start: self.ticks_run,
+            next_input: 0,
+            next_command: 0,
+            input: Input::default(),
+            result: None,
+        });
+        Ok(())
+    }
+
+    /// During or after a playback: `(ticks played, ticks recorded, final hash
+    /// once finished, recorded hash)`.
+    pub fn playback_status(&self) -> Option<(u64, u64, Option<u64>, u64)> {
+        self.playback.as_ref().map(|p| {
+            (
+                self.ticks_run - p.start,
+                p.replay.ticks,
+                p.result,
+                p.replay.final_hash,
+            )
+        })
     }
 
     /// Walk and run by pushing against friction, jump only when standing,
@@ -638,11 +838,13 @@ impl Sim {
         match self.file.clone() {
             Some(file) => self.rebuild(file),
             None => {
-                let knobs = self.knobs;
-                let timestep = self.timestep.clone();
-                *self = Self::integrators();
-                self.knobs = knobs;
-                self.timestep = timestep;
+                let mut fresh = Self::integrators();
+                fresh.knobs = self.knobs;
+                fresh.timestep = self.timestep.clone();
+                fresh.ticks_run = self.ticks_run;
+                fresh.recorder = self.recorder.take();
+                fresh.playback = self.playback.take();
+                *self = fresh;
                 Ok(())
             }
         }
@@ -663,6 +865,10 @@ impl Sim {
         fresh.apply_knobs();
         fresh.set_integrator(integrator);
         fresh.set_interpolation(interpolation);
+        fresh.entry_name = std::mem::take(&mut self.entry_name);
+        fresh.ticks_run = self.ticks_run;
+        fresh.recorder = self.recorder.take();
+        fresh.playback = self.playback.take();
         *self = fresh;
         Ok(())
     }

@@ -2,6 +2,7 @@
 //! a live plot and the controls' help.
 
 use super::Entry;
+use super::replay::Command;
 use super::sim::Sim;
 use egui::{Color32, Slider, Stroke};
 use passo_physics::Integrator;
@@ -24,10 +25,14 @@ pub struct ViewOptions {
 pub struct Actions {
     /// Open another scene.
     pub switch_to: Option<Entry>,
-    /// Restart the scene.
-    pub reset: bool,
-    /// Rebuild the rain with this many bodies.
-    pub rain_count: Option<u32>,
+    /// Commands for the simulation (recorded in replays).
+    pub commands: Vec<Command>,
+    /// Start recording a replay.
+    pub record: bool,
+    /// Stop recording and save the replay.
+    pub stop_recording: bool,
+    /// Play the last saved replay.
+    pub replay_last: bool,
 }
 
 /// What the panel shows but does not change.
@@ -36,6 +41,8 @@ pub struct PanelInput<'a> {
     pub current: &'a Entry,
     pub fps: f64,
     pub message: Option<&'a str>,
+    /// A replay was saved this session.
+    pub last_replay: bool,
 }
 
 const RATES: [f64; 5] = [30.0, 60.0, 64.0, 120.0, 240.0];
@@ -54,9 +61,9 @@ pub fn panel(
             egui::ScrollArea::vertical().show(ui, |ui| {
                 scene_section(ui, sim, input, actions);
                 ui.separator();
-                loop_section(ui, sim);
+                loop_section(ui, sim, actions);
                 ui.separator();
-                forces_section(ui, sim);
+                forces_section(ui, sim, actions);
                 ui.separator();
                 stats_section(ui, sim, input.fps);
                 plot(ui, sim);
@@ -101,15 +108,38 @@ fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actio
                 .text("bodies"),
         );
         if response.drag_stopped() || (response.changed() && !response.dragged()) {
-            actions.rain_count = Some(n);
+            actions.commands.push(Command::RainCount(n));
         }
+    }
+    ui.horizontal(|ui| {
+        if sim.is_recording() {
+            ui.colored_label(Color32::from_rgb(240, 90, 90), "● recording");
+            actions.stop_recording |= ui.button("stop and save").clicked();
+        } else {
+            actions.record |= ui.button("● record").clicked();
+            actions.replay_last |= ui
+                .add_enabled(input.last_replay, egui::Button::new("replay last"))
+                .clicked();
+        }
+    });
+    if let Some((played, total, result, recorded)) = sim.playback_status() {
+        let text = match result {
+            None => format!("replaying: tick {played} of {total}"),
+            Some(h) if h == recorded => {
+                format!("replay done: {total} ticks, same final state ({h:016x})")
+            }
+            Some(h) => format!(
+                "replay done: final state {h:016x} differs from the recorded {recorded:016x}"
+            ),
+        };
+        ui.label(text);
     }
     if let Some(message) = input.message {
         ui.colored_label(Color32::from_rgb(240, 120, 120), message);
     }
 }
 
-fn loop_section(ui: &mut egui::Ui, sim: &mut Sim) {
+fn loop_section(ui: &mut egui::Ui, sim: &mut Sim, actions: &mut Actions) {
     ui.label(egui::RichText::new("Loop").strong());
     ui.horizontal(|ui| {
         let paused = sim.timestep.is_paused();
@@ -124,8 +154,7 @@ fn loop_section(ui: &mut egui::Ui, sim: &mut Sim) {
             sim.timestep.step_once();
         }
         if ui.button("reset").clicked() {
-            // Handled like the R key, through a rebuild of the scene.
-            let _ = sim.reset();
+            actions.commands.push(Command::Reset);
         }
     });
     let mut scale = sim.timestep.time_scale();
@@ -148,7 +177,7 @@ fn loop_section(ui: &mut egui::Ui, sim: &mut Sim) {
             }
         });
     if (hz - sim.timestep.hz()).abs() > 1e-6 {
-        let _ = sim.timestep.set_hz(hz);
+        actions.commands.push(Command::Rate(hz));
     }
     let mut interpolation = sim.interpolation();
     if ui
@@ -167,14 +196,14 @@ fn loop_section(ui: &mut egui::Ui, sim: &mut Sim) {
                 }
             });
         if integrator != sim.integrator() {
-            sim.set_integrator(integrator);
+            actions.commands.push(Command::Integrator(integrator));
         }
     }
 }
 
-fn forces_section(ui: &mut egui::Ui, sim: &mut Sim) {
+fn forces_section(ui: &mut egui::Ui, sim: &Sim, actions: &mut Actions) {
     ui.label(egui::RichText::new("Forces").strong());
-    let k = &mut sim.knobs;
+    let mut k = sim.knobs;
     let mut changed = false;
     changed |= ui
         .add(Slider::new(&mut k.gravity, -30.0..=0.0).text("gravity (m/s²)"))
@@ -211,23 +240,18 @@ fn forces_section(ui: &mut egui::Ui, sim: &mut Sim) {
     let restitution = ui
         .add(Slider::new(&mut k.restitution, 0.0..=1.0).text("restitution"))
         .changed();
-    let has_contacts = sim.has_contacts();
-    if has_contacts {
+    if sim.has_contacts() {
         changed |= ui
-            .checkbox(&mut sim.knobs.continuous, "continuous collision")
+            .checkbox(&mut k.continuous, "continuous collision")
             .changed();
     }
-    if changed {
-        sim.apply_knobs();
-    }
-    if friction {
-        sim.apply_friction();
-    }
-    if drag {
-        sim.apply_drag_scale();
-    }
-    if restitution {
-        sim.apply_restitution();
+    if changed || friction || drag || restitution {
+        actions.commands.push(Command::Knobs {
+            knobs: k,
+            friction,
+            restitution,
+            drag,
+        });
     }
 }
 

@@ -1,0 +1,192 @@
+//! Replays: a run recorded with input by tick plays back to the same final
+//! state, headless or in a window, whatever the frame rate of either.
+
+use passo::demo::replay::{Command, Replay};
+use passo::demo::sim::{Input, Sim};
+use passo::demo::{Entry, load, run_replay};
+use std::process::Command as Process;
+use std::time::Duration;
+
+/// Plays the scripted session on `sim` with frames of `frame` seconds.
+fn script(sim: &mut Sim, frame: Duration) {
+    let mut t = 0u32;
+    // Frames of uneven length around `frame`.
+    let mut next = || {
+        t += 1;
+        frame + Duration::from_micros(u64::from(t % 7) * 900)
+    };
+    let walk = Input {
+        right: true,
+        ..Default::default()
+    };
+    for _ in 0..40 {
+        sim.set_input(walk);
+        sim.frame(next());
+    }
+    sim.set_input(Input {
+        right: true,
+        jump: true,
+        ..Default::default()
+    });
+    sim.frame(next());
+    for _ in 0..30 {
+        sim.set_input(Input {
+            glide: true,
+            run: true,
+            right: true,
+            ..Default::default()
+        });
+        sim.frame(next());
+    }
+    let mut knobs = sim.knobs;
+    knobs.wind = true;
+    knobs.wind_speed = -12.0;
+    sim.command(Command::Knobs {
+        knobs,
+        friction: false,
+        restitution: false,
+        drag: false,
+    })
+    .unwrap();
+    sim.command(Command::Spawn {
+        at: [2.0, 6.0],
+        round: true,
+    })
+    .unwrap();
+    for _ in 0..20 {
+        sim.set_input(Input::default());
+        sim.frame(next());
+    }
+    let ball = sim.lanes[0].world.bodies().last().unwrap().id;
+    sim.command(Command::Fling {
+        index: ball.index(),
+        generation: ball.generation(),
+        velocity: [-6.0, 8.0],
+    })
+    .unwrap();
+    sim.command(Command::Rate(120.0)).unwrap();
+    for _ in 0..30 {
+        sim.set_input(Input {
+            left: true,
+            ..Default::default()
+        });
+        sim.frame(next());
+    }
+}
+
+fn record(frame: Duration) -> Replay {
+    let mut sim = load(&Entry::File("playground".into())).unwrap();
+    sim.start_recording().unwrap();
+    script(&mut sim, frame);
+    sim.stop_recording().unwrap()
+}
+
+#[test]
+fn a_recorded_run_replays_to_the_same_final_state() {
+    let replay = record(Duration::from_micros(6944)); // about 144 FPS
+    assert!(replay.ticks > 60, "{} ticks", replay.ticks);
+    assert!(replay.inputs.len() >= 4 && replay.commands.len() == 4);
+    assert_eq!(
+        run_replay(&replay).unwrap(),
+        replay.final_hash,
+        "headless, tick by tick"
+    );
+
+    // Played back in a live simulation driven at 30 FPS.
+    let mut sim = load(&Entry::File("playground".into())).unwrap();
+    sim.start_playback(replay.clone()).unwrap();
+    for _ in 0..200 {
+        sim.frame(Duration::from_micros(33_333));
+        // Live input is ignored during playback.
+        sim.set_input(Input {
+            left: true,
+            jump: true,
+            ..Default::default()
+        });
+    }
+    let (played, total, result, recorded) = sim.playback_status().unwrap();
+    assert_eq!(
+        (played, total),
+        (replay.ticks, replay.ticks),
+        "stops at the last tick"
+    );
+    assert_eq!(result, Some(recorded));
+
+    // The file form.
+    let text = replay.to_ron();
+    assert_eq!(Replay::from_ron(&text).unwrap(), replay);
+}
+
+#[test]
+fn a_different_input_gives_a_different_state() {
+    let mut replay = record(Duration::from_micros(16_667));
+    let (_, input) = replay.inputs.iter_mut().find(|(_, i)| i.right).unwrap();
+    input.right = false;
+    assert_ne!(run_replay(&replay).unwrap(), replay.final_hash);
+}
+
+#[test]
+fn passo_replay_checks_the_final_state() {
+    let dir = std::env::temp_dir().join(format!("passo-replay-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let replay = record(Duration::from_micros(16_667));
+    let good = dir.join("good.ron");
+    replay.save(&good).unwrap();
+    let out = Process::new(env!("CARGO_BIN_EXE_passo"))
+        .arg("replay")
+        .arg(&good)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout).trim(),
+        format!("{:016x}", replay.final_hash)
+    );
+
+    let bad = dir.join("bad.ron");
+    Replay {
+        final_hash: replay.final_hash ^ 1,
+        ..replay.clone()
+    }
+    .save(&bad)
+    .unwrap();
+    let out = Process::new(env!("CARGO_BIN_EXE_passo"))
+        .arg("replay")
+        .arg(&bad)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("not the recorded"));
+
+    // In a real window (Xvfb), the demo plays it and reports the match.
+    if Process::new("xvfb-run").arg("--help").output().is_err() {
+        panic!("xvfb-run is missing: install `xvfb xauth` (see the README)");
+    }
+    let runtime = dir.join("runtime");
+    std::fs::create_dir_all(&runtime).unwrap();
+    let out = Process::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24"])
+        .arg(env!("CARGO_BIN_EXE_passo"))
+        .args(["demo", "--frames", "2000", "--size", "640x480", "--replay"])
+        .arg(&good)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .env("XDG_RUNTIME_DIR", &runtime)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("replay matched"), "{stdout}");
+    assert!(
+        stdout.contains(&format!("hash {:016x}", replay.final_hash)),
+        "{stdout}"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
