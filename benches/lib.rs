@@ -1,1 +1,127 @@
-//! Criterion benchmarks of Passo: `cargo bench -p passo-benches`.
+//! Benchmark scenes and timing shared by `passo bench`, the criterion
+//! benchmarks and the peer comparison (`cargo bench -p passo-benches`,
+//! `cargo run --release -p passo-benches --features rapier --bin peer`).
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, Shape, World};
+use std::time::Instant;
+
+/// Radius of a rain circle, metres.
+pub const RAIN_RADIUS: f32 = 0.1;
+/// Mass of a rain circle, kilograms.
+pub const RAIN_MASS: f32 = 0.1;
+
+/// Circles of radius 0.1 m raining into an open box: `n` bodies on a
+/// jittered grid twice as wide as it is tall, 1 cm to 4 cm apart.
+pub fn rain_world(n: usize) -> World {
+    let columns = ((2.0 * (n as f32).sqrt()).ceil() as usize).max(1);
+    rain_grid(n, columns)
+}
+
+/// The same rain in a strip 20 rows deep whose width grows with `n`: every
+/// body sees the same neighbourhood whatever the size, so the cost per
+/// body-step shows how the step scales.
+pub fn rain_strip(n: usize) -> World {
+    rain_grid(n, n.div_ceil(20).max(1))
+}
+
+/// `n` circles in `columns` columns above a floor between two walls.
+pub fn rain_grid(n: usize, columns: usize) -> World {
+    let mut world = World::default();
+    let rows = n.div_ceil(columns);
+    let spacing = 0.25;
+    let width = columns as f32 * spacing + 1.0;
+    let height = rows as f32 * spacing + 5.0;
+    let fixed = |w: &mut World, centre: Vec2, size: Vec2| {
+        w.add_body(BodyDef::fixed(centre, Shape::rect(size.x, size.y)))
+            .expect("valid wall");
+    };
+    fixed(
+        &mut world,
+        Vec2::new(0.0, -0.5),
+        Vec2::new(width + 2.0, 1.0),
+    );
+    fixed(
+        &mut world,
+        Vec2::new(-width * 0.5 - 0.5, height * 0.5),
+        Vec2::new(1.0, height),
+    );
+    fixed(
+        &mut world,
+        Vec2::new(width * 0.5 + 0.5, height * 0.5),
+        Vec2::new(1.0, height),
+    );
+    let mut seed = 0x2545_F491_4F6C_DD1Du64;
+    let mut jitter = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        ((seed >> 40) as f32 / (1u64 << 24) as f32 - 0.5) * 0.03
+    };
+    for k in 0..n {
+        let (i, j) = (k % columns, k / columns);
+        let p = Vec2::new(
+            -width * 0.5 + 0.5 + (i as f32 + 0.5) * spacing + jitter(),
+            0.5 + j as f32 * spacing + jitter(),
+        );
+        let def = BodyDef {
+            position: p,
+            shape: Some(Shape::circle(RAIN_RADIUS)),
+            mass: RAIN_MASS,
+            ..Default::default()
+        };
+        world.add_body(def).expect("valid circle");
+    }
+    world
+}
+
+/// A pyramid of unit boxes with `base` boxes in the bottom row.
+pub fn pyramid_world(base: usize) -> World {
+    let mut world = World::default();
+    world
+        .add_body(BodyDef::fixed(
+            Vec2::new(0.0, -0.5),
+            Shape::rect(base as f32 * 2.0 + 10.0, 1.0),
+        ))
+        .expect("valid ground");
+    for row in 0..base {
+        for i in 0..base - row {
+            let x = i as f32 - (base - row - 1) as f32 * 0.5;
+            let def = BodyDef {
+                position: Vec2::new(x, 0.5 + row as f32),
+                shape: Some(Shape::rect(1.0, 1.0)),
+                ..Default::default()
+            };
+            world.add_body(def).expect("valid box");
+        }
+    }
+    world
+}
+
+/// Mean milliseconds per step over all ticks and over the last fifth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepTimes {
+    /// Mean over every tick.
+    pub mean_ms: f64,
+    /// Mean over the last fifth (settled).
+    pub last_ms: f64,
+}
+
+/// Steps `ticks` times with `step`, timing each.
+pub fn time_steps(ticks: u32, mut step: impl FnMut()) -> StepTimes {
+    let tail = (ticks / 5).max(1);
+    let (mut all, mut last) = (0.0, 0.0);
+    for t in 0..ticks {
+        let start = Instant::now();
+        step();
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        all += ms;
+        if t >= ticks - tail {
+            last += ms;
+        }
+    }
+    StepTimes {
+        mean_ms: all / f64::from(ticks.max(1)),
+        last_ms: last / f64::from(tail),
+    }
+}

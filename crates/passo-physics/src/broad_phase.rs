@@ -52,7 +52,7 @@ impl BroadPhase {
             proxies.iter().map(|b| b.size().max_element()).sum::<f32>() / proxies.len() as f32;
         let cell_size = (2.0 * mean_size).max(1e-3);
         let inv = 1.0 / cell_size;
-        let cell_of = |p: Vec2| ((p.x * inv).floor() as i32, (p.y * inv).floor() as i32);
+        let cell_of = |p: Vec2| (floor_i32(p.x * inv), floor_i32(p.y * inv));
 
         self.entries.clear();
         self.large.clear();
@@ -137,6 +137,15 @@ impl BroadPhase {
     }
 }
 
+/// `x.floor() as i32` without a call to `floorf` (x86-64's baseline has
+/// no rounding instruction): truncate, then step down for negatives.
+/// Saturates like `as` outside the `i32` range.
+#[inline(always)]
+fn floor_i32(x: f32) -> i32 {
+    let t = x as i32;
+    t.saturating_sub(i32::from((t as f32) > x))
+}
+
 fn ordered(a: u32, b: u32) -> (u32, u32) {
     if a < b { (a, b) } else { (b, a) }
 }
@@ -189,6 +198,15 @@ mod tests {
             proxies in prop::collection::vec(aabb(), 0..300)
         ) {
             prop_assert_eq!(grid_pairs(&proxies), brute_force(&proxies));
+        }
+    }
+
+    #[test]
+    fn fast_floor_matches_floor() {
+        for x in [
+            -2.5f32, -2.0, -1.0000001, -0.5, -0.0, 0.0, 0.3, 1.0, 1.9999, 7e8, -7e8, 3e10, -3e10,
+        ] {
+            assert_eq!(floor_i32(x), x.floor() as i32, "{x}");
         }
     }
 

@@ -258,10 +258,15 @@ pub(crate) struct ContactWorld {
     /// Per-body travel margin this step, by proxy.
     margins: Vec<f32>,
     pairs: Vec<(u32, u32)>,
+    /// Candidate pairs with their order key (the two slot indices, lower
+    /// first): `(key, proxy, proxy or STATIC_BODY | static index)`.
+    keyed: Vec<(u64, u32, u32)>,
     pub constraints: Vec<Constraint>,
-    /// Positions at the start of the step (separations are updated from
-    /// the displacement since then).
+    /// Positions at the start of the step.
     pub start: Vec<Vec2>,
+    /// Displacement since the start of the step, per dynamic body
+    /// (separations are updated from it).
+    pub delta: Vec<Vec2>,
     /// Push velocities of the current substep, per dynamic body.
     pub push: Vec<Vec2>,
     cache: Vec<Cached>,
@@ -321,6 +326,8 @@ impl ContactWorld {
         }
         self.start.clear();
         self.start.extend_from_slice(&dynamic.pos);
+        self.delta.clear();
+        self.delta.resize(dynamic.len(), Vec2::ZERO);
         self.push.clear();
         self.push.resize(dynamic.len(), Vec2::ZERO);
 
@@ -344,7 +351,6 @@ impl ContactWorld {
         }
         self.pairs.clear();
         self.broad_phase.find_pairs(&self.proxies, &mut self.pairs);
-        let dynamic_pairs = self.pairs.len();
         for (p, aabb) in self.proxies.iter().enumerate() {
             let pairs = &mut self.pairs;
             let items = &self.tree_items;
@@ -353,7 +359,28 @@ impl ContactWorld {
             });
         }
 
-        // Narrow phase in a fixed order: sort by body ids.
+        // Narrow phase in a fixed order: by the pair's body ids. Sorting the
+        // small pairs (not the contacts) keeps this cheap, and the contacts
+        // come out sorted for the warm-start merge below.
+        self.keyed.clear();
+        let slot = |body: u32| -> u64 {
+            if body & STATIC_BODY != 0 {
+                u64::from(statics.meta[(body & !STATIC_BODY) as usize].id.index)
+            } else {
+                u64::from(dynamic.meta[body as usize].id.index)
+            }
+        };
+        for &(pa, pb) in &self.pairs {
+            let a_body = self.proxy_body[pa as usize];
+            let b_body = if pb & STATIC_BODY != 0 {
+                pb
+            } else {
+                self.proxy_body[pb as usize]
+            };
+            let (x, y) = (slot(a_body), slot(b_body));
+            self.keyed.push((x.min(y) << 32 | x.max(y), pa, pb));
+        }
+        self.keyed.sort_unstable_by_key(|k| k.0);
         let collider = |body: u32| -> Collider {
             if body & STATIC_BODY != 0 {
                 let s = (body & !STATIC_BODY) as usize;
@@ -377,9 +404,9 @@ impl ContactWorld {
         let mut constraints = std::mem::take(&mut self.constraints);
         constraints.clear();
         self.sensor_candidates.clear();
-        for (n, &(pa, pb)) in self.pairs.iter().enumerate() {
+        for &(_, pa, pb) in &self.keyed {
             let a_body = self.proxy_body[pa as usize];
-            let (b_body, margin) = if n < dynamic_pairs {
+            let (b_body, margin) = if pb & STATIC_BODY == 0 {
                 (
                     self.proxy_body[pb as usize],
                     self.margins[pa as usize] + self.margins[pb as usize],
@@ -430,7 +457,7 @@ impl ContactWorld {
                 &m, ca.body, cb.body, ca.id, cb.id, dynamic, statics, gravity, h,
             ));
         }
-        constraints.sort_unstable_by_key(|c| key(c.id_a, c.id_b));
+        debug_assert!(constraints.is_sorted_by_key(|c| key(c.id_a, c.id_b)));
         self.constraints = constraints;
 
         // Warm starting: merge with last step's impulses (both sorted by key).

@@ -67,50 +67,167 @@ impl PointMassKernel {
         }
     }
 
+    /// The new velocity of one body (with the non-finite guard and the
+    /// subnormal flush): the same operations, in the same order, as
+    /// `Drive::accel`, `Forces::euler_velocity` and `guard_finite`.
+    #[inline(always)]
+    fn velocity<const DRAG: bool>(
+        &self,
+        v: Vec2,
+        f: Vec2,
+        im: f32,
+        cda: f32,
+        dt: f32,
+    ) -> (Vec2, bool) {
+        let a = self.gravity + (f + self.field) * im;
+        let mut nv = v + a * dt;
+        if DRAG {
+            // `Dissipation::apply_stable`: v <- air + rel / (1 + c |rel| dt).
+            let (half_rho, air) = self.drag.unwrap_or((0.0, Vec2::ZERO));
+            let rel = nv - air;
+            let c = half_rho * cda * im;
+            nv = air + rel / (1.0 + c * rel.length() * dt);
+        }
+        let finite = nv.length_squared().is_finite();
+        (
+            Vec2::select(glam::BVec2::splat(finite), flush_subnormal(nv), Vec2::ZERO),
+            finite,
+        )
+    }
+
+    /// New velocities only (the contact solver runs before positions move);
+    /// returns the number of non-finite resets.
+    pub fn velocities(&self, b: &mut DynamicBodies, dt: f32) -> u64 {
+        if self.drag.is_some() {
+            self.velocities_with::<true>(b, dt)
+        } else {
+            self.velocities_with::<false>(b, dt)
+        }
+    }
+
+    fn velocities_with<const DRAG: bool>(&self, b: &mut DynamicBodies, dt: f32) -> u64 {
+        let mut resets = 0u64;
+        let bodies = b.vel.iter_mut().zip(
+            b.force
+                .iter()
+                .zip(b.inv_mass.iter().zip(b.drag_area.iter())),
+        );
+        for (v, (&f, (&im, &cda))) in bodies {
+            let (nv, finite) = self.velocity::<DRAG>(*v, f, im, cda, dt);
+            resets += u64::from(!finite);
+            *v = nv;
+        }
+        resets
+    }
+
     fn run_with<const DRAG: bool, const LIMITS: bool>(
         &self,
         b: &mut DynamicBodies,
         dt: f32,
     ) -> u64 {
-        let (half_rho, air) = self.drag.unwrap_or((0.0, Vec2::ZERO));
-        let limits = self.limits.unwrap_or(SpeedLimits::new(0.0, f32::INFINITY));
-        let (gravity, field) = (self.gravity, self.field);
-        let mut resets = 0u64;
-        let bodies = b.pos.iter_mut().zip(b.vel.iter_mut()).zip(
-            b.force
-                .iter()
-                .zip(b.inv_mass.iter().zip(b.drag_area.iter())),
-        );
-        for ((p, v), (f, (&im, &cda))) in bodies {
-            // The same expression as `Drive::accel` and `Forces::euler_velocity`.
-            let a = gravity + (*f + field) * im;
-            let mut nv = *v + a * dt;
-            if DRAG {
-                // `Dissipation::apply_stable`: v <- air + rel / (1 + c |rel| dt).
-                let rel = nv - air;
-                let c = half_rho * cda * im;
-                nv = air + rel / (1.0 + c * rel.length() * dt);
-            }
-            // `guard_finite` and `SpeedLimits::apply`, written as selects.
-            let s2 = nv.length_squared();
-            let finite = s2.is_finite();
-            resets += u64::from(!finite);
-            nv = flush_subnormal(nv);
-            if LIMITS {
-                // Computed for every body so the loop has no branch.
-                let clamp = limits.max / s2.sqrt();
-                nv *= if s2 > limits.max_sq { clamp } else { 1.0 };
-            }
-            if !finite || (LIMITS && s2 < limits.min_sq) {
-                nv = Vec2::ZERO;
-            }
-            *v = nv;
-            // `+ 0` as the general path adds its zero correction: same bits.
-            *p += nv * dt + Vec2::ZERO;
+        let n = b.pos.len();
+        let whole = n - n % LANES;
+        let mut resets = 0;
+        for start in (0..whole).step_by(LANES) {
+            resets += self.lanes::<DRAG, LIMITS>(b, start, dt);
+        }
+        for i in whole..n {
+            resets += self.one::<DRAG, LIMITS>(b, i, dt);
         }
         resets
     }
+
+    /// One body, for the remainder after whole groups of lanes.
+    #[inline(always)]
+    fn one<const DRAG: bool, const LIMITS: bool>(
+        &self,
+        b: &mut DynamicBodies,
+        i: usize,
+        dt: f32,
+    ) -> u64 {
+        let (mut nv, finite) =
+            self.velocity::<DRAG>(b.vel[i], b.force[i], b.inv_mass[i], b.drag_area[i], dt);
+        if LIMITS {
+            self.limits
+                .unwrap_or(SpeedLimits::new(0.0, f32::INFINITY))
+                .apply(&mut nv);
+        }
+        b.vel[i] = nv;
+        // `+ 0` as the general path adds its zero correction: same bits.
+        b.pos[i] += nv * dt + Vec2::ZERO;
+        u64::from(!finite)
+    }
+
+    /// `LANES` bodies at once, component by component in arrays, so the
+    /// compiler turns each line into vector instructions. Every lane does
+    /// exactly the scalar operations of `velocity` and `SpeedLimits::apply`
+    /// (IEEE arithmetic is exact per lane), so the bits are the same.
+    #[inline(always)]
+    fn lanes<const DRAG: bool, const LIMITS: bool>(
+        &self,
+        b: &mut DynamicBodies,
+        start: usize,
+        dt: f32,
+    ) -> u64 {
+        let r = start..start + LANES;
+        let (pos, vel) = (&mut b.pos[r.clone()], &mut b.vel[r.clone()]);
+        let (force, inv_mass, drag_area) =
+            (&b.force[r.clone()], &b.inv_mass[r.clone()], &b.drag_area[r]);
+        let (half_rho, air) = self.drag.unwrap_or((0.0, Vec2::ZERO));
+        let limits = self.limits.unwrap_or(SpeedLimits::new(0.0, f32::INFINITY));
+        let mut vx = [0.0f32; LANES];
+        let mut vy = [0.0f32; LANES];
+        let mut reset = [0u32; LANES];
+        for k in 0..LANES {
+            let im = inv_mass[k];
+            let ax = self.gravity.x + (force[k].x + self.field.x) * im;
+            let ay = self.gravity.y + (force[k].y + self.field.y) * im;
+            let (mut x, mut y) = (vel[k].x + ax * dt, vel[k].y + ay * dt);
+            if DRAG {
+                let (rx, ry) = (x - air.x, y - air.y);
+                let c = half_rho * drag_area[k] * im;
+                let d = 1.0 + c * (rx * rx + ry * ry).sqrt() * dt;
+                x = air.x + rx / d;
+                y = air.y + ry / d;
+            }
+            let finite = (x * x + y * y).is_finite();
+            reset[k] = u32::from(!finite);
+            // `flush_subnormal`, then the reset of a non-finite velocity.
+            x = if finite && x.abs() >= f32::MIN_POSITIVE {
+                x
+            } else {
+                0.0
+            };
+            y = if finite && y.abs() >= f32::MIN_POSITIVE {
+                y
+            } else {
+                0.0
+            };
+            if LIMITS {
+                let s2 = x * x + y * y;
+                let clamp = if s2 > limits.max_sq {
+                    limits.max / s2.sqrt()
+                } else {
+                    1.0
+                };
+                let keep = s2 >= limits.min_sq;
+                x = if keep { x * clamp } else { 0.0 };
+                y = if keep { y * clamp } else { 0.0 };
+            }
+            vx[k] = x;
+            vy[k] = y;
+        }
+        for k in 0..LANES {
+            let v = Vec2::new(vx[k], vy[k]);
+            vel[k] = v;
+            pos[k] += v * dt + Vec2::ZERO;
+        }
+        reset.iter().map(|&r| u64::from(r)).sum()
+    }
 }
+
+/// Bodies the fast kernel handles at once.
+const LANES: usize = 8;
 
 #[cfg(test)]
 mod tests {

@@ -165,8 +165,8 @@ pub(crate) struct SolverBodies<'a> {
     pub vel: &'a mut [Vec2],
     /// Push velocities of this substep (split impulses).
     pub push: &'a mut [Vec2],
-    pub pos: &'a [Vec2],
-    pub start: &'a [Vec2],
+    /// Displacement of each body since the step began.
+    pub delta: &'a [Vec2],
 }
 
 impl SolverBodies<'_> {
@@ -189,35 +189,16 @@ impl SolverBodies<'_> {
         }
     }
 
-    #[inline(always)]
-    fn push_velocity(&self, c: &Constraint) -> (Vec2, Vec2) {
-        let pa = self.push[c.a as usize];
-        let pb = if c.is_static() {
-            Vec2::ZERO
-        } else {
-            self.push[c.b as usize]
-        };
-        (pa, pb)
-    }
-
-    #[inline(always)]
-    fn apply_push(&mut self, c: &Constraint, impulse: Vec2) {
-        self.push[c.a as usize] -= impulse * c.inv_mass_a;
-        if !c.is_static() {
-            self.push[c.b as usize] += impulse * c.inv_mass_b;
-        }
-    }
-
     /// Separation now: the step's separation plus the relative displacement
     /// along the normal since the step began (exact for boxes, first order
     /// for circles; bodies do not rotate).
     #[inline(always)]
     fn separation(&self, c: &Constraint) -> f32 {
-        let da = self.pos[c.a as usize] - self.start[c.a as usize];
+        let da = self.delta[c.a as usize];
         let db = if c.is_static() {
             Vec2::ZERO
         } else {
-            self.pos[c.b as usize] - self.start[c.b as usize]
+            self.delta[c.b as usize]
         };
         c.base_separation + (db - da).dot(c.normal)
     }
@@ -240,6 +221,8 @@ pub(crate) fn reset_push(constraints: &mut [Constraint]) {
 
 /// One Gauss-Seidel pass over every contact: friction, the normal row, and
 /// (with `push`) the split-impulse push out of overlap deeper than the slop.
+/// Each contact reads its two bodies' velocities once, updates them in
+/// registers and writes them back once.
 pub(crate) fn solve(
     constraints: &mut [Constraint],
     bodies: &mut SolverBodies<'_>,
@@ -250,37 +233,54 @@ pub(crate) fn solve(
     let inv_h = 1.0 / h;
     let push_rate = settings.position_correction * inv_h;
     for c in constraints.iter_mut() {
+        let (ia, ib) = (c.a as usize, c.b as usize);
+        let b_static = c.is_static();
+        let (mut va, mut vb) = bodies.velocity(c);
         let tangent = c.normal.perp();
 
         // Coulomb friction: |lambda_t| <= mu lambda_n.
-        let (va, vb) = bodies.velocity(c);
         let vt = (vb - va).dot(tangent);
         let max_friction = c.friction * c.normal_impulse;
         let new_t = (c.tangent_impulse - c.mass * vt).clamp(-max_friction, max_friction);
-        let dt_impulse = new_t - c.tangent_impulse;
+        let impulse = tangent * (new_t - c.tangent_impulse);
         c.tangent_impulse = new_t;
-        bodies.apply(c, tangent * dt_impulse);
+        va -= impulse * c.inv_mass_a;
+        if !b_static {
+            vb += impulse * c.inv_mass_b;
+        }
 
         // Non-penetration: v_n >= 0, or >= -s / h while still apart.
         let s = bodies.separation(c);
         let bias = if s > 0.0 { s * inv_h } else { 0.0 };
-        let (va, vb) = bodies.velocity(c);
         let vn = (vb - va).dot(c.normal);
         let new_n = (c.normal_impulse - c.mass * (vn + bias)).max(0.0);
-        let dn = new_n - c.normal_impulse;
+        let impulse = c.normal * (new_n - c.normal_impulse);
         c.normal_impulse = new_n;
         c.max_normal_impulse = c.max_normal_impulse.max(new_n);
-        bodies.apply(c, c.normal * dn);
+        va -= impulse * c.inv_mass_a;
+        bodies.vel[ia] = va;
+        if !b_static {
+            vb += impulse * c.inv_mass_b;
+            bodies.vel[ib] = vb;
+        }
 
         // Push out of overlap deeper than the slop.
         if push {
             let target = (push_rate * (-s - settings.slop)).clamp(0.0, settings.push_out_speed);
-            let (pa, pb) = bodies.push_velocity(c);
+            let pa = bodies.push[ia];
+            let pb = if b_static {
+                Vec2::ZERO
+            } else {
+                bodies.push[ib]
+            };
             let pn = (pb - pa).dot(c.normal);
             let new_p = (c.push_impulse + c.mass * (target - pn)).max(0.0);
-            let dp = new_p - c.push_impulse;
+            let impulse = c.normal * (new_p - c.push_impulse);
             c.push_impulse = new_p;
-            bodies.apply_push(c, c.normal * dp);
+            bodies.push[ia] = pa - impulse * c.inv_mass_a;
+            if !b_static {
+                bodies.push[ib] = pb + impulse * c.inv_mass_b;
+            }
         }
     }
 }

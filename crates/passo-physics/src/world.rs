@@ -724,18 +724,31 @@ impl World {
         let ContactWorld {
             constraints,
             start,
+            delta,
             push,
             ..
         } = &mut *cw;
+        // The velocity update of the common case needs no general path.
+        let kernel = PointMassKernel::new(
+            &self.settings.forces,
+            integrator,
+            self.settings.force_form,
+            !self.custom.is_empty() || self.game_friction,
+            None,
+        );
         for _ in 0..substeps {
             // Integrate velocities.
-            let forces = forces(&self.settings, &self.custom, self.game_friction);
             let b = &mut self.dynamic;
-            for i in 0..b.pos.len() {
-                let (v, c) = integrate_velocity(integrator, &forces, b, i, h, &mut resets);
-                b.vel[i] = v;
-                if corrects {
-                    correction[i] = c;
+            if let Some(kernel) = &kernel {
+                resets += kernel.velocities(b, h);
+            } else {
+                let forces = forces(&self.settings, &self.custom, self.game_friction);
+                for i in 0..b.pos.len() {
+                    let (v, c) = integrate_velocity(integrator, &forces, b, i, h, &mut resets);
+                    b.vel[i] = v;
+                    if corrects {
+                        correction[i] = c;
+                    }
                 }
             }
             // Warm start and solve contacts.
@@ -744,8 +757,7 @@ impl World {
             let mut bodies = SolverBodies {
                 vel: &mut b.vel,
                 push,
-                pos: &b.pos,
-                start,
+                delta,
             };
             if settings.warm_starting {
                 solver::warm_start(constraints, &mut bodies);
@@ -762,13 +774,13 @@ impl World {
                 }
                 let c = if corrects { correction[i] } else { Vec2::ZERO };
                 b.pos[i] += (v + push[i]) * h + c;
+                delta[i] = b.pos[i] - start[i];
             }
             // Relax: velocity iterations at the new positions.
             let mut bodies = SolverBodies {
                 vel: &mut b.vel,
                 push,
-                pos: &b.pos,
-                start,
+                delta,
             };
             for _ in 0..settings.relax_iterations {
                 solver::solve(constraints, &mut bodies, settings, h, false);
@@ -778,8 +790,7 @@ impl World {
         let mut bodies = SolverBodies {
             vel: &mut b.vel,
             push,
-            pos: &b.pos,
-            start,
+            delta,
         };
         solver::restitution(constraints, &mut bodies, settings.restitution_threshold);
         solver::store_separations(constraints, &bodies);

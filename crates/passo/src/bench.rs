@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use glam::Vec2;
-use passo_physics::{BodyDef, Shape, World};
+use passo_benches::{pyramid_world, rain_strip, rain_world, time_steps};
 use passo_render::{AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer};
 use std::time::Instant;
 
@@ -20,6 +20,40 @@ pub enum BenchWhat {
     Render(RenderBenchArgs),
     /// Collision scenes: rain of circles into a box, and pyramids.
     Physics(PhysicsBenchArgs),
+    /// Integration alone (gravity + quadratic drag) against this machine's
+    /// memory bandwidth.
+    Integration(IntegrationBenchArgs),
+    /// Step cost over growing sizes of a rain strip 20 rows deep (the
+    /// same neighbourhood for every body), with the fitted exponent of cost
+    /// against size.
+    Scaling(ScalingBenchArgs),
+}
+
+/// Options of `passo bench integration`.
+#[derive(clap::Args, Debug)]
+pub struct IntegrationBenchArgs {
+    /// Body counts, comma separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "1000,10000,100000,1000000"
+    )]
+    pub sizes: Vec<usize>,
+}
+
+/// Options of `passo bench scaling`.
+#[derive(clap::Args, Debug)]
+pub struct ScalingBenchArgs {
+    /// Rain sizes, comma separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "1000,2000,5000,10000,20000,50000,100000"
+    )]
+    pub sizes: Vec<usize>,
+    /// Ticks per size; the mean of the last two thirds is kept.
+    #[arg(long, default_value_t = 180)]
+    pub ticks: u32,
 }
 
 /// Options of `passo bench physics`.
@@ -58,99 +92,141 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     match &args.what {
         BenchWhat::Render(a) => render(a),
         BenchWhat::Physics(a) => physics(a),
+        BenchWhat::Integration(a) => integration(a),
+        BenchWhat::Scaling(a) => scaling(a),
     }
 }
 
-/// Circles of radius 0.1 m raining into an open box: `n` bodies on a
-/// jittered grid twice as wide as it is tall, 1 cm to 4 cm apart.
-pub fn rain_world(n: usize) -> World {
-    let mut world = World::default();
-    let columns = ((2.0 * (n as f32).sqrt()).ceil() as usize).max(1);
-    let rows = n.div_ceil(columns);
-    let spacing = 0.25;
-    let width = columns as f32 * spacing + 1.0;
-    let height = rows as f32 * spacing + 5.0;
-    let fixed = |w: &mut World, centre: Vec2, size: Vec2| {
-        w.add_body(BodyDef::fixed(centre, Shape::rect(size.x, size.y)))
-            .expect("valid wall");
-    };
-    fixed(
-        &mut world,
-        Vec2::new(0.0, -0.5),
-        Vec2::new(width + 2.0, 1.0),
-    );
-    fixed(
-        &mut world,
-        Vec2::new(-width * 0.5 - 0.5, height * 0.5),
-        Vec2::new(1.0, height),
-    );
-    fixed(
-        &mut world,
-        Vec2::new(width * 0.5 + 0.5, height * 0.5),
-        Vec2::new(1.0, height),
-    );
-    let mut seed = 0x2545_F491_4F6C_DD1Du64;
-    let mut jitter = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        ((seed >> 40) as f32 / (1u64 << 24) as f32 - 0.5) * 0.03
-    };
-    for k in 0..n {
-        let (i, j) = (k % columns, k / columns);
-        let p = Vec2::new(
-            -width * 0.5 + 0.5 + (i as f32 + 0.5) * spacing + jitter(),
-            0.5 + j as f32 * spacing + jitter(),
-        );
-        let def = BodyDef {
-            position: p,
-            shape: Some(Shape::circle(0.1)),
-            mass: 0.1,
+/// Bytes the integration kernel moves per body-step: it reads position,
+/// velocity, force (8 bytes each), inverse mass and drag area (4 each), and
+/// writes position and velocity (8 each) and the cleared force (8).
+pub const INTEGRATION_BYTES: f64 = 64.0;
+
+/// Best-of-five memory bandwidth of a plain copy over `bytes` bytes, bytes
+/// per second (counting what is read and what is written).
+pub fn copy_bandwidth(bytes: usize) -> f64 {
+    let src = vec![1u8; bytes];
+    let mut dst = vec![0u8; bytes];
+    let reps = (200_000_000 / bytes.max(1)).clamp(3, 10_000);
+    (0..5)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..reps {
+                dst.copy_from_slice(std::hint::black_box(&src));
+                std::hint::black_box(&mut dst);
+            }
+            2.0 * bytes as f64 * reps as f64 / start.elapsed().as_secs_f64()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Best-of-five bandwidth of the STREAM triad `a = b + s c` over three f32
+/// arrays of `len` elements, bytes per second.
+pub fn triad_bandwidth(len: usize) -> f64 {
+    let b = vec![1.0f32; len];
+    let c = vec![2.0f32; len];
+    let mut a = vec![0.0f32; len];
+    let reps = (50_000_000 / len.max(1)).clamp(3, 10_000);
+    (0..5)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..reps {
+                for ((a, b), c) in a.iter_mut().zip(std::hint::black_box(&b)).zip(&c) {
+                    *a = b + 3.0 * c;
+                }
+                std::hint::black_box(&mut a);
+            }
+            12.0 * len as f64 * reps as f64 / start.elapsed().as_secs_f64()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Nanoseconds per body-step of `n` point masses under gravity and
+/// quadratic drag (the best of five timed runs).
+pub fn integration_ns(n: usize) -> f64 {
+    let mut world = passo_physics::World::new(passo_physics::WorldSettings {
+        forces: passo_physics::ForceModels {
+            quadratic_drag: Some(passo_physics::QuadraticDrag::default()),
+            ..Default::default()
+        },
+        ..Default::default()
+    })
+    .expect("valid settings");
+    for i in 0..n {
+        let def = passo_physics::BodyDef {
+            position: Vec2::new((i % 1000) as f32, (i / 1000) as f32),
+            velocity: Vec2::new(3.0, 1.0),
             ..Default::default()
         };
-        world.add_body(def).expect("valid circle");
+        world.add_body(def).expect("valid body");
     }
-    world
+    let steps = (20_000_000 / n.max(1)).clamp(5, 20_000);
+    world.step(1.0 / 60.0);
+    (0..5)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..steps {
+                world.step(1.0 / 60.0);
+            }
+            start.elapsed().as_nanos() as f64 / (n * steps) as f64
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
-/// A pyramid of unit boxes with `base` boxes in the bottom row.
-pub fn pyramid_world(base: usize) -> World {
-    let mut world = World::default();
-    world
-        .add_body(BodyDef::fixed(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(base as f32 * 2.0 + 10.0, 1.0),
-        ))
-        .expect("valid ground");
-    for row in 0..base {
-        for i in 0..base - row {
-            let x = i as f32 - (base - row - 1) as f32 * 0.5;
-            let def = BodyDef {
-                position: Vec2::new(x, 0.5 + row as f32),
-                shape: Some(Shape::rect(1.0, 1.0)),
-                ..Default::default()
-            };
-            world.add_body(def).expect("valid box");
-        }
+fn integration(args: &IntegrationBenchArgs) -> Result<()> {
+    println!(
+        "| bodies | ns per body-step | kernel bandwidth | copy bandwidth | triad bandwidth | fraction of copy |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|");
+    for &n in &args.sizes {
+        let ns = integration_ns(n);
+        let kernel = INTEGRATION_BYTES / ns; // bytes per ns = GB/s
+        let copy = copy_bandwidth(n * 32) / 1e9;
+        let triad = triad_bandwidth(n * 8) / 1e9;
+        println!(
+            "| {n} | {ns:.2} | {kernel:.1} GB/s | {copy:.1} GB/s | {triad:.1} GB/s | {:.0} % |",
+            100.0 * kernel / copy
+        );
     }
-    world
+    Ok(())
 }
 
-/// Steps `world` `ticks` times at 60 Hz; returns the mean milliseconds per
-/// step over all ticks and over the last fifth.
-pub fn time_steps(world: &mut World, ticks: u32) -> (f64, f64) {
-    let tail = (ticks / 5).max(1);
-    let (mut all, mut last) = (0.0, 0.0);
-    for t in 0..ticks {
-        let start = Instant::now();
-        world.step(1.0 / 60.0);
-        let ms = start.elapsed().as_secs_f64() * 1e3;
-        all += ms;
-        if t >= ticks - tail {
-            last += ms;
+/// The exponent `k` of the least-squares fit `cost = c n^k`.
+pub fn fitted_exponent(points: &[(f64, f64)]) -> f64 {
+    let n = points.len() as f64;
+    let logs: Vec<(f64, f64)> = points.iter().map(|(x, y)| (x.ln(), y.ln())).collect();
+    let (mx, my) = logs
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let (sxy, sxx) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
+        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
+    });
+    sxy / sxx
+}
+
+fn scaling(args: &ScalingBenchArgs) -> Result<()> {
+    println!("| bodies | ms per step | µs per body-step |");
+    println!("|---:|---:|---:|");
+    let mut points = Vec::new();
+    for &n in &args.sizes {
+        let mut world = rain_strip(n);
+        let warm = args.ticks / 3;
+        for _ in 0..warm {
+            world.step(1.0 / 60.0);
         }
+        let t = time_steps(args.ticks - warm, || world.step(1.0 / 60.0));
+        println!(
+            "| {n} | {:.2} | {:.3} |",
+            t.mean_ms,
+            t.mean_ms * 1e3 / n as f64
+        );
+        points.push((n as f64, t.mean_ms));
     }
-    (all / f64::from(ticks.max(1)), last / f64::from(tail))
+    println!(
+        "\nfitted exponent of ms per step against bodies: {:.3}",
+        fitted_exponent(&points)
+    );
+    Ok(())
 }
 
 fn physics(args: &PhysicsBenchArgs) -> Result<()> {
@@ -170,10 +246,12 @@ fn physics(args: &PhysicsBenchArgs) -> Result<()> {
                 .map(|&b| (format!("pyramid {b}"), pyramid_world(b))),
         );
     for (name, mut world) in scenes {
-        let (mean, last) = time_steps(&mut world, args.ticks);
+        let t = time_steps(args.ticks, || world.step(1.0 / 60.0));
         println!(
-            "| {name} | {} | {mean:.2} | {last:.2} | {:.2} |",
+            "| {name} | {} | {:.2} | {:.2} | {:.2} |",
             world.dynamic_len(),
+            t.mean_ms,
+            t.last_ms,
             world.max_penetration() * 1e3
         );
     }

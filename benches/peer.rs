@@ -1,0 +1,106 @@
+//! The peer comparison: the same rain of circles in Passo and in rapier2d,
+//! in one run, on one thread each.
+//!
+//! Like for like: the same bodies (radius 0.1 m, 0.1 kg) and walls, dt =
+//! 1/60 s, gravity 9.81 m/s², restitution 0, friction 0.6 (both engines
+//! combine two equal coefficients to the same value), 4 substeps each
+//! (rapier's default `num_solver_iterations` = 4 with one PGS and one
+//! stabilisation pass each; Passo's 4 substeps with 2 passes and one relax).
+//! Rotations are locked in rapier (Passo's bodies do not rotate), CCD is off
+//! in rapier (Passo's speculative contacts are always on). Sleeping is off in
+//! rapier for the main comparison (Passo has no sleeping); a second rapier
+//! column lets its bodies sleep. Penetration is measured the same way for
+//! both: Passo's exact geometry at the final positions.
+//!
+//! Run: `cargo run --release -p passo-benches --features rapier --bin peer [N ...]`
+
+use passo_benches::{RAIN_MASS, RAIN_RADIUS, rain_world, time_steps};
+use passo_physics::{BodyKind, Shape, World};
+use rapier2d::prelude::*;
+
+struct Rapier {
+    world: PhysicsWorld,
+    handles: Vec<(passo_physics::BodyId, RigidBodyHandle)>,
+}
+
+/// The same bodies as a Passo world, in rapier.
+fn rapier_copy(passo: &World, sleep: bool) -> Rapier {
+    let mut world = PhysicsWorld::new();
+    world.gravity = Vector::new(0.0, -9.81);
+    world.integration_parameters.dt = 1.0 / 60.0;
+    let mut handles = Vec::new();
+    for b in passo.bodies() {
+        let rb = match b.kind {
+            BodyKind::Static => RigidBodyBuilder::fixed(),
+            BodyKind::Dynamic => RigidBodyBuilder::dynamic()
+                .lock_rotations()
+                .can_sleep(sleep),
+        }
+        .translation(Vector::new(b.position.x, b.position.y))
+        .build();
+        let handle = world.bodies.insert(rb);
+        let collider = match b.shape.expect("benchmark bodies have shapes") {
+            Shape::Circle { radius } => ColliderBuilder::ball(radius),
+            Shape::Box { half_extents } => ColliderBuilder::cuboid(half_extents.x, half_extents.y),
+        }
+        .friction(0.6)
+        .restitution(0.0)
+        .density(if b.kind == BodyKind::Dynamic {
+            RAIN_MASS / (std::f32::consts::PI * RAIN_RADIUS * RAIN_RADIUS)
+        } else {
+            1.0
+        })
+        .build();
+        world
+            .colliders
+            .insert_with_parent(collider, handle, &mut world.bodies);
+        handles.push((b.id, handle));
+    }
+    Rapier { world, handles }
+}
+
+/// Max penetration of rapier's final state, by Passo's exact geometry.
+fn rapier_penetration(passo: &World, rapier: &Rapier) -> f32 {
+    let mut copy = passo.clone();
+    for &(id, handle) in &rapier.handles {
+        let t = rapier.world.bodies[handle].translation();
+        copy.set_position(id, passo_physics::glam::Vec2::new(t.x, t.y))
+            .expect("body exists");
+    }
+    copy.max_penetration()
+}
+
+fn main() {
+    let sizes: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    let sizes = if sizes.is_empty() {
+        vec![1000, 10_000]
+    } else {
+        sizes
+    };
+    let ticks = 300;
+    println!(
+        "| rain | Passo ms/step | rapier2d ms/step (awake) | speed-up | Passo max penetration | rapier2d max penetration | rapier2d ms/step (sleeping on) |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|");
+    for n in sizes {
+        let mut passo = rain_world(n);
+        let start = passo.clone();
+        let p = time_steps(ticks, || passo.step(1.0 / 60.0));
+        let mut awake = rapier_copy(&start, false);
+        let r = time_steps(ticks, || awake.world.step());
+        let mut sleepy = rapier_copy(&start, true);
+        let s = time_steps(ticks, || sleepy.world.step());
+        println!(
+            "| {n} | {:.2} | {:.2} | {:.2}× | {:.1} mm | {:.1} mm | {:.2} |",
+            p.mean_ms,
+            r.mean_ms,
+            r.mean_ms / p.mean_ms,
+            passo.max_penetration() * 1e3,
+            rapier_penetration(&start, &awake) * 1e3,
+            s.mean_ms
+        );
+    }
+}

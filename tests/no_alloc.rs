@@ -1,0 +1,63 @@
+//! A world in steady state allocates nothing: after warming up, stepping a
+//! rain scene (broad phase, narrow phase, solver, events) makes no heap
+//! allocation at all. A counting global allocator checks it.
+
+use passo_scene::Scene;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// Counts allocations while `COUNTING` is on.
+struct Counting;
+
+static COUNTING: AtomicBool = AtomicBool::new(false);
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: every method forwards to `System` with the caller's arguments
+// unchanged, so `System`'s guarantees hold; counting touches only atomics.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // SAFETY: forwarded as is (see the impl).
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: forwarded as is (see the impl).
+        unsafe { System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // SAFETY: forwarded as is (see the impl).
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn stepping_a_rain_scene_allocates_nothing_after_warm_up() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
+    let mut world = Scene::load(&path).unwrap().build().unwrap().world;
+    // Warm up: the rain falls and piles; buffers grow to their working size.
+    for _ in 0..240 {
+        world.step(1.0 / 60.0);
+    }
+    COUNTING.store(true, Ordering::Relaxed);
+    for _ in 0..60 {
+        world.step(1.0 / 60.0);
+    }
+    COUNTING.store(false, Ordering::Relaxed);
+    assert!(world.contacts().count() > 2000, "the pile is in contact");
+    assert_eq!(
+        ALLOCATIONS.load(Ordering::Relaxed),
+        0,
+        "allocations while stepping"
+    );
+}
