@@ -67,3 +67,42 @@ fn a_busy_scene_reaches_the_same_bits_as_always() {
          set EXPECTED to {hash:#018x} (see the comment at the top of this file)"
     );
 }
+
+/// The rain with `n` circles: large enough that the per-body stages and the
+/// narrow phase go to the thread pool.
+fn big_rain(n: u32) -> World {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
+    let mut scene = Scene::load(&path).unwrap();
+    for g in &mut scene.file.generators {
+        if let passo_scene::Generator::Rain { count, columns, .. } = g {
+            *count = n;
+            *columns = 60;
+        }
+    }
+    scene.build().unwrap().world
+}
+
+#[test]
+fn the_same_bits_whatever_the_number_of_threads() {
+    let hashes = |threads: Option<usize>| {
+        let mut world = big_rain(6000);
+        assert!(world.dynamic_len() >= passo_physics::constants::PARALLEL_MIN_ITEMS);
+        world.set_parallel(threads.is_some());
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads.unwrap_or(1))
+            .build()
+            .unwrap();
+        pool.install(|| {
+            (0..90)
+                .map(|_| {
+                    world.step(1.0 / 60.0);
+                    world.state_hash()
+                })
+                .collect::<Vec<u64>>()
+        })
+    };
+    let single = hashes(None);
+    assert_eq!(hashes(Some(1)), single, "one worker thread");
+    assert_eq!(hashes(Some(2)), single, "two worker threads");
+    assert_eq!(hashes(Some(4)), single, "four worker threads on two cores");
+}

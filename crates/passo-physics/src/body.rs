@@ -316,9 +316,50 @@ pub(crate) struct DynamicBodies {
     pub meta: Vec<BodyMeta>,
 }
 
+/// The arrays a body's forces are computed from, borrowed apart from the
+/// positions and velocities that a step writes.
+pub(crate) struct BodyArrays<'a> {
+    pub force: &'a [Vec2],
+    pub inv_mass: &'a [f32],
+    pub drag_area: &'a [f32],
+    pub friction: &'a [f32],
+    pub friction_force: &'a [f32],
+    pub limits: &'a [SpeedLimits],
+}
+
+impl BodyArrays<'_> {
+    /// What the force models read for body `i`.
+    #[inline(always)]
+    pub fn params(&self, i: usize) -> crate::forces::BodyParams {
+        crate::forces::BodyParams {
+            inv_mass: self.inv_mass[i],
+            force: self.force[i],
+            drag_area: self.drag_area[i],
+            friction: self.friction[i],
+            friction_force: self.friction_force[i],
+        }
+    }
+}
+
 impl DynamicBodies {
     pub fn len(&self) -> usize {
         self.pos.len()
+    }
+
+    /// Positions and velocities to write, the rest to read.
+    pub fn split(&mut self) -> (&mut [Vec2], &mut [Vec2], BodyArrays<'_>) {
+        (
+            &mut self.pos,
+            &mut self.vel,
+            BodyArrays {
+                force: &self.force,
+                inv_mass: &self.inv_mass,
+                drag_area: &self.drag_area,
+                friction: &self.friction,
+                friction_force: &self.friction_force,
+                limits: &self.limits,
+            },
+        )
     }
 
     pub fn push(&mut self, def: &BodyDef, meta: BodyMeta, limits: SpeedLimits, keep_prev: bool) {

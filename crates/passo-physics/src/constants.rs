@@ -76,3 +76,13 @@ pub const CONTACT_PUSH_SPEED: f32 = 3.0;
 /// Default restitution threshold, metres per second: 1. Slower impacts do
 /// not bounce, so bouncy bodies come to rest.
 pub const RESTITUTION_THRESHOLD: f32 = 1.0;
+
+/// Worlds with at least this many dynamic bodies (or contact pairs) run
+/// their per-body stages and narrow phase on rayon's thread pool, with the
+/// `parallel` feature. Below it the cost of handing work to threads
+/// outweighs the gain. Results are the same bits either way.
+pub const PARALLEL_MIN_ITEMS: usize = 4096;
+
+/// Bodies (or pairs) per parallel task: large enough that handing out a
+/// task costs little against the work in it.
+pub const PARALLEL_CHUNK: usize = 1024;

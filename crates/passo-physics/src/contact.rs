@@ -10,7 +10,7 @@ use crate::constants::{
 };
 use crate::error::{non_negative, positive};
 use crate::manifold::collide;
-use crate::solver::{Constraint, STATIC_BODY};
+use crate::solver::{Constraint, ContactInfo, STATIC_BODY};
 use crate::static_tree::StaticTree;
 use crate::{Aabb, BodyId, PhysicsError, Shape};
 use glam::Vec2;
@@ -241,6 +241,112 @@ struct Collider {
     body: u32,
     id: BodyId,
     sensor: bool,
+    filter: CollisionFilter,
+}
+
+/// What the narrow phase makes of one candidate pair.
+#[derive(Clone, Copy, Debug)]
+enum Outcome {
+    /// Filtered out, or too far apart.
+    Skip,
+    /// A sensor and a body that may end the step inside it.
+    Sensor(SensorCandidate),
+    /// A contact to solve.
+    Contact(Constraint, ContactInfo),
+}
+
+/// What the narrow phase reads (shared by the threads that run it).
+struct Narrow<'a> {
+    proxy_body: &'a [u32],
+    margins: &'a [f32],
+    dynamic: &'a DynamicBodies,
+    statics: &'a StaticBodies,
+    gravity: Vec2,
+    h: f32,
+}
+
+impl Narrow<'_> {
+    fn collider(&self, body: u32) -> Collider {
+        let meta = if body & STATIC_BODY != 0 {
+            &self.statics.meta[(body & !STATIC_BODY) as usize]
+        } else {
+            &self.dynamic.meta[body as usize]
+        };
+        Collider {
+            shape: meta.shape.expect("a collider has a shape"),
+            body,
+            id: meta.id,
+            sensor: meta.sensor,
+            filter: meta.filter,
+        }
+    }
+
+    fn position(&self, c: &Collider) -> Vec2 {
+        if c.body & STATIC_BODY != 0 {
+            self.statics.pos[(c.body & !STATIC_BODY) as usize]
+        } else {
+            self.dynamic.pos[c.body as usize]
+        }
+    }
+
+    /// The contact (or sensor candidate) of proxy `pa` with proxy or static
+    /// body `pb`.
+    fn pair(&self, pa: u32, pb: u32) -> Outcome {
+        let a_body = self.proxy_body[pa as usize];
+        let (b_body, margin) = if pb & STATIC_BODY == 0 {
+            (
+                self.proxy_body[pb as usize],
+                self.margins[pa as usize] + self.margins[pb as usize],
+            )
+        } else {
+            (pb, self.margins[pa as usize] + 0.5 * SPECULATIVE_DISTANCE)
+        };
+        let (ca, cb) = (self.collider(a_body), self.collider(b_body));
+        if !ca.filter.allows(&cb.filter) || (ca.sensor && cb.sensor) {
+            return Outcome::Skip;
+        }
+        if ca.sensor || cb.sensor {
+            let (s, v) = if ca.sensor { (ca, cb) } else { (cb, ca) };
+            return Outcome::Sensor(SensorCandidate {
+                pair: SensorPair {
+                    sensor: s.id,
+                    visitor: v.id,
+                },
+                sensor: s.body,
+                visitor: v.body,
+            });
+        }
+        // A static body is always B; otherwise the lower id is A, so a
+        // contact's orientation does not depend on storage order.
+        let (ca, cb) = if cb.body & STATIC_BODY != 0 || ca.id.index <= cb.id.index {
+            (ca, cb)
+        } else {
+            (cb, ca)
+        };
+        match collide(
+            &ca.shape,
+            self.position(&ca),
+            &cb.shape,
+            self.position(&cb),
+            margin,
+        ) {
+            Some(m) => {
+                let (row, info) = Constraint::new(
+                    &m,
+                    ca.body,
+                    cb.body,
+                    ca.id,
+                    cb.id,
+                    self.dynamic,
+                    self.statics,
+                    self.gravity,
+                    self.h,
+                );
+                Outcome::Contact(row, info)
+            }
+            None => Outcome::Skip,
+        }
+    }
 }
 
 /// Everything the contact stage keeps between steps. Created the first time
@@ -258,10 +364,14 @@ pub(crate) struct ContactWorld {
     /// Per-body travel margin this step, by proxy.
     margins: Vec<f32>,
     pairs: Vec<(u32, u32)>,
+    /// What the narrow phase found for each keyed pair.
+    outcomes: Vec<Outcome>,
     /// Candidate pairs with their order key (the two slot indices, lower
     /// first): `(key, proxy, proxy or STATIC_BODY | static index)`.
     keyed: Vec<(u64, u32, u32)>,
     pub constraints: Vec<Constraint>,
+    /// The rest of each contact, beside `constraints`.
+    pub infos: Vec<ContactInfo>,
     /// Positions at the start of the step.
     pub start: Vec<Vec2>,
     /// Displacement since the start of the step, per dynamic body
@@ -320,6 +430,7 @@ impl ContactWorld {
         gravity: Vec2,
         dt: f32,
         h: f32,
+        parallel: bool,
     ) {
         if self.tree_dirty {
             self.rebuild_tree(statics);
@@ -381,90 +492,63 @@ impl ContactWorld {
             self.keyed.push((x.min(y) << 32 | x.max(y), pa, pb));
         }
         self.keyed.sort_unstable_by_key(|k| k.0);
-        let collider = |body: u32| -> Collider {
-            if body & STATIC_BODY != 0 {
-                let s = (body & !STATIC_BODY) as usize;
-                let m = &statics.meta[s];
-                Collider {
-                    shape: m.shape.expect("static collider has a shape"),
-                    body,
-                    id: m.id,
-                    sensor: m.sensor,
-                }
-            } else {
-                let m = &dynamic.meta[body as usize];
-                Collider {
-                    shape: m.shape.expect("proxy has a shape"),
-                    body,
-                    id: m.id,
-                    sensor: m.sensor,
-                }
-            }
+        let mut outcomes = std::mem::take(&mut self.outcomes);
+        outcomes.clear();
+        outcomes.resize(self.keyed.len(), Outcome::Skip);
+        let narrow = Narrow {
+            proxy_body: &self.proxy_body,
+            margins: &self.margins,
+            dynamic,
+            statics,
+            gravity,
+            h,
         };
-        let mut constraints = std::mem::take(&mut self.constraints);
-        constraints.clear();
-        self.sensor_candidates.clear();
-        for &(_, pa, pb) in &self.keyed {
-            let a_body = self.proxy_body[pa as usize];
-            let (b_body, margin) = if pb & STATIC_BODY == 0 {
-                (
-                    self.proxy_body[pb as usize],
-                    self.margins[pa as usize] + self.margins[pb as usize],
-                )
-            } else {
-                (pb, self.margins[pa as usize] + 0.5 * SPECULATIVE_DISTANCE)
-            };
-            let (ca, cb) = (collider(a_body), collider(b_body));
-            let filter_a = &dynamic.meta[a_body as usize].filter;
-            let filter_b = if b_body & STATIC_BODY != 0 {
-                &statics.meta[(b_body & !STATIC_BODY) as usize].filter
-            } else {
-                &dynamic.meta[b_body as usize].filter
-            };
-            if !filter_a.allows(filter_b) || (ca.sensor && cb.sensor) {
-                continue;
-            }
-            let pos_of = |c: &Collider| {
-                if c.body & STATIC_BODY != 0 {
-                    statics.pos[(c.body & !STATIC_BODY) as usize]
-                } else {
-                    dynamic.pos[c.body as usize]
-                }
-            };
-            if ca.sensor || cb.sensor {
-                let (s, v) = if ca.sensor { (ca, cb) } else { (cb, ca) };
-                self.sensor_candidates.push(SensorCandidate {
-                    pair: SensorPair {
-                        sensor: s.id,
-                        visitor: v.id,
-                    },
-                    sensor: s.body,
-                    visitor: v.body,
+        let keyed = &self.keyed;
+        #[cfg(feature = "parallel")]
+        if crate::parallel::goes_parallel(parallel, keyed.len()) {
+            use rayon::prelude::*;
+            let c = crate::constants::PARALLEL_CHUNK;
+            outcomes
+                .par_chunks_mut(c)
+                .zip(keyed.par_chunks(c))
+                .for_each(|(out, pairs)| {
+                    for (o, &(_, pa, pb)) in out.iter_mut().zip(pairs) {
+                        *o = narrow.pair(pa, pb);
+                    }
                 });
-                continue;
+        } else {
+            for (o, &(_, pa, pb)) in outcomes.iter_mut().zip(keyed) {
+                *o = narrow.pair(pa, pb);
             }
-            // A static body is always B; otherwise the lower id is A, so a
-            // contact's orientation does not depend on storage order.
-            let (ca, cb) = if cb.body & STATIC_BODY != 0 || ca.id.index <= cb.id.index {
-                (ca, cb)
-            } else {
-                (cb, ca)
-            };
-            let Some(m) = collide(&ca.shape, pos_of(&ca), &cb.shape, pos_of(&cb), margin) else {
-                continue;
-            };
-            constraints.push(Constraint::new(
-                &m, ca.body, cb.body, ca.id, cb.id, dynamic, statics, gravity, h,
-            ));
         }
-        debug_assert!(constraints.is_sorted_by_key(|c| key(c.id_a, c.id_b)));
-        self.constraints = constraints;
+        #[cfg(not(feature = "parallel"))]
+        {
+            let _ = parallel;
+            for (o, &(_, pa, pb)) in outcomes.iter_mut().zip(keyed) {
+                *o = narrow.pair(pa, pb);
+            }
+        }
+        self.constraints.clear();
+        self.infos.clear();
+        self.sensor_candidates.clear();
+        for o in &outcomes {
+            match o {
+                Outcome::Skip => {}
+                Outcome::Sensor(candidate) => self.sensor_candidates.push(*candidate),
+                Outcome::Contact(row, info) => {
+                    self.constraints.push(*row);
+                    self.infos.push(*info);
+                }
+            }
+        }
+        self.outcomes = outcomes;
+        debug_assert!(self.infos.is_sorted_by_key(|c| key(c.id_a, c.id_b)));
 
         // Warm starting: merge with last step's impulses (both sorted by key).
         if settings.warm_starting {
             let mut j = 0;
-            for c in &mut self.constraints {
-                let k = key(c.id_a, c.id_b);
+            for (c, info) in self.constraints.iter_mut().zip(&self.infos) {
+                let k = key(info.id_a, info.id_b);
                 while j < self.cache.len() && self.cache[j].key < k {
                     j += 1;
                 }
@@ -490,14 +574,14 @@ impl ContactWorld {
         }
         self.cache.clear();
         self.touching.clear();
-        for c in &self.constraints {
-            let k = key(c.id_a, c.id_b);
+        for (c, info) in self.constraints.iter().zip(&self.infos) {
+            let k = key(info.id_a, info.id_b);
             self.cache.push(Cached {
                 key: k,
                 normal_impulse: c.normal_impulse,
                 tangent_impulse: c.tangent_impulse,
             });
-            if c.is_touching() {
+            if info.is_touching(c) {
                 self.touching.push(k);
             }
         }
@@ -527,6 +611,7 @@ impl ContactWorld {
     /// were removed): every contact and overlap ends.
     pub fn idle_step(&mut self, dynamic: &DynamicBodies, statics: &StaticBodies) {
         self.constraints.clear();
+        self.infos.clear();
         self.sensor_candidates.clear();
         self.end_step(dynamic, statics);
     }

@@ -58,13 +58,26 @@ impl PointMassKernel {
 
     /// One step of every dynamic body; returns how many were reset for a
     /// non-finite velocity.
-    pub fn run(&self, b: &mut DynamicBodies, dt: f32) -> u64 {
-        match (self.drag.is_some(), self.limits.is_some()) {
-            (false, false) => self.run_with::<false, false>(b, dt),
-            (false, true) => self.run_with::<false, true>(b, dt),
-            (true, false) => self.run_with::<true, false>(b, dt),
-            (true, true) => self.run_with::<true, true>(b, dt),
-        }
+    pub fn run(&self, b: &mut DynamicBodies, dt: f32, parallel: bool) -> u64 {
+        let step: fn(&Self, Slices<'_>, f32) -> u64 =
+            match (self.drag.is_some(), self.limits.is_some()) {
+                (false, false) => Self::run_with::<false, false>,
+                (false, true) => Self::run_with::<false, true>,
+                (true, false) => Self::run_with::<true, false>,
+                (true, true) => Self::run_with::<true, true>,
+            };
+        in_chunks(b, parallel, |s| step(self, s, dt))
+    }
+
+    /// New velocities only (the contact solver runs before positions move);
+    /// returns the number of non-finite resets.
+    pub fn velocities(&self, b: &mut DynamicBodies, dt: f32, parallel: bool) -> u64 {
+        let step: fn(&Self, Slices<'_>, f32) -> u64 = if self.drag.is_some() {
+            Self::velocities_with::<true>
+        } else {
+            Self::velocities_with::<false>
+        };
+        in_chunks(b, parallel, |s| step(self, s, dt))
     }
 
     /// The new velocity of one body (with the non-finite guard and the
@@ -95,23 +108,12 @@ impl PointMassKernel {
         )
     }
 
-    /// New velocities only (the contact solver runs before positions move);
-    /// returns the number of non-finite resets.
-    pub fn velocities(&self, b: &mut DynamicBodies, dt: f32) -> u64 {
-        if self.drag.is_some() {
-            self.velocities_with::<true>(b, dt)
-        } else {
-            self.velocities_with::<false>(b, dt)
-        }
-    }
-
-    fn velocities_with<const DRAG: bool>(&self, b: &mut DynamicBodies, dt: f32) -> u64 {
+    fn velocities_with<const DRAG: bool>(&self, s: Slices<'_>, dt: f32) -> u64 {
         let mut resets = 0u64;
-        let bodies = b.vel.iter_mut().zip(
-            b.force
-                .iter()
-                .zip(b.inv_mass.iter().zip(b.drag_area.iter())),
-        );
+        let bodies = s
+            .vel
+            .iter_mut()
+            .zip(s.force.iter().zip(s.inv_mass.iter().zip(s.drag_area)));
         for (v, (&f, (&im, &cda))) in bodies {
             let (nv, finite) = self.velocity::<DRAG>(*v, f, im, cda, dt);
             resets += u64::from(!finite);
@@ -120,19 +122,15 @@ impl PointMassKernel {
         resets
     }
 
-    fn run_with<const DRAG: bool, const LIMITS: bool>(
-        &self,
-        b: &mut DynamicBodies,
-        dt: f32,
-    ) -> u64 {
-        let n = b.pos.len();
+    fn run_with<const DRAG: bool, const LIMITS: bool>(&self, mut s: Slices<'_>, dt: f32) -> u64 {
+        let n = s.pos.len();
         let whole = n - n % LANES;
         let mut resets = 0;
         for start in (0..whole).step_by(LANES) {
-            resets += self.lanes::<DRAG, LIMITS>(b, start, dt);
+            resets += self.lanes::<DRAG, LIMITS>(&mut s, start, dt);
         }
         for i in whole..n {
-            resets += self.one::<DRAG, LIMITS>(b, i, dt);
+            resets += self.one::<DRAG, LIMITS>(&mut s, i, dt);
         }
         resets
     }
@@ -141,20 +139,20 @@ impl PointMassKernel {
     #[inline(always)]
     fn one<const DRAG: bool, const LIMITS: bool>(
         &self,
-        b: &mut DynamicBodies,
+        s: &mut Slices<'_>,
         i: usize,
         dt: f32,
     ) -> u64 {
         let (mut nv, finite) =
-            self.velocity::<DRAG>(b.vel[i], b.force[i], b.inv_mass[i], b.drag_area[i], dt);
+            self.velocity::<DRAG>(s.vel[i], s.force[i], s.inv_mass[i], s.drag_area[i], dt);
         if LIMITS {
             self.limits
                 .unwrap_or(SpeedLimits::new(0.0, f32::INFINITY))
                 .apply(&mut nv);
         }
-        b.vel[i] = nv;
+        s.vel[i] = nv;
         // `+ 0` as the general path adds its zero correction: same bits.
-        b.pos[i] += nv * dt + Vec2::ZERO;
+        s.pos[i] += nv * dt + Vec2::ZERO;
         u64::from(!finite)
     }
 
@@ -165,14 +163,14 @@ impl PointMassKernel {
     #[inline(always)]
     fn lanes<const DRAG: bool, const LIMITS: bool>(
         &self,
-        b: &mut DynamicBodies,
+        s: &mut Slices<'_>,
         start: usize,
         dt: f32,
     ) -> u64 {
         let r = start..start + LANES;
-        let (pos, vel) = (&mut b.pos[r.clone()], &mut b.vel[r.clone()]);
+        let (pos, vel) = (&mut s.pos[r.clone()], &mut s.vel[r.clone()]);
         let (force, inv_mass, drag_area) =
-            (&b.force[r.clone()], &b.inv_mass[r.clone()], &b.drag_area[r]);
+            (&s.force[r.clone()], &s.inv_mass[r.clone()], &s.drag_area[r]);
         let (half_rho, air) = self.drag.unwrap_or((0.0, Vec2::ZERO));
         let limits = self.limits.unwrap_or(SpeedLimits::new(0.0, f32::INFINITY));
         let mut vx = [0.0f32; LANES];
@@ -224,6 +222,55 @@ impl PointMassKernel {
         }
         reset.iter().map(|&r| u64::from(r)).sum()
     }
+}
+
+/// The arrays the kernel reads and writes, for a run of bodies.
+pub(crate) struct Slices<'a> {
+    pub pos: &'a mut [Vec2],
+    pub vel: &'a mut [Vec2],
+    pub force: &'a [Vec2],
+    pub inv_mass: &'a [f32],
+    pub drag_area: &'a [f32],
+}
+
+/// Runs `work` over the bodies: in chunks on rayon's pool for large worlds
+/// (with the `parallel` feature), else in one go. Every body's result is
+/// the same either way; the counts are summed (integers: any order).
+pub(crate) fn in_chunks(
+    b: &mut DynamicBodies,
+    parallel: bool,
+    work: impl Fn(Slices<'_>) -> u64 + Sync,
+) -> u64 {
+    #[cfg(feature = "parallel")]
+    if crate::parallel::goes_parallel(parallel, b.pos.len()) {
+        use rayon::prelude::*;
+        let c = crate::constants::PARALLEL_CHUNK;
+        return b
+            .pos
+            .par_chunks_mut(c)
+            .zip(b.vel.par_chunks_mut(c))
+            .zip(b.force.par_chunks(c))
+            .zip(b.inv_mass.par_chunks(c))
+            .zip(b.drag_area.par_chunks(c))
+            .map(|((((pos, vel), force), inv_mass), drag_area)| {
+                work(Slices {
+                    pos,
+                    vel,
+                    force,
+                    inv_mass,
+                    drag_area,
+                })
+            })
+            .sum();
+    }
+    let _ = parallel;
+    work(Slices {
+        pos: &mut b.pos,
+        vel: &mut b.vel,
+        force: &b.force,
+        inv_mass: &b.inv_mass,
+        drag_area: &b.drag_area,
+    })
 }
 
 /// Bodies the fast kernel handles at once.

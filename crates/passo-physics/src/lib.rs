@@ -42,6 +42,7 @@ mod forces;
 mod integrator;
 mod kernel;
 mod manifold;
+mod parallel;
 mod query;
 mod shape;
 mod snapshot;

@@ -31,17 +31,17 @@ impl World {
     pub fn contacts(&self) -> impl Iterator<Item = Contact> + '_ {
         self.contacts
             .iter()
-            .flat_map(|cw| cw.constraints.iter())
-            .map(|c| Contact {
-                a: c.id_a,
-                b: c.id_b,
+            .flat_map(|cw| cw.constraints.iter().zip(&cw.infos))
+            .map(|(c, info)| Contact {
+                a: info.id_a,
+                b: info.id_b,
                 normal: c.normal,
-                separation: c.separation,
-                points: c.points,
-                point_count: c.point_count,
+                separation: info.separation,
+                points: info.points,
+                point_count: info.point_count,
                 normal_impulse: c.normal_impulse,
                 tangent_impulse: c.tangent_impulse,
-                touching: c.is_touching(),
+                touching: info.is_touching(c),
             })
     }
 

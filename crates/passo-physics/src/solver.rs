@@ -38,38 +38,53 @@ use glam::Vec2;
 /// Marks a constraint's body B as static; the low bits are its static index.
 pub(crate) const STATIC_BODY: u32 = 1 << 31;
 
-/// One contact between a dynamic body A and a dynamic or static body B.
+/// What the solver reads and writes of one contact between a dynamic body
+/// A and a dynamic or static body B: kept small (56 bytes), so the passes
+/// over every contact stay in cache.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Constraint {
     pub a: u32,
     pub b: u32,
-    pub id_a: BodyId,
-    pub id_b: BodyId,
     pub normal: Vec2,
     /// Separation when the step began.
     pub base_separation: f32,
-    /// Separation after the last substep.
-    pub separation: f32,
-    pub points: [Vec2; 2],
-    pub point_count: u8,
     inv_mass_a: f32,
     inv_mass_b: f32,
     /// `1 / (1/m_a + 1/m_b)`, the same for the normal and the friction row.
     mass: f32,
     friction: f32,
+    pub normal_impulse: f32,
+    pub tangent_impulse: f32,
+    /// Push (position) impulse of the current substep.
+    push_impulse: f32,
+    pub max_normal_impulse: f32,
+}
+
+/// The rest of a contact: who, where, and what restitution needs.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ContactInfo {
+    pub id_a: BodyId,
+    pub id_b: BodyId,
+    /// Separation after the last substep.
+    pub separation: f32,
+    pub points: [Vec2; 2],
+    pub point_count: u8,
     restitution: f32,
     /// `u = v_n + a_n h / 2` at impact (negative when approaching).
     impact_u: f32,
     /// `a_n h / 2`.
     half_an_h: f32,
-    pub normal_impulse: f32,
-    pub tangent_impulse: f32,
-    /// Push (position) impulse of the current substep.
-    push_impulse: f32,
-    max_normal_impulse: f32,
+}
+
+impl ContactInfo {
+    /// Touching: the solver pushed the bodies apart this step, or they overlap.
+    pub fn is_touching(&self, c: &Constraint) -> bool {
+        c.max_normal_impulse > 0.0 || self.separation < 0.0
+    }
 }
 
 impl Constraint {
+    /// The solver row and the rest of a new contact.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         m: &Manifold,
@@ -81,7 +96,7 @@ impl Constraint {
         statics: &StaticBodies,
         gravity: Vec2,
         h: f32,
-    ) -> Self {
+    ) -> (Self, ContactInfo) {
         let ai = a as usize;
         let b_static = b & STATIC_BODY != 0;
         let (inv_mass_b, friction_b, restitution_b, vel_b) = if b_static {
@@ -126,37 +141,35 @@ impl Constraint {
                 impact_u = -u2.sqrt();
             }
         }
-        Self {
+        let row = Self {
             a,
             b,
-            id_a,
-            id_b,
             normal: m.normal,
             base_separation: m.separation,
-            separation: m.separation,
-            points: m.points,
-            point_count: m.point_count,
             inv_mass_a,
             inv_mass_b,
             mass: if k > 0.0 { 1.0 / k } else { 0.0 },
             friction: (dynamic.friction[ai] * friction_b).sqrt(),
-            restitution: dynamic.meta[ai].restitution.max(restitution_b),
-            impact_u,
-            half_an_h,
             normal_impulse: 0.0,
             tangent_impulse: 0.0,
             push_impulse: 0.0,
             max_normal_impulse: 0.0,
-        }
+        };
+        let info = ContactInfo {
+            id_a,
+            id_b,
+            separation: m.separation,
+            points: m.points,
+            point_count: m.point_count,
+            restitution: dynamic.meta[ai].restitution.max(restitution_b),
+            impact_u,
+            half_an_h,
+        };
+        (row, info)
     }
 
     pub fn is_static(&self) -> bool {
         self.b & STATIC_BODY != 0
-    }
-
-    /// Touching: the solver pushed the bodies apart this step, or they overlap.
-    pub fn is_touching(&self) -> bool {
-        self.max_normal_impulse > 0.0 || self.separation < 0.0
     }
 }
 
@@ -204,18 +217,19 @@ impl SolverBodies<'_> {
     }
 }
 
-/// Applies the impulses carried from the last substep (or step).
-pub(crate) fn warm_start(constraints: &[Constraint], bodies: &mut SolverBodies<'_>) {
-    for c in constraints {
-        let tangent = c.normal.perp();
-        bodies.apply(c, c.normal * c.normal_impulse + tangent * c.tangent_impulse);
-    }
-}
-
-/// Starts a substep's push: no push impulse yet.
-pub(crate) fn reset_push(constraints: &mut [Constraint]) {
+/// Starts a substep: applies the impulses carried from the last substep
+/// (or step) when warm starting, and clears the push impulses.
+pub(crate) fn begin_substep(
+    constraints: &mut [Constraint],
+    bodies: &mut SolverBodies<'_>,
+    warm: bool,
+) {
     for c in constraints {
         c.push_impulse = 0.0;
+        if warm {
+            let tangent = c.normal.perp();
+            bodies.apply(c, c.normal * c.normal_impulse + tangent * c.tangent_impulse);
+        }
     }
 }
 
@@ -289,16 +303,17 @@ pub(crate) fn solve(
 /// `u <- -e u_impact` (see [`Constraint::new`]).
 pub(crate) fn restitution(
     constraints: &mut [Constraint],
+    infos: &[ContactInfo],
     bodies: &mut SolverBodies<'_>,
     threshold: f32,
 ) {
-    for c in constraints.iter_mut() {
-        if c.restitution == 0.0 || c.impact_u > -threshold || c.max_normal_impulse == 0.0 {
+    for (c, info) in constraints.iter_mut().zip(infos) {
+        if info.restitution == 0.0 || info.impact_u > -threshold || c.max_normal_impulse == 0.0 {
             continue;
         }
         let (va, vb) = bodies.velocity(c);
         let vn = (vb - va).dot(c.normal);
-        let target = -c.restitution * c.impact_u - c.half_an_h;
+        let target = -info.restitution * info.impact_u - info.half_an_h;
         let new_n = (c.normal_impulse + c.mass * (target - vn)).max(0.0);
         let dn = new_n - c.normal_impulse;
         c.normal_impulse = new_n;
@@ -308,8 +323,12 @@ pub(crate) fn restitution(
 }
 
 /// Records each contact's separation at the end of the step.
-pub(crate) fn store_separations(constraints: &mut [Constraint], bodies: &SolverBodies<'_>) {
-    for c in constraints.iter_mut() {
-        c.separation = bodies.separation(c);
+pub(crate) fn store_separations(
+    constraints: &[Constraint],
+    infos: &mut [ContactInfo],
+    bodies: &SolverBodies<'_>,
+) {
+    for (c, info) in constraints.iter().zip(infos) {
+        info.separation = bodies.separation(c);
     }
 }

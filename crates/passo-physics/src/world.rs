@@ -9,6 +9,7 @@ use crate::error::{finite_vec, non_negative};
 use crate::forces::{BodyParams, Dissipation, Drive, potential_energy};
 use crate::integrator::{Forces, integrate_body};
 use crate::kernel::PointMassKernel;
+use crate::parallel::{chunks2, chunks3};
 use crate::solver::{self, SolverBodies};
 use crate::{
     Body, BodyDef, BodyId, BodyKind, ContactSettings, ForceForm, ForceModel, ForceModels,
@@ -167,6 +168,8 @@ pub struct World {
     pub(crate) contacts: Option<Box<ContactWorld>>,
     /// Position corrections of the multi-stage integrators, with contacts.
     correction: Vec<Vec2>,
+    /// Large worlds may run stages on rayon's pool (`parallel` feature).
+    parallel: bool,
     pub(crate) stats: StepStats,
 }
 
@@ -206,6 +209,7 @@ impl World {
             statics_dirty: false,
             contacts: None,
             correction: Vec::new(),
+            parallel: true,
             stats: StepStats::default(),
         })
     }
@@ -246,6 +250,19 @@ impl World {
     /// Removes every custom force model.
     pub fn clear_force_models(&mut self) {
         self.custom.clear();
+    }
+
+    /// Lets large worlds run their per-body stages and narrow phase on
+    /// rayon's thread pool (with the `parallel` feature; the default is on).
+    /// The results are the same bits either way; off, a step never hands
+    /// work to another thread.
+    pub fn set_parallel(&mut self, parallel: bool) {
+        self.parallel = parallel;
+    }
+
+    /// Whether large worlds may use the thread pool.
+    pub fn parallel(&self) -> bool {
+        self.parallel
     }
 
     /// Counters kept across steps.
@@ -683,20 +700,32 @@ impl World {
             limits,
         );
         if let Some(kernel) = kernel {
-            self.stats.non_finite_resets += kernel.run(&mut self.dynamic, dt);
+            self.stats.non_finite_resets += kernel.run(&mut self.dynamic, dt, self.parallel);
             return;
         }
         let forces = forces(&self.settings, &self.custom, self.game_friction);
-        let b = &mut self.dynamic;
-        let mut resets = 0;
-        for i in 0..b.pos.len() {
-            let (mut v, c) = integrate_velocity(integrator, &forces, b, i, dt, &mut resets);
-            if let Some(uniform) = limits {
-                uniform.unwrap_or(b.limits[i]).apply(&mut v);
+        let (pos, vel, arrays) = self.dynamic.split();
+        let resets = chunks2(self.parallel, pos, vel, |offset, pos, vel| {
+            let mut resets = 0;
+            for (k, (p, v)) in pos.iter_mut().zip(vel.iter_mut()).enumerate() {
+                let i = offset + k;
+                let (mut nv, c) = integrate_velocity(
+                    integrator,
+                    &forces,
+                    *p,
+                    *v,
+                    &arrays.params(i),
+                    dt,
+                    &mut resets,
+                );
+                if let Some(uniform) = limits {
+                    uniform.unwrap_or(arrays.limits[i]).apply(&mut nv);
+                }
+                *v = nv;
+                *p += nv * dt + c;
             }
-            b.vel[i] = v;
-            b.pos[i] += v * dt + c;
-        }
+            resets
+        });
         self.stats.non_finite_resets += resets;
     }
 
@@ -714,15 +743,28 @@ impl World {
             cw.statics_changed();
             self.statics_dirty = false;
         }
-        cw.begin_step(&self.dynamic, &self.statics, settings, gravity, dt, h);
+        let parallel = self.parallel;
+        cw.begin_step(
+            &self.dynamic,
+            &self.statics,
+            settings,
+            gravity,
+            dt,
+            h,
+            parallel,
+        );
         let integrator = self.settings.integrator;
         let limits = self.speed_limits();
         let mut resets = 0;
         let mut correction = std::mem::take(&mut self.correction);
         let corrects = integrator != Integrator::SemiImplicitEuler;
-        correction.resize(if corrects { self.dynamic.len() } else { 0 }, Vec2::ZERO);
+        // Zero for semi-implicit Euler; sized for every body so per-body
+        // loops can walk it beside the velocities.
+        correction.clear();
+        correction.resize(self.dynamic.len(), Vec2::ZERO);
         let ContactWorld {
             constraints,
+            infos,
             start,
             delta,
             push,
@@ -740,41 +782,61 @@ impl World {
             // Integrate velocities.
             let b = &mut self.dynamic;
             if let Some(kernel) = &kernel {
-                resets += kernel.velocities(b, h);
+                resets += kernel.velocities(b, h, parallel);
             } else {
                 let forces = forces(&self.settings, &self.custom, self.game_friction);
-                for i in 0..b.pos.len() {
-                    let (v, c) = integrate_velocity(integrator, &forces, b, i, h, &mut resets);
-                    b.vel[i] = v;
-                    if corrects {
-                        correction[i] = c;
+                let (pos, vel, arrays) = b.split();
+                let pos: &[Vec2] = pos;
+                resets += chunks2(parallel, vel, &mut correction, |offset, vel, correction| {
+                    let mut resets = 0;
+                    for (k, (v, c)) in vel.iter_mut().zip(correction.iter_mut()).enumerate() {
+                        let i = offset + k;
+                        (*v, *c) = integrate_velocity(
+                            integrator,
+                            &forces,
+                            pos[i],
+                            *v,
+                            &arrays.params(i),
+                            h,
+                            &mut resets,
+                        );
                     }
-                }
+                    resets
+                });
             }
             // Warm start and solve contacts.
             push.fill(Vec2::ZERO);
-            solver::reset_push(constraints);
             let mut bodies = SolverBodies {
                 vel: &mut b.vel,
                 push,
                 delta,
             };
-            if settings.warm_starting {
-                solver::warm_start(constraints, &mut bodies);
-            }
+            solver::begin_substep(constraints, &mut bodies, settings.warm_starting);
             for _ in 0..settings.iterations {
                 solver::solve(constraints, &mut bodies, settings, h, true);
             }
             // Clamp speeds and integrate positions, pushed apart where overlapping.
-            for i in 0..b.pos.len() {
-                let mut v = b.vel[i];
-                if let Some(uniform) = limits {
-                    uniform.unwrap_or(b.limits[i]).apply(&mut v);
-                    b.vel[i] = v;
-                }
-                let c = if corrects { correction[i] } else { Vec2::ZERO };
-                b.pos[i] += (v + push[i]) * h + c;
-                delta[i] = b.pos[i] - start[i];
+            {
+                let (pos, vel, arrays) = b.split();
+                let (push, start, correction): (&[Vec2], &[Vec2], &[Vec2]) =
+                    (push, start, &correction);
+                chunks3(parallel, pos, vel, delta, |offset, pos, vel, delta| {
+                    for (k, ((p, v), d)) in pos
+                        .iter_mut()
+                        .zip(vel.iter_mut())
+                        .zip(delta.iter_mut())
+                        .enumerate()
+                    {
+                        let i = offset + k;
+                        if let Some(uniform) = limits {
+                            uniform.unwrap_or(arrays.limits[i]).apply(v);
+                        }
+                        let c = if corrects { correction[i] } else { Vec2::ZERO };
+                        *p += (*v + push[i]) * h + c;
+                        *d = *p - start[i];
+                    }
+                    0
+                });
             }
             // Relax: velocity iterations at the new positions.
             let mut bodies = SolverBodies {
@@ -792,8 +854,13 @@ impl World {
             push,
             delta,
         };
-        solver::restitution(constraints, &mut bodies, settings.restitution_threshold);
-        solver::store_separations(constraints, &bodies);
+        solver::restitution(
+            constraints,
+            infos,
+            &mut bodies,
+            settings.restitution_threshold,
+        );
+        solver::store_separations(constraints, infos, &bodies);
         if let Some(uniform) = limits {
             for i in 0..b.vel.len() {
                 uniform.unwrap_or(b.limits[i]).apply(&mut b.vel[i]);
@@ -896,19 +963,13 @@ fn forces<'a>(
 fn integrate_velocity(
     integrator: Integrator,
     forces: &Forces<'_>,
-    b: &DynamicBodies,
-    i: usize,
+    p: Vec2,
+    v: Vec2,
+    params: &BodyParams,
     h: f32,
     resets: &mut u64,
 ) -> (Vec2, Vec2) {
-    let params = BodyParams {
-        inv_mass: b.inv_mass[i],
-        force: b.force[i],
-        drag_area: b.drag_area[i],
-        friction: b.friction[i],
-        friction_force: b.friction_force[i],
-    };
-    let (v, c) = integrate_body(integrator, forces, b.pos[i], b.vel[i], &params, h);
+    let (v, c) = integrate_body(integrator, forces, p, v, params, h);
     guard_finite(v, c, resets)
 }
 
