@@ -244,6 +244,19 @@ struct Collider {
     filter: CollisionFilter,
 }
 
+/// What a step tells the contact stage.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StepParams {
+    /// Gravitational acceleration (for restitution's impact speed).
+    pub gravity: Vec2,
+    /// The step, seconds (for speculative margins).
+    pub dt: f32,
+    /// The substep, seconds.
+    pub h: f32,
+    /// Whether large loops may use the thread pool.
+    pub parallel: bool,
+}
+
 /// What the narrow phase makes of one candidate pair.
 #[derive(Clone, Copy, Debug)]
 enum Outcome {
@@ -427,11 +440,14 @@ impl ContactWorld {
         dynamic: &DynamicBodies,
         statics: &StaticBodies,
         settings: &ContactSettings,
-        gravity: Vec2,
-        dt: f32,
-        h: f32,
-        parallel: bool,
+        step: &StepParams,
     ) {
+        let StepParams {
+            gravity,
+            dt,
+            h,
+            parallel,
+        } = *step;
         if self.tree_dirty {
             self.rebuild_tree(statics);
         }

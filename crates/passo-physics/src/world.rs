@@ -4,7 +4,7 @@ use crate::body::{
     BodyMeta, DynamicBodies, SpeedLimits, StaticBodies, check_max_speed, flush_subnormal,
 };
 use crate::constants::{DEFAULT_MAX_SPEED, DEFAULT_MIN_SPEED};
-use crate::contact::ContactWorld;
+use crate::contact::{ContactWorld, StepParams};
 use crate::error::{finite_vec, non_negative};
 use crate::forces::{BodyParams, Dissipation, Drive, potential_energy};
 use crate::integrator::{Forces, integrate_body};
