@@ -744,15 +744,13 @@ impl World {
             self.statics_dirty = false;
         }
         let parallel = self.parallel;
-        cw.begin_step(
-            &self.dynamic,
-            &self.statics,
-            settings,
+        let params = StepParams {
             gravity,
             dt,
             h,
             parallel,
-        );
+        };
+        cw.begin_step(&self.dynamic, &self.statics, settings, &params);
         let integrator = self.settings.integrator;
         let limits = self.speed_limits();
         let mut resets = 0;
