@@ -1,6 +1,7 @@
 //! A world in steady state allocates nothing: after warming up, stepping a
-//! rain scene (broad phase, narrow phase, solver, events) makes no heap
-//! allocation at all. A counting global allocator checks it.
+//! rain scene (broad phase, narrow phase, solver, events, bodies falling
+//! asleep and waking) makes no heap allocation at all. A counting global
+//! allocator checks it.
 //!
 //! The world runs its stages on the calling thread here
 //! (`set_parallel(false)`). With parallel stages on, Passo's own buffers
@@ -61,6 +62,10 @@ fn stepping_a_rain_scene_allocates_nothing_after_warm_up() {
     }
     COUNTING.store(false, Ordering::Relaxed);
     assert!(world.contacts().count() > 2000, "the pile is in contact");
+    assert!(
+        world.sleeping_len() > 0 && world.solved_contacts() > 0,
+        "bodies fell asleep and others still move while counting"
+    );
     assert_eq!(
         ALLOCATIONS.load(Ordering::Relaxed),
         0,

@@ -3,6 +3,7 @@
 
 use crate::constants::{DEFAULT_DRAG_AREA, DEFAULT_FRICTION};
 use crate::error::{finite_vec, non_negative, positive};
+use crate::sleep::SleepState;
 use crate::{CollisionFilter, PhysicsError, Shape};
 use glam::Vec2;
 use std::fmt;
@@ -206,6 +207,11 @@ pub struct Body {
     pub max_speed: Option<f32>,
     /// The game's own data.
     pub user_data: u64,
+    /// Whether the body sleeps: it rested long enough that the contact
+    /// stage stopped solving it (see [`ContactSettings::sleeping`]).
+    ///
+    /// [`ContactSettings::sleeping`]: crate::ContactSettings::sleeping
+    pub asleep: bool,
 }
 
 impl Body {
@@ -313,6 +319,8 @@ pub(crate) struct DynamicBodies {
     pub limits: Vec<SpeedLimits>,
     /// Positions at the start of the last step; empty unless interpolation is on.
     pub prev_pos: Vec<Vec2>,
+    /// Rest time and island of each body (see `sleep`).
+    pub sleep: Vec<SleepState>,
     pub meta: Vec<BodyMeta>,
 }
 
@@ -374,6 +382,7 @@ impl DynamicBodies {
         if keep_prev {
             self.prev_pos.push(def.position);
         }
+        self.sleep.push(SleepState::awake());
         self.meta.push(meta);
     }
 
@@ -390,6 +399,7 @@ impl DynamicBodies {
         if !self.prev_pos.is_empty() {
             self.prev_pos.swap_remove(i);
         }
+        self.sleep.swap_remove(i);
         self.meta.swap_remove(i);
         self.meta.get(i).map(|m| m.id)
     }
@@ -412,6 +422,7 @@ impl DynamicBodies {
             min_speed: m.min_speed,
             max_speed: m.max_speed,
             user_data: m.user_data,
+            asleep: self.sleep[i].is_asleep(),
         }
     }
 }
@@ -461,6 +472,7 @@ impl StaticBodies {
             min_speed: m.min_speed,
             max_speed: m.max_speed,
             user_data: m.user_data,
+            asleep: false,
         }
     }
 }

@@ -77,6 +77,16 @@ pub const CONTACT_PUSH_SPEED: f32 = 3.0;
 /// not bounce, so bouncy bodies come to rest.
 pub const RESTITUTION_THRESHOLD: f32 = 1.0;
 
+/// Bodies slower than this, metres per second, count as resting for
+/// sleeping: 0.05. Well above the minimum-speed snap (a settled pile sits
+/// at exactly zero) and below any motion a player would notice stopping.
+pub const SLEEP_SPEED: f32 = 0.05;
+
+/// Seconds every body of an island must rest before it sleeps: 0.5. Long
+/// enough that a ball at the top of its bounce or a box changing direction
+/// does not stop in mid-air.
+pub const TIME_TO_SLEEP: f32 = 0.5;
+
 /// Worlds with at least this many dynamic bodies (or contact pairs) run
 /// their per-body stages and narrow phase on rayon's thread pool, with the
 /// `parallel` feature. Below it the cost of handing work to threads

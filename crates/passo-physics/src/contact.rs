@@ -10,6 +10,7 @@ use crate::constants::{
 };
 use crate::error::{non_negative, positive};
 use crate::manifold::collide;
+use crate::sleep::Islands;
 use crate::solver::{Constraint, ContactInfo, STATIC_BODY};
 use crate::static_tree::StaticTree;
 use crate::{Aabb, BodyId, PhysicsError, Shape};
@@ -44,6 +45,14 @@ pub struct ContactSettings {
     pub continuous: bool,
     /// Start each step from the last step's impulses. Default `true`.
     pub warm_starting: bool,
+    /// Islands of touching bodies that have all been slower than
+    /// [`SLEEP_SPEED`] for [`TIME_TO_SLEEP`] fall asleep: their contacts
+    /// are kept but no longer solved, and they cost little until an awake
+    /// body reaches them or game code changes one of them. Default `true`.
+    ///
+    /// [`SLEEP_SPEED`]: crate::constants::SLEEP_SPEED
+    /// [`TIME_TO_SLEEP`]: crate::constants::TIME_TO_SLEEP
+    pub sleeping: bool,
 }
 
 impl Default for ContactSettings {
@@ -58,6 +67,7 @@ impl Default for ContactSettings {
             restitution_threshold: RESTITUTION_THRESHOLD,
             continuous: true,
             warm_starting: true,
+            sleeping: true,
         }
     }
 }
@@ -382,9 +392,15 @@ pub(crate) struct ContactWorld {
     /// Candidate pairs with their order key (the two slot indices, lower
     /// first): `(key, proxy, proxy or STATIC_BODY | static index)`.
     keyed: Vec<(u64, u32, u32)>,
+    /// Contacts: the `active` ones to solve first, then those between
+    /// sleeping (or sleeping and static) bodies; each run sorted by pair.
     pub constraints: Vec<Constraint>,
     /// The rest of each contact, beside `constraints`.
     pub infos: Vec<ContactInfo>,
+    /// How many contacts (at the front) the solver works on.
+    pub active: usize,
+    /// Island bookkeeping for sleeping.
+    pub islands: Islands,
     /// Positions at the start of the step.
     pub start: Vec<Vec2>,
     /// Displacement since the start of the step, per dynamic body
@@ -402,7 +418,8 @@ pub(crate) struct ContactWorld {
     pub events: ContactEvents,
 }
 
-fn key(a: BodyId, b: BodyId) -> (BodyId, BodyId) {
+/// A pair's order key: the body with the lower slot index first.
+pub(crate) fn key(a: BodyId, b: BodyId) -> (BodyId, BodyId) {
     if a.index <= b.index { (a, b) } else { (b, a) }
 }
 
@@ -437,7 +454,7 @@ impl ContactWorld {
     /// sensor overlaps.
     pub fn begin_step(
         &mut self,
-        dynamic: &DynamicBodies,
+        dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
         settings: &ContactSettings,
         step: &StepParams,
@@ -544,6 +561,18 @@ impl ContactWorld {
                 *o = narrow.pair(pa, pb);
             }
         }
+        // Sleeping: an awake body within reach of a sleeping island wakes
+        // it; the contacts left between sleeping (or sleeping and static)
+        // bodies go behind the ones to solve. Each run stays in key order.
+        if settings.sleeping {
+            let rows = outcomes.iter().filter_map(|o| match o {
+                Outcome::Contact(row, _) => Some(row),
+                _ => None,
+            });
+            self.islands.wake_touched(dynamic, rows);
+        }
+        let any_asleep = settings.sleeping && dynamic.sleep.iter().any(|s| s.is_asleep());
+        let solved = |row: &Constraint| !any_asleep || has_awake_body(dynamic, row);
         self.constraints.clear();
         self.infos.clear();
         self.sensor_candidates.clear();
@@ -551,28 +580,39 @@ impl ContactWorld {
             match o {
                 Outcome::Skip => {}
                 Outcome::Sensor(candidate) => self.sensor_candidates.push(*candidate),
-                Outcome::Contact(row, info) => {
+                Outcome::Contact(row, info) if solved(row) => {
+                    self.constraints.push(*row);
+                    self.infos.push(*info);
+                }
+                Outcome::Contact(..) => {}
+            }
+        }
+        self.active = self.constraints.len();
+        if any_asleep {
+            for o in &outcomes {
+                if let Outcome::Contact(row, info) = o
+                    && !solved(row)
+                {
                     self.constraints.push(*row);
                     self.infos.push(*info);
                 }
             }
         }
         self.outcomes = outcomes;
-        debug_assert!(self.infos.is_sorted_by_key(|c| key(c.id_a, c.id_b)));
 
-        // Warm starting: merge with last step's impulses (both sorted by key).
+        // Warm starting: merge each run with last step's impulses (all
+        // sorted by key).
         if settings.warm_starting {
-            let mut j = 0;
-            for (c, info) in self.constraints.iter_mut().zip(&self.infos) {
-                let k = key(info.id_a, info.id_b);
-                while j < self.cache.len() && self.cache[j].key < k {
-                    j += 1;
-                }
-                if j < self.cache.len() && self.cache[j].key == k {
-                    c.normal_impulse = self.cache[j].normal_impulse;
-                    c.tangent_impulse = self.cache[j].tangent_impulse;
-                }
-            }
+            let active = self.active;
+            let (awake, sleeping) = self.constraints.split_at_mut(active);
+            let (awake_infos, sleeping_infos) = self.infos.split_at(active);
+            warm_start(&self.cache, awake, awake_infos);
+            warm_start(&self.cache, sleeping, sleeping_infos);
+        }
+        // A sleeping contact is not solved: it carries its impulse, and
+        // counts as touching if that impulse carried weight.
+        for c in &mut self.constraints[self.active..] {
+            c.max_normal_impulse = c.normal_impulse;
         }
     }
 
@@ -590,8 +630,18 @@ impl ContactWorld {
         }
         self.cache.clear();
         self.touching.clear();
-        for (c, info) in self.constraints.iter().zip(&self.infos) {
-            let k = key(info.id_a, info.id_b);
+        let (mut i, mut j, n) = (0, self.active, self.constraints.len());
+        // Merge the two sorted runs (awake, sleeping) into key order.
+        while i < self.active || j < n {
+            let next = if j == n || (i < self.active && self.infos[i].key() < self.infos[j].key()) {
+                i += 1;
+                i - 1
+            } else {
+                j += 1;
+                j - 1
+            };
+            let (c, info) = (&self.constraints[next], &self.infos[next]);
+            let k = info.key();
             self.cache.push(Cached {
                 key: k,
                 normal_impulse: c.normal_impulse,
@@ -628,6 +678,7 @@ impl ContactWorld {
     pub fn idle_step(&mut self, dynamic: &DynamicBodies, statics: &StaticBodies) {
         self.constraints.clear();
         self.infos.clear();
+        self.active = 0;
         self.sensor_candidates.clear();
         self.end_step(dynamic, statics);
     }
@@ -654,6 +705,29 @@ impl ContactWorld {
             touching_prev: state.touching,
             sensors_prev: state.sensors,
             ..Self::new()
+        }
+    }
+}
+
+/// Whether a contact has an awake dynamic body (so the solver works on it).
+fn has_awake_body(dynamic: &DynamicBodies, c: &Constraint) -> bool {
+    !dynamic.sleep[c.a as usize].is_asleep()
+        || (!c.is_static() && !dynamic.sleep[c.b as usize].is_asleep())
+}
+
+/// Gives each contact the impulses its pair had after the last step;
+/// `cache` and `infos` are both sorted by key.
+fn warm_start(cache: &[Cached], constraints: &mut [Constraint], infos: &[ContactInfo]) {
+    debug_assert!(infos.is_sorted_by_key(ContactInfo::key));
+    let mut j = 0;
+    for (c, info) in constraints.iter_mut().zip(infos) {
+        let k = info.key();
+        while j < cache.len() && cache[j].key < k {
+            j += 1;
+        }
+        if j < cache.len() && cache[j].key == k {
+            c.normal_impulse = cache[j].normal_impulse;
+            c.tangent_impulse = cache[j].tangent_impulse;
         }
     }
 }

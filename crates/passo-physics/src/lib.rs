@@ -45,6 +45,7 @@ mod manifold;
 mod parallel;
 mod query;
 mod shape;
+mod sleep;
 mod snapshot;
 mod solver;
 mod static_tree;

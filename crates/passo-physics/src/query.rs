@@ -26,7 +26,8 @@ static NO_EVENTS: ContactEvents = ContactEvents {
 };
 
 impl World {
-    /// Every contact after the last step, in a fixed order (by body ids),
+    /// Every contact after the last step, in a fixed order (by body ids,
+    /// the solved ones first, then those between sleeping bodies),
     /// speculative ones included (see [`Contact::touching`]).
     pub fn contacts(&self) -> impl Iterator<Item = Contact> + '_ {
         self.contacts
@@ -43,6 +44,13 @@ impl World {
                 tangent_impulse: c.tangent_impulse,
                 touching: info.is_touching(c),
             })
+    }
+
+    /// How many of the last step's contacts the solver worked on: those
+    /// with an awake body. The rest (between sleeping bodies, or sleeping
+    /// and static ones) are kept but cost no solver work.
+    pub fn solved_contacts(&self) -> usize {
+        self.contacts.as_ref().map_or(0, |cw| cw.active)
     }
 
     /// The contacts of one body, each seen from it (`contact.a == id`, the

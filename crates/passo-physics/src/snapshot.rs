@@ -63,6 +63,7 @@ impl WorldSnapshot {
             d.friction.len(),
             d.friction_force.len(),
             d.limits.len(),
+            d.sleep.len(),
             d.meta.len(),
         ];
         if lengths.iter().any(|&l| l != n) {
@@ -93,6 +94,7 @@ impl WorldSnapshot {
                 && d.drag_area[i] >= 0.0
                 && d.friction[i] >= 0.0
                 && d.friction_force[i] >= 0.0
+                && d.sleep[i].is_valid()
                 && (d.meta[i].mass * d.inv_mass[i] - 1.0).abs() < 1e-3;
             if !(finite && ranges) {
                 return bad(format!(

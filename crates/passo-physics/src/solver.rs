@@ -77,6 +77,11 @@ pub(crate) struct ContactInfo {
 }
 
 impl ContactInfo {
+    /// The pair's order key (see `contact::key`).
+    pub fn key(&self) -> (BodyId, BodyId) {
+        crate::contact::key(self.id_a, self.id_b)
+    }
+
     /// Touching: the solver pushed the bodies apart this step, or they overlap.
     pub fn is_touching(&self, c: &Constraint) -> bool {
         c.max_normal_impulse > 0.0 || self.separation < 0.0

@@ -10,6 +10,7 @@ use crate::forces::{BodyParams, Dissipation, Drive, potential_energy};
 use crate::integrator::{Forces, integrate_body};
 use crate::kernel::PointMassKernel;
 use crate::parallel::{chunks2, chunks3};
+use crate::sleep::wake_all;
 use crate::solver::{self, SolverBodies};
 use crate::{
     Body, BodyDef, BodyId, BodyKind, ContactSettings, ForceForm, ForceModel, ForceModels,
@@ -224,6 +225,7 @@ impl World {
     /// current positions.
     pub fn set_settings(&mut self, settings: WorldSettings) -> Result<(), PhysicsError> {
         settings.validate()?;
+        self.wake_all();
         let limits_changed = settings.min_speed != self.settings.min_speed
             || settings.max_speed != self.settings.max_speed;
         self.settings = settings;
@@ -244,12 +246,54 @@ impl World {
 
     /// Adds a force model of the game's own; it acts on every dynamic body.
     pub fn add_force_model(&mut self, model: Arc<dyn ForceModel>) {
+        self.wake_all();
         self.custom.push(model);
     }
 
     /// Removes every custom force model.
     pub fn clear_force_models(&mut self) {
+        self.wake_all();
         self.custom.clear();
+    }
+
+    // ----- sleeping -----
+
+    /// Whether the body sleeps (see [`ContactSettings::sleeping`]); `None`
+    /// for a stale id. Static bodies never sleep.
+    pub fn is_asleep(&self, id: BodyId) -> Option<bool> {
+        match self.locate(id)? {
+            Location::Dynamic(i) => Some(self.dynamic.sleep[i as usize].is_asleep()),
+            _ => Some(false),
+        }
+    }
+
+    /// Number of sleeping bodies.
+    pub fn sleeping_len(&self) -> usize {
+        self.dynamic.sleep.iter().filter(|s| s.is_asleep()).count()
+    }
+
+    /// Wakes a body and every body sleeping in its island, and restarts its
+    /// rest time. Changing a body (force, impulse, velocity, position,
+    /// material) does this already; call it when a custom force model
+    /// starts acting on a sleeping body.
+    pub fn wake(&mut self, id: BodyId) -> Result<(), PhysicsError> {
+        if let Some(i) = self.dynamic_index(id)? {
+            self.wake_index(i);
+        }
+        Ok(())
+    }
+
+    /// Wakes every body. Changing the settings, the force models or a
+    /// static body does this already.
+    pub fn wake_all(&mut self) {
+        wake_all(&mut self.dynamic);
+    }
+
+    fn wake_index(&mut self, i: usize) {
+        if let Some(cw) = &mut self.contacts {
+            cw.islands.wake_body(&mut self.dynamic, i);
+            cw.islands.wake_marked(&mut self.dynamic);
+        }
     }
 
     /// Lets large worlds run their per-body stages and narrow phase on
@@ -322,6 +366,7 @@ impl World {
                 slot.location = Location::Static(self.statics.len() as u32);
                 self.statics.push(&def, meta);
                 self.statics_dirty = true;
+                wake_all(&mut self.dynamic);
             }
         }
         Ok(id)
@@ -340,10 +385,13 @@ impl World {
                 if meta.min_speed.is_some() || meta.max_speed.is_some() {
                     self.speed_overrides -= 1;
                 }
+                // What rested on it must fall.
+                self.wake_index(i as usize);
                 self.dynamic.swap_remove(i as usize)
             }
             Location::Static(i) => {
                 self.statics_dirty = true;
+                self.wake_all();
                 self.statics.swap_remove(i as usize)
             }
             Location::Free => unreachable!("locate never returns a free slot"),
@@ -404,10 +452,12 @@ impl World {
                 if let Some(prev) = self.dynamic.prev_pos.get_mut(i as usize) {
                     *prev = position;
                 }
+                self.wake_index(i as usize);
             }
             Location::Static(i) => {
                 self.statics.pos[i as usize] = position;
                 self.statics_dirty = true;
+                self.wake_all();
             }
             Location::Free => unreachable!(),
         }
@@ -419,6 +469,7 @@ impl World {
         finite_vec("velocity", velocity)?;
         if let Some(i) = self.dynamic_index(id)? {
             self.dynamic.vel[i] = velocity;
+            self.wake_index(i);
         }
         Ok(())
     }
@@ -430,6 +481,7 @@ impl World {
         finite_vec("force", force)?;
         if let Some(i) = self.dynamic_index(id)? {
             self.dynamic.force[i] += force;
+            self.wake_index(i);
         }
         Ok(())
     }
@@ -440,6 +492,7 @@ impl World {
         finite_vec("impulse", impulse)?;
         if let Some(i) = self.dynamic_index(id)? {
             self.dynamic.vel[i] += impulse * self.dynamic.inv_mass[i];
+            self.wake_index(i);
         }
         Ok(())
     }
@@ -454,6 +507,7 @@ impl World {
         crate::error::finite("normal", normal)?;
         if let Some(i) = self.dynamic_index(id)? {
             self.dynamic.friction_force[i] += mu * normal.abs();
+            self.wake_index(i);
             self.game_friction = true;
         }
         Ok(())
@@ -464,8 +518,14 @@ impl World {
     pub fn set_friction(&mut self, id: BodyId, mu: f32) -> Result<(), PhysicsError> {
         non_negative("friction", mu)?;
         match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
-            Location::Dynamic(i) => self.dynamic.friction[i as usize] = mu,
-            Location::Static(i) => self.statics.friction[i as usize] = mu,
+            Location::Dynamic(i) => {
+                self.dynamic.friction[i as usize] = mu;
+                self.wake_index(i as usize);
+            }
+            Location::Static(i) => {
+                self.statics.friction[i as usize] = mu;
+                self.wake_all();
+            }
             Location::Free => unreachable!(),
         }
         Ok(())
@@ -482,8 +542,14 @@ impl World {
             });
         }
         match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
-            Location::Dynamic(i) => self.dynamic.meta[i as usize].restitution = restitution,
-            Location::Static(i) => self.statics.meta[i as usize].restitution = restitution,
+            Location::Dynamic(i) => {
+                self.dynamic.meta[i as usize].restitution = restitution;
+                self.wake_index(i as usize);
+            }
+            Location::Static(i) => {
+                self.statics.meta[i as usize].restitution = restitution;
+                self.wake_all();
+            }
             Location::Free => unreachable!(),
         }
         Ok(())
@@ -497,6 +563,7 @@ impl World {
             Location::Dynamic(i) => {
                 self.dynamic.drag_area[i as usize] = drag_area;
                 self.dynamic.meta[i as usize].drag_area = drag_area;
+                self.wake_index(i as usize);
             }
             Location::Static(i) => self.statics.meta[i as usize].drag_area = drag_area,
             Location::Free => unreachable!(),
@@ -658,6 +725,10 @@ impl World {
         match self.contact_settings() {
             Some(contacts) => self.step_with_contacts(dt, &contacts),
             None => {
+                // Sleeping belongs to the contact stage: without it, no body sleeps.
+                if self.contacts.is_some() {
+                    wake_all(&mut self.dynamic);
+                }
                 self.step_bodies(dt);
                 if let Some(cw) = &mut self.contacts {
                     cw.idle_step(&self.dynamic, &self.statics);
@@ -750,7 +821,12 @@ impl World {
             h,
             parallel,
         };
-        cw.begin_step(&self.dynamic, &self.statics, settings, &params);
+        if !settings.sleeping {
+            wake_all(&mut self.dynamic);
+        }
+        cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
+        let any_asleep =
+            cw.active < cw.constraints.len() || self.dynamic.sleep.iter().any(|s| s.is_asleep());
         let integrator = self.settings.integrator;
         let limits = self.speed_limits();
         let mut resets = 0;
@@ -763,11 +839,16 @@ impl World {
         let ContactWorld {
             constraints,
             infos,
+            active,
             start,
             delta,
             push,
+            islands,
             ..
         } = &mut *cw;
+        // Only contacts with an awake body are solved (sleeping ones wait
+        // behind them).
+        let (solved, solved_infos) = (&mut constraints[..*active], &mut infos[..*active]);
         // The velocity update of the common case needs no general path.
         let kernel = PointMassKernel::new(
             &self.settings.forces,
@@ -802,6 +883,14 @@ impl World {
                     resets
                 });
             }
+            if any_asleep {
+                // Sleeping bodies hold still: no forces, no correction.
+                for ((v, c), s) in b.vel.iter_mut().zip(&mut correction).zip(&b.sleep) {
+                    if s.is_asleep() {
+                        (*v, *c) = (Vec2::ZERO, Vec2::ZERO);
+                    }
+                }
+            }
             // Warm start and solve contacts.
             push.fill(Vec2::ZERO);
             let mut bodies = SolverBodies {
@@ -809,9 +898,9 @@ impl World {
                 push,
                 delta,
             };
-            solver::begin_substep(constraints, &mut bodies, settings.warm_starting);
+            solver::begin_substep(solved, &mut bodies, settings.warm_starting);
             for _ in 0..settings.iterations {
-                solver::solve(constraints, &mut bodies, settings, h, true);
+                solver::solve(solved, &mut bodies, settings, h, true);
             }
             // Clamp speeds and integrate positions, pushed apart where overlapping.
             {
@@ -843,7 +932,7 @@ impl World {
                 delta,
             };
             for _ in 0..settings.relax_iterations {
-                solver::solve(constraints, &mut bodies, settings, h, false);
+                solver::solve(solved, &mut bodies, settings, h, false);
             }
         }
         let b = &mut self.dynamic;
@@ -853,16 +942,19 @@ impl World {
             delta,
         };
         solver::restitution(
-            constraints,
-            infos,
+            solved,
+            solved_infos,
             &mut bodies,
             settings.restitution_threshold,
         );
-        solver::store_separations(constraints, infos, &bodies);
+        solver::store_separations(solved, solved_infos, &bodies);
         if let Some(uniform) = limits {
             for i in 0..b.vel.len() {
                 uniform.unwrap_or(b.limits[i]).apply(&mut b.vel[i]);
             }
+        }
+        if settings.sleeping {
+            islands.update(b, (constraints, infos), delta, dt);
         }
         cw.end_step(&self.dynamic, &self.statics);
         self.contacts = Some(cw);

@@ -1,0 +1,211 @@
+//! Sleeping: bodies at rest stop costing contact work.
+//!
+//! A pile that has settled is solved again every step for nothing: the
+//! minimum-speed snap already holds its velocities at exactly zero, and the
+//! solver only confirms that the weights are carried. So the contact stage
+//! groups dynamic bodies into islands (bodies joined by touching contacts)
+//! and puts an island to sleep when every body in it has been slower than
+//! [`SLEEP_SPEED`] for [`TIME_TO_SLEEP`]. A sleeping body keeps its
+//! position, has zero velocity and is not integrated; contacts between
+//! sleeping bodies, or between a sleeping body and a static one, stay in
+//! the contact list with their last impulses (so `is_standing`, `contacts`
+//! and events see them) but are not solved.
+//!
+//! An island wakes, all of it, when an awake dynamic body comes within
+//! contact distance of one of its bodies, and when game code changes one
+//! of its bodies (force, impulse, velocity, position, material, removal).
+//! Changing the world's settings, its force models or a static body wakes
+//! every body. Every decision depends only on the state, in a fixed order,
+//! so sleeping is as deterministic as the rest of the step.
+
+use crate::body::DynamicBodies;
+use crate::constants::{SLEEP_SPEED, TIME_TO_SLEEP};
+use crate::solver::{Constraint, ContactInfo, STATIC_BODY};
+
+/// `SleepState::island` of an awake body.
+const AWAKE: u32 = u32::MAX;
+
+/// How long a dynamic body has rested, and whether it sleeps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct SleepState {
+    /// Seconds the body has been slower than [`SLEEP_SPEED`].
+    pub rest_time: f32,
+    /// The island the body sleeps in (the slot index of one of its bodies),
+    /// or [`AWAKE`].
+    island: u32,
+}
+
+impl SleepState {
+    pub const fn awake() -> Self {
+        Self {
+            rest_time: 0.0,
+            island: AWAKE,
+        }
+    }
+
+    #[inline(always)]
+    pub fn is_asleep(&self) -> bool {
+        self.island != AWAKE
+    }
+
+    /// Whether the state is one a step can produce (for snapshots).
+    pub fn is_valid(&self) -> bool {
+        self.rest_time.is_finite() && self.rest_time >= 0.0
+    }
+}
+
+/// Scratch space of the island pass, kept between steps so it allocates
+/// nothing once warm.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Islands {
+    parent: Vec<u32>,
+    /// Least rest time in each island, by root.
+    least_rest: Vec<f32>,
+    /// Islands to wake at the next chance, sorted and deduplicated there.
+    pub to_wake: Vec<u32>,
+}
+
+impl Islands {
+    fn find(&mut self, mut i: u32) -> u32 {
+        while self.parent[i as usize] != i {
+            let p = self.parent[i as usize];
+            // Path halving: every visited node skips to its grandparent.
+            self.parent[i as usize] = self.parent[p as usize];
+            i = p;
+        }
+        i
+    }
+
+    fn union(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        // The lower index becomes the root: the result depends only on the
+        // contacts, not on the order of the unions.
+        if ra < rb {
+            self.parent[rb as usize] = ra;
+        } else if rb < ra {
+            self.parent[ra as usize] = rb;
+        }
+    }
+
+    /// Marks the island of sleeping body `i` (and the body itself, at once)
+    /// to be woken.
+    pub fn wake_body(&mut self, bodies: &mut DynamicBodies, i: usize) {
+        let s = &mut bodies.sleep[i];
+        if s.is_asleep() {
+            self.to_wake.push(s.island);
+            s.island = AWAKE;
+        }
+        s.rest_time = 0.0;
+    }
+
+    /// Wakes every body of the islands marked by [`wake_body`]: one pass
+    /// over the bodies, only when some island was marked.
+    ///
+    /// [`wake_body`]: Self::wake_body
+    pub fn wake_marked(&mut self, bodies: &mut DynamicBodies) {
+        if self.to_wake.is_empty() {
+            return;
+        }
+        self.to_wake.sort_unstable();
+        self.to_wake.dedup();
+        for s in &mut bodies.sleep {
+            if s.is_asleep() && self.to_wake.binary_search(&s.island).is_ok() {
+                *s = SleepState::awake();
+            }
+        }
+        self.to_wake.clear();
+    }
+
+    /// Wakes the sleeping islands that an awake body may touch this step
+    /// (a contact, speculative or not, between an awake and a sleeping
+    /// dynamic body).
+    pub fn wake_touched<'a>(
+        &mut self,
+        bodies: &mut DynamicBodies,
+        constraints: impl Iterator<Item = &'a Constraint>,
+    ) {
+        for c in constraints {
+            if c.b & STATIC_BODY != 0 {
+                continue;
+            }
+            let (a, b) = (c.a as usize, c.b as usize);
+            match (bodies.sleep[a].is_asleep(), bodies.sleep[b].is_asleep()) {
+                (true, false) => self.wake_body(bodies, a),
+                (false, true) => self.wake_body(bodies, b),
+                _ => {}
+            }
+        }
+        self.wake_marked(bodies);
+    }
+
+    /// After a step: adds `dt` to the rest time of every awake body that
+    /// ends the step slower than [`SLEEP_SPEED`] and moved less than that
+    /// speed allows (so a body still being pushed out of an overlap, with
+    /// zero velocity, is not resting), and resets the others; joins awake
+    /// bodies that touch into islands, and puts to sleep each island whose
+    /// bodies have all rested for [`TIME_TO_SLEEP`]. `moved` is each body's
+    /// displacement over the step. Returns how many bodies sleep.
+    pub fn update(
+        &mut self,
+        bodies: &mut DynamicBodies,
+        contacts: (&[Constraint], &[ContactInfo]),
+        moved: &[glam::Vec2],
+        dt: f32,
+    ) -> usize {
+        let (constraints, infos) = contacts;
+        let n = bodies.len();
+        let sleep_sq = SLEEP_SPEED * SLEEP_SPEED;
+        let travel_sq = sleep_sq * dt * dt;
+        let states = bodies.sleep.iter_mut().zip(&bodies.vel).zip(moved);
+        for ((s, v), d) in states {
+            if !s.is_asleep() {
+                s.rest_time = if v.length_squared() < sleep_sq && d.length_squared() < travel_sq {
+                    s.rest_time + dt
+                } else {
+                    0.0
+                };
+            }
+        }
+        self.parent.clear();
+        self.parent.extend(0..n as u32);
+        for (c, info) in constraints.iter().zip(infos) {
+            let both_awake = c.b & STATIC_BODY == 0
+                && !bodies.sleep[c.a as usize].is_asleep()
+                && !bodies.sleep[c.b as usize].is_asleep();
+            if both_awake && info.is_touching(c) {
+                self.union(c.a, c.b);
+            }
+        }
+        self.least_rest.clear();
+        self.least_rest.resize(n, f32::INFINITY);
+        // At most one island per body to wake: room for all, so waking
+        // never allocates inside a step.
+        self.to_wake.reserve(n);
+        for i in 0..n {
+            if !bodies.sleep[i].is_asleep() {
+                let root = self.find(i as u32) as usize;
+                self.least_rest[root] = self.least_rest[root].min(bodies.sleep[i].rest_time);
+            }
+        }
+        let mut sleeping = 0;
+        for i in 0..n {
+            if bodies.sleep[i].is_asleep() {
+                sleeping += 1;
+                continue;
+            }
+            let root = self.find(i as u32) as usize;
+            if self.least_rest[root] >= TIME_TO_SLEEP {
+                bodies.sleep[i].island = bodies.meta[root].id.index;
+                bodies.vel[i] = glam::Vec2::ZERO;
+                sleeping += 1;
+            }
+        }
+        sleeping
+    }
+}
+
+/// Wakes every body and forgets how long each rested.
+pub(crate) fn wake_all(bodies: &mut DynamicBodies) {
+    bodies.sleep.fill(SleepState::awake());
+}

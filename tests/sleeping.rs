@@ -1,0 +1,296 @@
+//! Sleeping: resting islands stop costing solver work, keep their contacts,
+//! and wake when something reaches them or game code changes them.
+
+use passo_physics::constants::{SLEEP_SPEED, TIME_TO_SLEEP};
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, BodyId, ContactSettings, Shape, World, WorldSettings};
+use passo_tests::{add_box, add_static_box, assert_finite};
+
+const DT: f32 = 1.0 / 60.0;
+
+fn run(world: &mut World, seconds: f32) {
+    for _ in 0..(seconds / DT).round() as usize {
+        world.step(DT);
+        assert_finite(world);
+    }
+}
+
+/// A ground and a stack of `n` unit boxes at `x`.
+fn stack(world: &mut World, x: f32, n: usize) -> Vec<BodyId> {
+    (0..n)
+        .map(|i| add_box(world, Vec2::new(x, 0.5 + i as f32), Vec2::ONE, 1.0))
+        .collect()
+}
+
+fn ground(world: &mut World) -> BodyId {
+    add_static_box(world, Vec2::new(-20.0, -1.0), Vec2::new(20.0, 0.0))
+}
+
+fn asleep(world: &World, ids: &[BodyId]) -> Vec<bool> {
+    ids.iter().map(|&id| world.is_asleep(id).unwrap()).collect()
+}
+
+#[test]
+fn a_resting_stack_falls_asleep_and_keeps_its_contacts() {
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    let boxes = stack(&mut w, 0.0, 5);
+    // Not before it has rested for TIME_TO_SLEEP.
+    run(&mut w, 0.9 * TIME_TO_SLEEP);
+    assert_eq!(w.sleeping_len(), 0);
+    run(&mut w, 2.0);
+    assert_eq!(asleep(&w, &boxes), vec![true; 5]);
+    assert_eq!(w.sleeping_len(), 5);
+    assert_eq!(
+        w.solved_contacts(),
+        0,
+        "no contact of a sleeping island is solved"
+    );
+    // The contacts are still there, touching, and the top box still stands.
+    let touching = w.contacts().filter(|c| c.touching).count();
+    assert_eq!(touching, 5, "ground-box and four box-box contacts");
+    assert!(w.is_standing(boxes[4], 0.8));
+    assert!(w.body(boxes[2]).unwrap().asleep);
+    // Asleep, nothing moves by a single bit, and no event fires.
+    let before = w.state_hash();
+    for _ in 0..120 {
+        w.step(DT);
+        assert!(w.events().begin.is_empty() && w.events().end.is_empty());
+    }
+    assert_eq!(w.state_hash(), before);
+    for &id in &boxes {
+        assert_eq!(w.body(id).unwrap().velocity, Vec2::ZERO);
+    }
+}
+
+#[test]
+fn a_falling_or_sliding_body_does_not_sleep() {
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    // Sliding at 3 m/s on ice (no friction) for 3 s: never slower than SLEEP_SPEED.
+    let slider = w
+        .add_body(BodyDef {
+            position: Vec2::new(-15.0, 0.5),
+            velocity: Vec2::new(3.0, 0.0),
+            shape: Some(Shape::rect(1.0, 1.0)),
+            friction: 0.0,
+            ..Default::default()
+        })
+        .unwrap();
+    // A ball bouncing elastically: slow at the top of each bounce, never for long.
+    let ball = w
+        .add_body(BodyDef {
+            position: Vec2::new(10.0, 3.0),
+            shape: Some(Shape::circle(0.25)),
+            restitution: 1.0,
+            ..Default::default()
+        })
+        .unwrap();
+    for _ in 0..180 {
+        w.step(DT);
+        assert!(!w.is_asleep(slider).unwrap());
+        assert!(!w.is_asleep(ball).unwrap());
+    }
+    assert!(w.body(slider).unwrap().velocity.x > 2.9);
+}
+
+#[test]
+fn bodies_pushed_out_of_an_overlap_are_not_resting() {
+    // Overlapping boxes have zero velocity while the push separates them:
+    // they must not fall asleep still overlapping.
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    for i in 0..6 {
+        add_box(&mut w, Vec2::new(i as f32 * 0.6, 0.5), Vec2::ONE, 1.0);
+    }
+    run(&mut w, 3.0);
+    assert_eq!(w.sleeping_len(), 6, "they settle and sleep");
+    let pen = passo_tests::max_penetration(&w);
+    assert!(
+        pen <= 2.0 * passo_physics::constants::LINEAR_SLOP,
+        "asleep at {pen} m overlap"
+    );
+}
+
+#[test]
+fn an_awake_body_wakes_the_island_it_reaches_and_only_that_one() {
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    let left = stack(&mut w, -5.0, 4);
+    let right = stack(&mut w, 5.0, 4);
+    run(&mut w, 2.0);
+    assert_eq!(w.sleeping_len(), 8);
+    // A heavy ball dropped on the left stack wakes it, not the right one.
+    let ball = w
+        .add_body(BodyDef {
+            position: Vec2::new(-5.0, 8.0),
+            shape: Some(Shape::circle(0.4)),
+            mass: 5.0,
+            ..Default::default()
+        })
+        .unwrap();
+    let mut woke = false;
+    for _ in 0..120 {
+        w.step(DT);
+        woke |= asleep(&w, &left).iter().all(|&s| !s);
+        assert_eq!(asleep(&w, &right), vec![true; 4], "the far stack sleeps on");
+    }
+    assert!(woke, "the stack the ball fell on woke up");
+    assert!(
+        w.body(ball).unwrap().position.y > 4.0,
+        "the ball rests on the stack"
+    );
+}
+
+#[test]
+fn changing_a_sleeping_body_wakes_its_island() {
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    let boxes = stack(&mut w, 0.0, 3);
+    run(&mut w, 2.0);
+    assert_eq!(asleep(&w, &boxes), vec![true; 3]);
+    // An impulse on the bottom box wakes the whole stack at once.
+    w.apply_impulse(boxes[0], Vec2::new(0.5, 0.0)).unwrap();
+    assert_eq!(asleep(&w, &boxes), vec![false; 3]);
+    run(&mut w, 3.0);
+    assert_eq!(
+        asleep(&w, &boxes),
+        vec![true; 3],
+        "asleep again once at rest"
+    );
+
+    // Every other kind of change wakes it too.
+    type Change = fn(&mut World, BodyId);
+    let changes: [(&str, Change); 7] = [
+        ("force", |w, id| w.apply_force(id, Vec2::X).unwrap()),
+        ("velocity", |w, id| w.set_velocity(id, Vec2::ZERO).unwrap()),
+        ("position", |w, id| {
+            let p = w.body(id).unwrap().position;
+            w.set_position(id, p).unwrap()
+        }),
+        ("friction", |w, id| w.set_friction(id, 0.5).unwrap()),
+        ("restitution", |w, id| w.set_restitution(id, 0.1).unwrap()),
+        ("drag area", |w, id| w.set_drag_area(id, 0.2).unwrap()),
+        ("wake", |w, id| w.wake(id).unwrap()),
+    ];
+    for (what, change) in changes {
+        run(&mut w, 2.0);
+        assert_eq!(asleep(&w, &boxes), vec![true; 3], "before {what}");
+        change(&mut w, boxes[1]);
+        assert_eq!(
+            asleep(&w, &boxes),
+            vec![false; 3],
+            "{what} wakes the island"
+        );
+    }
+}
+
+#[test]
+fn removing_a_support_or_changing_the_world_wakes_what_rested_on_it() {
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    let floor = ground(&mut w);
+    let boxes = stack(&mut w, 0.0, 3);
+    run(&mut w, 2.0);
+    assert_eq!(w.sleeping_len(), 3);
+    // Remove the bottom box: the two above wake and fall onto the ground.
+    let top_before = w.body(boxes[2]).unwrap().position.y;
+    w.remove_body(boxes[0]).unwrap();
+    assert_eq!(asleep(&w, &boxes[1..]), vec![false; 2]);
+    run(&mut w, 2.0);
+    let drop = top_before - w.body(boxes[2]).unwrap().position.y;
+    assert!(
+        (drop - 1.0).abs() < 0.02,
+        "the stack fell one box: {drop} m"
+    );
+
+    // New settings (a gravity slider) wake every body.
+    assert_eq!(w.sleeping_len(), 2);
+    let mut settings = *w.settings();
+    settings.forces.gravity = Some(Vec2::new(3.0, -9.81));
+    w.set_settings(settings).unwrap();
+    assert_eq!(w.sleeping_len(), 0);
+    // Removing the ground (a static body) wakes everything too.
+    run(&mut w, 3.0);
+    settings.forces.gravity = Some(Vec2::new(0.0, -9.81));
+    w.set_settings(settings).unwrap();
+    run(&mut w, 3.0);
+    assert!(w.sleeping_len() > 0);
+    w.remove_body(floor).unwrap();
+    assert_eq!(w.sleeping_len(), 0);
+    run(&mut w, 1.0);
+    assert!(
+        w.body(boxes[1]).unwrap().position.y < -1.0,
+        "falls once the floor is gone"
+    );
+}
+
+#[test]
+fn with_sleeping_off_no_body_ever_sleeps() {
+    let mut w = World::new(WorldSettings {
+        contacts: Some(ContactSettings {
+            sleeping: false,
+            ..Default::default()
+        }),
+        ..Default::default()
+    })
+    .unwrap();
+    ground(&mut w);
+    stack(&mut w, 0.0, 4);
+    run(&mut w, 3.0);
+    assert_eq!(w.sleeping_len(), 0);
+    assert_eq!(w.solved_contacts(), w.contacts().count());
+}
+
+#[test]
+fn a_slow_drift_below_the_sleep_speed_counts_as_rest() {
+    // No gravity, no contact with anything but a far ground: a box gliding
+    // at half the sleep speed falls asleep after TIME_TO_SLEEP and stops.
+    let mut w = World::new(WorldSettings {
+        forces: passo_physics::ForceModels::none(),
+        min_speed: 0.0,
+        ..Default::default()
+    })
+    .unwrap();
+    ground(&mut w);
+    let id = w
+        .add_body(BodyDef {
+            position: Vec2::new(0.0, 5.0),
+            velocity: Vec2::new(0.5 * SLEEP_SPEED, 0.0),
+            shape: Some(Shape::rect(1.0, 1.0)),
+            ..Default::default()
+        })
+        .unwrap();
+    let steps_to_sleep = (TIME_TO_SLEEP / DT).ceil() as usize;
+    for _ in 0..steps_to_sleep - 1 {
+        w.step(DT);
+    }
+    assert!(!w.is_asleep(id).unwrap());
+    w.step(DT);
+    assert!(w.is_asleep(id).unwrap());
+    assert_eq!(w.body(id).unwrap().velocity, Vec2::ZERO);
+}
+
+#[test]
+fn rollback_through_a_sleeping_world_gives_the_same_bits() {
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    stack(&mut w, 0.0, 4);
+    stack(&mut w, 3.0, 2);
+    run(&mut w, 1.5);
+    assert!(w.sleeping_len() > 0);
+    let snapshot = w.snapshot();
+    let ball = BodyDef {
+        position: Vec2::new(0.2, 7.0),
+        shape: Some(Shape::circle(0.3)),
+        mass: 4.0,
+        ..Default::default()
+    };
+    let mut straight = w.clone();
+    straight.add_body(ball).unwrap();
+    run(&mut straight, 2.0);
+    let mut restored = World::from_snapshot(snapshot).unwrap();
+    restored.add_body(ball).unwrap();
+    run(&mut restored, 2.0);
+    assert_eq!(restored.state_hash(), straight.state_hash());
+    assert_eq!(restored.sleeping_len(), straight.sleeping_len());
+}
