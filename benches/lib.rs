@@ -98,6 +98,17 @@ pub fn pyramid_world(base: usize) -> World {
     world
 }
 
+/// A copy of `world` with sleeping switched on or off.
+pub fn with_sleeping(world: &World, on: bool) -> World {
+    let mut world = world.clone();
+    let mut settings = *world.settings();
+    if let Some(contacts) = &mut settings.contacts {
+        contacts.sleeping = on;
+    }
+    world.set_settings(settings).expect("valid settings");
+    world
+}
+
 /// Mean milliseconds per step over all ticks and over the last fifth.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StepTimes {

@@ -7,14 +7,14 @@
 //! (rapier's default `num_solver_iterations` = 4 with one PGS and one
 //! stabilisation pass each; Passo's 4 substeps with 2 passes and one relax).
 //! Rotations are locked in rapier (Passo's bodies do not rotate), CCD is off
-//! in rapier (Passo's speculative contacts are always on). Sleeping is off in
-//! rapier for the main comparison (Passo has no sleeping); a second rapier
-//! column lets its bodies sleep. Penetration is measured the same way for
-//! both: Passo's exact geometry at the final positions.
+//! in rapier (Passo's speculative contacts are always on). Sleeping is off
+//! in both engines for the main comparison; two more columns let both
+//! sleep. Penetration is measured the same way for both: Passo's exact
+//! geometry at the final positions.
 //!
 //! Run: `cargo run --release -p passo-benches --features rapier --bin peer [N ...]`
 
-use passo_benches::{RAIN_MASS, RAIN_RADIUS, rain_world, time_steps};
+use passo_benches::{RAIN_MASS, RAIN_RADIUS, rain_world, time_steps, with_sleeping};
 use passo_physics::{BodyKind, Shape, World};
 use rapier2d::prelude::*;
 
@@ -88,26 +88,29 @@ fn main() {
         v[v.len() / 2]
     };
     println!(
-        "| rain | Passo ms/step | rapier2d ms/step (awake) | speed-up | Passo max penetration | rapier2d max penetration | rapier2d ms/step (sleeping on) |"
+        "| rain | Passo ms/step (awake) | rapier2d ms/step (awake) | speed-up | Passo max penetration | rapier2d max penetration | Passo ms/step (sleeping on) | rapier2d ms/step (sleeping on) |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
     for n in sizes {
         let start = rain_world(n);
-        let (mut p, mut r, mut s) = (Vec::new(), Vec::new(), Vec::new());
+        let awake_start = with_sleeping(&start, false);
+        let (mut p, mut ps, mut r, mut s) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let (mut passo_pen, mut rapier_pen) = (0.0, 0.0);
         for _ in 0..3 {
-            let mut passo = start.clone();
+            let mut passo = awake_start.clone();
             p.push(time_steps(ticks, || passo.step(1.0 / 60.0)).mean_ms);
             passo_pen = passo.max_penetration();
+            let mut passo_sleepy = start.clone();
+            ps.push(time_steps(ticks, || passo_sleepy.step(1.0 / 60.0)).mean_ms);
             let mut awake = rapier_copy(&start, false);
             r.push(time_steps(ticks, || awake.world.step()).mean_ms);
             rapier_pen = rapier_penetration(&start, &awake);
             let mut sleepy = rapier_copy(&start, true);
             s.push(time_steps(ticks, || sleepy.world.step()).mean_ms);
         }
-        let (p, r, s) = (median(p), median(r), median(s));
+        let (p, ps, r, s) = (median(p), median(ps), median(r), median(s));
         println!(
-            "| {n} | {p:.2} | {r:.2} | {:.2}× | {:.1} mm | {:.1} mm | {s:.2} |",
+            "| {n} | {p:.2} | {r:.2} | {:.2}× | {:.1} mm | {:.1} mm | {ps:.2} | {s:.2} |",
             r / p,
             passo_pen * 1e3,
             rapier_pen * 1e3,

@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use glam::Vec2;
-use passo_benches::{pyramid_world, rain_strip, rain_world, time_steps};
+use passo_benches::{pyramid_world, rain_strip, rain_world, time_steps, with_sleeping};
 use passo_render::{AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer};
 use std::time::Instant;
 
@@ -27,6 +27,25 @@ pub enum BenchWhat {
     /// same neighbourhood for every body), with the fitted exponent of cost
     /// against size.
     Scaling(ScalingBenchArgs),
+    /// What a settled scene costs with sleeping on and off.
+    Sleep(SleepBenchArgs),
+}
+
+/// Options of `passo bench sleep`.
+#[derive(clap::Args, Debug)]
+pub struct SleepBenchArgs {
+    /// Rain sizes (bodies), comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "10000")]
+    pub rain: Vec<usize>,
+    /// Pyramid base widths, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "50")]
+    pub pyramid: Vec<usize>,
+    /// Simulated seconds to let each scene settle first.
+    #[arg(long, default_value_t = 15)]
+    pub settle: u32,
+    /// Ticks timed after settling, each way.
+    #[arg(long, default_value_t = 120)]
+    pub ticks: u32,
 }
 
 /// Options of `passo bench integration`.
@@ -94,6 +113,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         BenchWhat::Physics(a) => physics(a),
         BenchWhat::Integration(a) => integration(a),
         BenchWhat::Scaling(a) => scaling(a),
+        BenchWhat::Sleep(a) => sleep(a),
     }
 }
 
@@ -253,6 +273,45 @@ fn physics(args: &PhysicsBenchArgs) -> Result<()> {
             t.mean_ms,
             t.last_ms,
             world.max_penetration() * 1e3
+        );
+    }
+    Ok(())
+}
+
+fn sleep(args: &SleepBenchArgs) -> Result<()> {
+    println!(
+        "| scene | bodies | asleep after {} s | ms per step, sleeping on | ms per step, sleeping off | ratio |",
+        args.settle
+    );
+    println!("|---|---:|---:|---:|---:|---:|");
+    let scenes = args
+        .rain
+        .iter()
+        .map(|&n| (format!("rain {n}"), rain_world(n)))
+        .chain(
+            args.pyramid
+                .iter()
+                .map(|&b| (format!("pyramid {b}"), pyramid_world(b))),
+        );
+    for (name, mut world) in scenes {
+        for _ in 0..args.settle * 60 {
+            world.step(1.0 / 60.0);
+        }
+        let asleep = world.sleeping_len();
+        // Each timed world starts from the settled state with its own
+        // setting; the awake one first re-solves everything for a second.
+        let mut on = with_sleeping(&world, true);
+        let mut off = with_sleeping(&world, false);
+        for _ in 0..60 {
+            on.step(1.0 / 60.0);
+            off.step(1.0 / 60.0);
+        }
+        let t_on = time_steps(args.ticks, || on.step(1.0 / 60.0)).mean_ms;
+        let t_off = time_steps(args.ticks, || off.step(1.0 / 60.0)).mean_ms;
+        println!(
+            "| {name} | {} | {asleep} | {t_on:.3} | {t_off:.2} | {:.0}× |",
+            world.dynamic_len(),
+            t_off / t_on
         );
     }
     Ok(())

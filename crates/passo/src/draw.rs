@@ -36,6 +36,8 @@ pub struct DrawOptions {
     pub contact_normals: bool,
     /// Radius of a body without a shape, metres.
     pub point_radius: f32,
+    /// Draw sleeping bodies at 55 % brightness.
+    pub dim_sleeping: bool,
     /// Added to every position: draws several worlds side by side.
     pub offset: Vec2,
 }
@@ -50,6 +52,7 @@ impl Default for DrawOptions {
             force_scale: 0.1,
             contact_normals: false,
             point_radius: 0.1,
+            dim_sleeping: false,
             offset: Vec2::ZERO,
         }
     }
@@ -79,7 +82,12 @@ pub fn add_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], optio
                 .interpolated_position(body.id, options.alpha)
                 .unwrap_or(body.position)
                 + options.offset;
-            let colour = colour_of(body.id);
+            let mut colour = colour_of(body.id);
+            if options.dim_sleeping && body.asleep {
+                for c in &mut colour[..3] {
+                    *c = (f32::from(*c) * 0.55).round() as u8;
+                }
+            }
             match body.shape {
                 Some(Shape::Circle { radius }) => list.circle(p, radius, colour),
                 Some(Shape::Box { half_extents }) => list.rect(p, half_extents, colour),
@@ -120,5 +128,47 @@ pub fn add_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], optio
                 list.arrow(point, point + contact.normal * 0.4, 1.5, CONTACT_COLOUR);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use passo_physics::{BodyDef, WorldSettings};
+
+    #[test]
+    fn sleeping_bodies_are_dimmed_only_when_asked() {
+        let mut world = World::new(WorldSettings::default()).unwrap();
+        world
+            .add_body(BodyDef::fixed(Vec2::new(0.0, -0.5), Shape::rect(10.0, 1.0)))
+            .unwrap();
+        let ball = world
+            .add_body(BodyDef {
+                position: Vec2::new(0.0, 0.5),
+                shape: Some(Shape::circle(0.5)),
+                ..Default::default()
+            })
+            .unwrap();
+        for _ in 0..120 {
+            world.step(1.0 / 60.0);
+        }
+        assert!(world.is_asleep(ball).unwrap());
+        let fill = |dim_sleeping| {
+            let mut list = DrawList::new(BACKGROUND);
+            let options = DrawOptions {
+                dim_sleeping,
+                ..Default::default()
+            };
+            add_world(&mut list, &world, &[], &options);
+            // Static bodies are drawn first: the ball is the second shape.
+            (list.shapes[0].fill, list.shapes[1].fill)
+        };
+        let (ground, bright) = fill(false);
+        let (ground_dimmed, dim) = fill(true);
+        assert_eq!(ground, ground_dimmed, "static bodies never sleep");
+        let expected =
+            passo_render::srgb_to_linear((f32::from(DEFAULT_COLOUR[0]) * 0.55).round() as u8);
+        assert_eq!(dim[0], expected);
+        assert!(dim[0] < 0.5 * bright[0]);
     }
 }

@@ -560,6 +560,7 @@ impl Running {
                         velocity_vectors: self.view.velocities,
                         force_vectors: self.view.forces,
                         contact_normals: self.view.contacts,
+                        dim_sleeping: self.view.sleeping,
                         offset: lane.offset,
                         ..Default::default()
                     };

@@ -72,6 +72,13 @@ pub struct Knobs {
     pub wind_speed: f32,
     /// Continuous collision on.
     pub continuous: bool,
+    /// Sleeping on (resting islands are not solved until woken).
+    #[serde(default = "yes")]
+    pub sleeping: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// What the last frame did, for the panel.
@@ -186,6 +193,7 @@ impl Sim {
             wind: f.wind != Vec2::ZERO,
             wind_speed: if f.wind.x != 0.0 { f.wind.x } else { 8.0 },
             continuous: file.collisions.is_none_or(|c| c.continuous),
+            sleeping: file.collisions.is_none_or(|c| c.sleeping),
         };
         let player = built.body_named("player");
         let plot = if file.name == "Drag race" {
@@ -303,6 +311,7 @@ impl Sim {
                 wind: false,
                 wind_speed: 8.0,
                 continuous: true,
+                sleeping: true,
             },
             fixed_integrators: true,
             stats: Stats::default(),
@@ -659,6 +668,7 @@ impl Sim {
             s.max_speed = k.max_speed;
             if let Some(c) = &mut s.contacts {
                 c.continuous = k.continuous;
+                c.sleeping = k.sleeping;
             }
             if let Err(e) = lane.world.set_settings(s) {
                 log::warn!("slider value refused: {e}");
@@ -754,6 +764,19 @@ impl Sim {
     /// Bodies in every lane.
     pub fn body_count(&self) -> usize {
         self.lanes.iter().map(|l| l.world.len()).sum()
+    }
+
+    /// Sleeping bodies, contacts solved in the last step, and all contacts,
+    /// over every lane.
+    pub fn sleep_counts(&self) -> (usize, usize, usize) {
+        self.lanes.iter().fold((0, 0, 0), |(s, v, c), l| {
+            let w = &l.world;
+            (
+                s + w.sleeping_len(),
+                v + w.solved_contacts(),
+                c + w.contacts().count(),
+            )
+        })
     }
 
     /// Total energy of every lane, joules.

@@ -18,6 +18,8 @@ pub struct ViewOptions {
     pub forces: bool,
     /// Contact normals.
     pub contacts: bool,
+    /// Sleeping bodies drawn darker.
+    pub sleeping: bool,
 }
 
 /// What the panel asked for this frame.
@@ -73,6 +75,7 @@ pub fn panel(
                     ui.checkbox(&mut view.velocities, "velocities");
                     ui.checkbox(&mut view.forces, "forces");
                     ui.checkbox(&mut view.contacts, "contacts");
+                    ui.checkbox(&mut view.sleeping, "dim sleeping");
                 });
                 ui.separator();
                 help(ui);
@@ -244,6 +247,12 @@ fn forces_section(ui: &mut egui::Ui, sim: &Sim, actions: &mut Actions) {
         changed |= ui
             .checkbox(&mut k.continuous, "continuous collision")
             .changed();
+        changed |= ui
+            .checkbox(&mut k.sleeping, "sleeping")
+            .on_hover_text(
+                "islands at rest for 0.5 s sleep: not solved until something reaches them",
+            )
+            .changed();
     }
     if changed || friction || drag || restitution {
         actions.commands.push(Command::Knobs {
@@ -273,6 +282,9 @@ fn stats_section(ui: &mut egui::Ui, sim: &Sim, fps: f64) {
         );
         row("step time", format!("{:.2} ms", s.step_ms));
         row("bodies", sim.body_count().to_string());
+        let (sleeping, solved, contacts) = sim.sleep_counts();
+        row("sleeping bodies", sleeping.to_string());
+        row("contacts solved", format!("{solved} of {contacts}"));
         row("total energy", format!("{:.2} J", sim.energy()));
         row("tick", sim.timestep.tick().to_string());
     });
