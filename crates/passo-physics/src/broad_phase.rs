@@ -43,8 +43,11 @@ fn bucket(cell: (i32, i32), mask: usize) -> usize {
 }
 
 impl BroadPhase {
-    /// Appends to `pairs` every `(i, j)`, `i < j`, whose boxes overlap.
-    pub fn find_pairs(&mut self, proxies: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
+    /// Appends to `pairs` every `(i, j)`, `i < j`, whose boxes overlap,
+    /// except pairs of two proxies marked in `asleep` (empty: none is).
+    pub fn find_pairs(&mut self, proxies: &[Aabb], asleep: &[bool], pairs: &mut Vec<(u32, u32)>) {
+        let both_asleep =
+            |a: u32, b: u32| !asleep.is_empty() && asleep[a as usize] && asleep[b as usize];
         if proxies.len() < 2 {
             return;
         }
@@ -109,8 +112,8 @@ impl BroadPhase {
             let run = &self.sorted[self.starts[k] as usize..self.starts[k + 1] as usize];
             for (x, ea) in run.iter().enumerate() {
                 for eb in &run[x + 1..] {
-                    if ea.cell != eb.cell {
-                        continue; // a hash collision between two cells
+                    if ea.cell != eb.cell || both_asleep(ea.proxy, eb.proxy) {
+                        continue; // a hash collision between two cells, or resting
                     }
                     let (a, b) = (&proxies[ea.proxy as usize], &proxies[eb.proxy as usize]);
                     if a.overlaps(b) && cell_of(a.min.max(b.min)) == ea.cell {
@@ -126,7 +129,7 @@ impl BroadPhase {
                 let j = j as u32;
                 // A pair of two large proxies is reported by the lower one.
                 let j_is_large = self.large.binary_search(&j).is_ok();
-                if j == l || (j_is_large && j < l) {
+                if j == l || (j_is_large && j < l) || both_asleep(l, j) {
                     continue;
                 }
                 if lb.overlaps(b) {
@@ -169,7 +172,7 @@ mod tests {
 
     fn grid_pairs(proxies: &[Aabb]) -> Vec<(u32, u32)> {
         let mut pairs = Vec::new();
-        BroadPhase::default().find_pairs(proxies, &mut pairs);
+        BroadPhase::default().find_pairs(proxies, &[], &mut pairs);
         let count = pairs.len();
         pairs.sort_unstable();
         pairs.dedup();
@@ -198,6 +201,24 @@ mod tests {
             proxies in prop::collection::vec(aabb(), 0..300)
         ) {
             prop_assert_eq!(grid_pairs(&proxies), brute_force(&proxies));
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(100))]
+        #[test]
+        fn pairs_of_two_sleeping_proxies_are_left_out(
+            proxies in prop::collection::vec((aabb(), any::<bool>()), 0..200)
+        ) {
+            let (boxes, asleep): (Vec<Aabb>, Vec<bool>) = proxies.into_iter().unzip();
+            let mut pairs = Vec::new();
+            BroadPhase::default().find_pairs(&boxes, &asleep, &mut pairs);
+            pairs.sort_unstable();
+            let expected: Vec<_> = brute_force(&boxes)
+                .into_iter()
+                .filter(|&(a, b)| !(asleep[a as usize] && asleep[b as usize]))
+                .collect();
+            prop_assert_eq!(pairs, expected);
         }
     }
 

@@ -267,6 +267,14 @@ pub(crate) struct StepParams {
     pub parallel: bool,
 }
 
+/// What decides whether a contact reaches a sleeping body this step.
+struct Closing {
+    slop: f32,
+    dt: f32,
+    gravity: Vec2,
+    h: f32,
+}
+
 /// What the narrow phase makes of one candidate pair.
 #[derive(Clone, Copy, Debug)]
 enum Outcome {
@@ -392,13 +400,21 @@ pub(crate) struct ContactWorld {
     /// Candidate pairs with their order key (the two slot indices, lower
     /// first): `(key, proxy, proxy or STATIC_BODY | static index)`.
     keyed: Vec<(u64, u32, u32)>,
-    /// Contacts: the `active` ones to solve first, then those between
-    /// sleeping (or sleeping and static) bodies; each run sorted by pair.
+    /// Contacts with an awake body, solved this step; sorted by pair.
     pub constraints: Vec<Constraint>,
     /// The rest of each contact, beside `constraints`.
     pub infos: Vec<ContactInfo>,
-    /// How many contacts (at the front) the solver works on.
-    pub active: usize,
+    /// Contacts between sleeping bodies (or a sleeping and a static one),
+    /// kept as they were when their island fell asleep; sorted by pair.
+    pub asleep: Vec<Constraint>,
+    /// The rest of each sleeping contact, beside `asleep`.
+    pub asleep_infos: Vec<ContactInfo>,
+    /// Room for merging sleeping contacts, kept between steps.
+    scratch: (Vec<Constraint>, Vec<ContactInfo>),
+    /// Per proxy: whether its body sleeps (empty when none does).
+    proxy_asleep: Vec<bool>,
+    /// Per dynamic body: its proxy (while waking islands).
+    body_proxy: Vec<u32>,
     /// Island bookkeeping for sleeping.
     pub islands: Islands,
     /// Positions at the start of the step.
@@ -476,12 +492,19 @@ impl ContactWorld {
         self.push.resize(dynamic.len(), Vec2::ZERO);
 
         // Proxies: shaped dynamic bodies, grown by their possible travel.
+        // Pairs of two sleeping bodies, and of a sleeping and a static one,
+        // are not looked for: their contacts wait in `asleep`.
         self.proxy_body.clear();
         self.proxies.clear();
         self.margins.clear();
+        self.proxy_asleep.clear();
+        let any_asleep = !self.asleep.is_empty() || dynamic.sleep.iter().any(|s| s.is_asleep());
         let fall = gravity.length() * dt;
         for (i, meta) in dynamic.meta.iter().enumerate() {
             let Some(shape) = &meta.shape else { continue };
+            if any_asleep {
+                self.proxy_asleep.push(dynamic.sleep[i].is_asleep());
+            }
             let travel = if settings.continuous {
                 (dynamic.vel[i].length() + fall) * dt
             } else {
@@ -494,8 +517,12 @@ impl ContactWorld {
             self.margins.push(margin);
         }
         self.pairs.clear();
-        self.broad_phase.find_pairs(&self.proxies, &mut self.pairs);
+        self.broad_phase
+            .find_pairs(&self.proxies, &self.proxy_asleep, &mut self.pairs);
         for (p, aabb) in self.proxies.iter().enumerate() {
+            if self.proxy_asleep.get(p) == Some(&true) {
+                continue;
+            }
             let pairs = &mut self.pairs;
             let items = &self.tree_items;
             self.tree.query(aabb, |item| {
@@ -561,18 +588,6 @@ impl ContactWorld {
                 *o = narrow.pair(pa, pb);
             }
         }
-        // Sleeping: an awake body within reach of a sleeping island wakes
-        // it; the contacts left between sleeping (or sleeping and static)
-        // bodies go behind the ones to solve. Each run stays in key order.
-        if settings.sleeping {
-            let rows = outcomes.iter().filter_map(|o| match o {
-                Outcome::Contact(row, _) => Some(row),
-                _ => None,
-            });
-            self.islands.wake_touched(dynamic, rows);
-        }
-        let any_asleep = settings.sleeping && dynamic.sleep.iter().any(|s| s.is_asleep());
-        let solved = |row: &Constraint| !any_asleep || has_awake_body(dynamic, row);
         self.constraints.clear();
         self.infos.clear();
         self.sensor_candidates.clear();
@@ -580,67 +595,181 @@ impl ContactWorld {
             match o {
                 Outcome::Skip => {}
                 Outcome::Sensor(candidate) => self.sensor_candidates.push(*candidate),
-                Outcome::Contact(row, info) if solved(row) => {
-                    self.constraints.push(*row);
-                    self.infos.push(*info);
-                }
-                Outcome::Contact(..) => {}
-            }
-        }
-        self.active = self.constraints.len();
-        if any_asleep {
-            for o in &outcomes {
-                if let Outcome::Contact(row, info) = o
-                    && !solved(row)
-                {
+                Outcome::Contact(row, info) => {
                     self.constraints.push(*row);
                     self.infos.push(*info);
                 }
             }
         }
         self.outcomes = outcomes;
+        if settings.sleeping && any_asleep {
+            let closing = Closing {
+                slop: settings.slop,
+                dt,
+                gravity,
+                h,
+            };
+            self.wake_reached(dynamic, statics, &closing);
+        }
 
-        // Warm starting: merge each run with last step's impulses (all
-        // sorted by key).
+        // Warm starting: last step's impulses (both sorted by key).
         if settings.warm_starting {
-            let active = self.active;
-            let (awake, sleeping) = self.constraints.split_at_mut(active);
-            let (awake_infos, sleeping_infos) = self.infos.split_at(active);
-            warm_start(&self.cache, awake, awake_infos);
-            warm_start(&self.cache, sleeping, sleeping_infos);
+            warm_start(&self.cache, &mut self.constraints, &self.infos);
         }
-        // A sleeping contact is not solved: it carries its impulse, and
-        // counts as touching if that impulse carried weight.
-        for c in &mut self.constraints[self.active..] {
-            c.max_normal_impulse = c.normal_impulse;
+    }
+
+    /// Wakes the sleeping islands an awake body reaches this step (a
+    /// contact touching within the slop, or closing to it at the bodies'
+    /// speeds), so they are solved in this step already. The contacts
+    /// found with them held static, and the stored contacts of the woken
+    /// bodies, are found again with everyone awake.
+    fn wake_reached(&mut self, dynamic: &mut DynamicBodies, statics: &StaticBodies, at: &Closing) {
+        let mut woke = false;
+        for c in &self.constraints {
+            if c.is_static() {
+                continue;
+            }
+            let (a, b) = (c.a as usize, c.b as usize);
+            let (sa, sb) = (dynamic.sleep[a].is_asleep(), dynamic.sleep[b].is_asleep());
+            let vn = (dynamic.vel[b] - dynamic.vel[a]).dot(c.normal);
+            if sa != sb && c.base_separation + vn.min(0.0) * at.dt <= at.slop {
+                self.islands.wake_body(dynamic, if sa { a } else { b });
+                woke = true;
+            }
         }
+        if !woke {
+            return;
+        }
+        self.islands.wake_marked(dynamic);
+        // Proxy of each body, and whether it woke just now.
+        let none = u32::MAX;
+        self.body_proxy.clear();
+        self.body_proxy.resize(dynamic.len(), none);
+        for (p, &body) in self.proxy_body.iter().enumerate() {
+            self.body_proxy[body as usize] = p as u32;
+        }
+        let proxy_asleep = &self.proxy_asleep;
+        let body_proxy = &self.body_proxy;
+        let woke_now = |body: u32| {
+            body & STATIC_BODY == 0
+                && !dynamic.sleep[body as usize].is_asleep()
+                && proxy_asleep[body_proxy[body as usize] as usize]
+        };
+        let slot = |body: u32| -> u64 {
+            if body & STATIC_BODY != 0 {
+                u64::from(statics.meta[(body & !STATIC_BODY) as usize].id.index)
+            } else {
+                u64::from(dynamic.meta[body as usize].id.index)
+            }
+        };
+        let proxy = |body: u32| {
+            if body & STATIC_BODY != 0 {
+                body
+            } else {
+                body_proxy[body as usize]
+            }
+        };
+        let keyed = &mut self.keyed;
+        keyed.clear();
+        let mut kept = 0;
+        for i in 0..self.constraints.len() {
+            let c = self.constraints[i];
+            if woke_now(c.a) || woke_now(c.b) {
+                let (x, y) = (slot(c.a), slot(c.b));
+                keyed.push((x.min(y) << 32 | x.max(y), proxy(c.a), proxy(c.b)));
+            } else {
+                self.constraints[kept] = c;
+                self.infos[kept] = self.infos[i];
+                kept += 1;
+            }
+        }
+        self.constraints.truncate(kept);
+        self.infos.truncate(kept);
+        for c in &self.asleep {
+            if woke_now(c.a) || woke_now(c.b) {
+                let (x, y) = (slot(c.a), slot(c.b));
+                keyed.push((x.min(y) << 32 | x.max(y), proxy(c.a), proxy(c.b)));
+            }
+        }
+        keyed.sort_unstable_by_key(|k| k.0);
+        keyed.dedup_by_key(|k| k.0);
+        let narrow = Narrow {
+            proxy_body: &self.proxy_body,
+            margins: &self.margins,
+            dynamic,
+            statics,
+            gravity: at.gravity,
+            h: at.h,
+        };
+        // Merge the contacts found again into the solved list, in key order.
+        let (old, old_infos) = (&mut self.scratch.0, &mut self.scratch.1);
+        old.clear();
+        old_infos.clear();
+        old.append(&mut self.constraints);
+        old_infos.append(&mut self.infos);
+        let mut j = 0;
+        for &(_, pa, pb) in keyed.iter() {
+            let Outcome::Contact(row, info) = narrow.pair(pa, pb) else {
+                continue;
+            };
+            while j < old.len() && old_infos[j].key() < info.key() {
+                self.constraints.push(old[j]);
+                self.infos.push(old_infos[j]);
+                j += 1;
+            }
+            self.constraints.push(row);
+            self.infos.push(info);
+        }
+        self.constraints.extend_from_slice(&old[j..]);
+        self.infos.extend_from_slice(&old_infos[j..]);
+        self.drop_awake_contacts(dynamic);
     }
 
     /// After the last substep: cache impulses for warm starting, find which
     /// bodies are inside sensors now, and work out which pairs began and
     /// ended touching.
-    pub fn end_step(&mut self, dynamic: &DynamicBodies, statics: &StaticBodies) {
+    ///
+    /// With `sleep_dt` (sleeping on, the step's length) it also does the
+    /// sleeping bookkeeping: rest times, waking islands an awake body
+    /// touched, and putting islands that rested long enough to sleep.
+    pub fn end_step(
+        &mut self,
+        dynamic: &mut DynamicBodies,
+        statics: &StaticBodies,
+        sleep_dt: Option<f32>,
+    ) {
         self.sensors.clear();
         for c in &self.sensor_candidates {
             let (shape_s, pos_s) = collider_at(c.sensor, dynamic, statics);
             let (shape_v, pos_v) = collider_at(c.visitor, dynamic, statics);
             if collide(&shape_s, pos_s, &shape_v, pos_v, 0.0).is_some_and(|m| m.separation < 0.0) {
                 self.sensors.push(c.pair);
+                // Bodies in a sensor stay awake, so it keeps seeing them.
+                for body in [c.sensor, c.visitor] {
+                    if body & STATIC_BODY == 0 {
+                        dynamic.sleep[body as usize].rest_time = 0.0;
+                    }
+                }
             }
+        }
+        if let Some(dt) = sleep_dt {
+            self.update_sleep(dynamic, dt);
         }
         self.cache.clear();
         self.touching.clear();
-        let (mut i, mut j, n) = (0, self.active, self.constraints.len());
-        // Merge the two sorted runs (awake, sleeping) into key order.
-        while i < self.active || j < n {
-            let next = if j == n || (i < self.active && self.infos[i].key() < self.infos[j].key()) {
+        let (solved, asleep) = (self.constraints.len(), self.asleep.len());
+        let (mut i, mut j) = (0, 0);
+        // Merge the two sorted lists (solved, asleep) into key order.
+        while i < solved || j < asleep {
+            let (c, info) = if j == asleep
+                || (i < solved && self.infos[i].key() < self.asleep_infos[j].key())
+            {
                 i += 1;
-                i - 1
+                (&self.constraints[i - 1], &self.infos[i - 1])
             } else {
                 j += 1;
-                j - 1
+                (&self.asleep[j - 1], &self.asleep_infos[j - 1])
             };
-            let (c, info) = (&self.constraints[next], &self.infos[next]);
             let k = info.key();
             self.cache.push(Cached {
                 key: k,
@@ -675,12 +804,123 @@ impl ContactWorld {
 
     /// A step in which the contact stage has nothing to do (its colliders
     /// were removed): every contact and overlap ends.
-    pub fn idle_step(&mut self, dynamic: &DynamicBodies, statics: &StaticBodies) {
+    pub fn idle_step(&mut self, dynamic: &mut DynamicBodies, statics: &StaticBodies) {
         self.constraints.clear();
         self.infos.clear();
-        self.active = 0;
         self.sensor_candidates.clear();
-        self.end_step(dynamic, statics);
+        self.wake_all(dynamic);
+        self.end_step(dynamic, statics, None);
+    }
+
+    /// Rest times, waking and falling asleep after a step (see `sleep`).
+    fn update_sleep(&mut self, dynamic: &mut DynamicBodies, dt: f32) {
+        self.islands.rest(dynamic, &self.delta, dt);
+        // An awake body touching a sleeping one wakes its island (for the
+        // next step: during this one it held like a static body).
+        let mut woke = false;
+        for (c, info) in self.constraints.iter().zip(&self.infos) {
+            if c.is_static() || !info.is_touching(c) {
+                continue;
+            }
+            for body in [c.a, c.b] {
+                if dynamic.sleep[body as usize].is_asleep() {
+                    self.islands.wake_body(dynamic, body as usize);
+                    woke = true;
+                }
+            }
+        }
+        if woke {
+            self.islands.wake_marked(dynamic);
+            self.drop_awake_contacts(dynamic);
+        }
+        if self
+            .islands
+            .fall_asleep(dynamic, &self.constraints, &self.infos)
+        {
+            self.store_sleeping_contacts(dynamic);
+        }
+    }
+
+    /// Moves the solved contacts whose bodies all sleep now into `asleep`,
+    /// keeping both lists in key order.
+    fn store_sleeping_contacts(&mut self, dynamic: &DynamicBodies) {
+        let (old, old_infos) = (&mut self.scratch.0, &mut self.scratch.1);
+        old.clear();
+        old_infos.clear();
+        old.append(&mut self.asleep);
+        old_infos.append(&mut self.asleep_infos);
+        let (mut kept, mut j) = (0, 0);
+        for i in 0..self.constraints.len() {
+            let (c, info) = (self.constraints[i], self.infos[i]);
+            if has_awake_body(dynamic, &c) {
+                self.constraints[kept] = c;
+                self.infos[kept] = info;
+                kept += 1;
+                continue;
+            }
+            while j < old.len() && old_infos[j].key() < info.key() {
+                self.asleep.push(old[j]);
+                self.asleep_infos.push(old_infos[j]);
+                j += 1;
+            }
+            self.asleep.push(c);
+            self.asleep_infos.push(info);
+        }
+        self.asleep.extend_from_slice(&old[j..]);
+        self.asleep_infos.extend_from_slice(&old_infos[j..]);
+        self.constraints.truncate(kept);
+        self.infos.truncate(kept);
+    }
+
+    /// Forgets the stored contacts of bodies that woke: the next step finds
+    /// them afresh.
+    fn drop_awake_contacts(&mut self, dynamic: &DynamicBodies) {
+        let mut kept = 0;
+        for i in 0..self.asleep.len() {
+            if !has_awake_body(dynamic, &self.asleep[i]) {
+                self.asleep[kept] = self.asleep[i];
+                self.asleep_infos[kept] = self.asleep_infos[i];
+                kept += 1;
+            }
+        }
+        self.asleep.truncate(kept);
+        self.asleep_infos.truncate(kept);
+    }
+
+    /// Wakes dynamic body `i` and its island now.
+    pub fn wake_body(&mut self, dynamic: &mut DynamicBodies, i: usize) {
+        let was_asleep = dynamic.sleep[i].is_asleep();
+        self.islands.wake_body(dynamic, i);
+        if was_asleep {
+            self.islands.wake_marked(dynamic);
+            self.drop_awake_contacts(dynamic);
+        }
+    }
+
+    /// Wakes every body.
+    pub fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
+        crate::sleep::wake_all(dynamic);
+        self.asleep.clear();
+        self.asleep_infos.clear();
+    }
+
+    /// Dynamic body `from` now sits at index `to` (a removal moved it).
+    pub fn body_moved(&mut self, from: u32, to: u32) {
+        for c in &mut self.asleep {
+            if c.a == from {
+                c.a = to;
+            }
+            if c.b == from {
+                c.b = to;
+            }
+        }
+    }
+
+    /// Every contact after the last step: the solved ones, then those
+    /// between sleeping bodies.
+    pub fn all_contacts(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> {
+        let solved = self.constraints.iter().zip(&self.infos);
+        solved.chain(self.asleep.iter().zip(&self.asleep_infos))
     }
 
     /// Sensor overlaps after the last step.
@@ -695,6 +935,8 @@ impl ContactWorld {
             cache: self.cache.clone(),
             touching: self.touching_prev.clone(),
             sensors: self.sensors_prev.clone(),
+            asleep: self.asleep.clone(),
+            asleep_infos: self.asleep_infos.clone(),
         }
     }
 
@@ -704,6 +946,8 @@ impl ContactWorld {
             cache: state.cache,
             touching_prev: state.touching,
             sensors_prev: state.sensors,
+            asleep: state.asleep,
+            asleep_infos: state.asleep_infos,
             ..Self::new()
         }
     }
@@ -742,6 +986,50 @@ pub(crate) struct ContactState {
     pub touching: Vec<(BodyId, BodyId)>,
     /// Sensor overlaps, sorted.
     pub sensors: Vec<SensorPair>,
+    /// Contacts of sleeping bodies, sorted by pair.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub asleep: Vec<Constraint>,
+    /// The rest of each sleeping contact.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub asleep_infos: Vec<ContactInfo>,
+}
+
+impl ContactState {
+    /// Checks the sleeping contacts against the bodies: each names a
+    /// sleeping dynamic body and a sleeping or static one that exist, in
+    /// key order, with finite values.
+    pub fn validate(&self, dynamic: &DynamicBodies, statics: &StaticBodies) -> Result<(), String> {
+        if self.asleep.len() != self.asleep_infos.len() {
+            return Err("sleeping contact lists of different lengths".into());
+        }
+        if !self.asleep_infos.is_sorted_by_key(ContactInfo::key) {
+            return Err("sleeping contacts out of order".into());
+        }
+        let sleeping = |i: u32| dynamic.sleep.get(i as usize).is_some_and(|s| s.is_asleep());
+        for (c, info) in self.asleep.iter().zip(&self.asleep_infos) {
+            let b_ok = if c.is_static() {
+                statics.meta.get((c.b & !STATIC_BODY) as usize).is_some()
+            } else {
+                sleeping(c.b)
+            };
+            let ids = |i: u32| {
+                if i & STATIC_BODY != 0 {
+                    statics.meta.get((i & !STATIC_BODY) as usize).map(|m| m.id)
+                } else {
+                    dynamic.meta.get(i as usize).map(|m| m.id)
+                }
+            };
+            let named = ids(c.a) == Some(info.id_a) && ids(c.b) == Some(info.id_b)
+                || ids(c.a) == Some(info.id_b) && ids(c.b) == Some(info.id_a);
+            if !(sleeping(c.a) && b_ok && named && c.is_valid()) {
+                return Err(format!(
+                    "sleeping contact {:?}-{:?} is inconsistent with the bodies",
+                    info.id_a, info.id_b
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// The shape and position of a collider reference.

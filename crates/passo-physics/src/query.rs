@@ -32,7 +32,7 @@ impl World {
     pub fn contacts(&self) -> impl Iterator<Item = Contact> + '_ {
         self.contacts
             .iter()
-            .flat_map(|cw| cw.constraints.iter().zip(&cw.infos))
+            .flat_map(|cw| cw.all_contacts())
             .map(|(c, info)| Contact {
                 a: info.id_a,
                 b: info.id_b,
@@ -50,7 +50,7 @@ impl World {
     /// with an awake body. The rest (between sleeping bodies, or sleeping
     /// and static ones) are kept but cost no solver work.
     pub fn solved_contacts(&self) -> usize {
-        self.contacts.as_ref().map_or(0, |cw| cw.active)
+        self.contacts.as_ref().map_or(0, |cw| cw.constraints.len())
     }
 
     /// The contacts of one body, each seen from it (`contact.a == id`, the
@@ -129,7 +129,7 @@ impl World {
             })
             .collect();
         let mut pairs = Vec::new();
-        BroadPhase::default().find_pairs(&boxes, &mut pairs);
+        BroadPhase::default().find_pairs(&boxes, &[], &mut pairs);
         let mut deepest = 0.0f32;
         for (i, j) in pairs {
             let (a, b) = (&bodies[i as usize], &bodies[j as usize]);

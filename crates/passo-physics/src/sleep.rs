@@ -6,17 +6,20 @@
 //! groups dynamic bodies into islands (bodies joined by touching contacts)
 //! and puts an island to sleep when every body in it has been slower than
 //! [`SLEEP_SPEED`] for [`TIME_TO_SLEEP`]. A sleeping body keeps its
-//! position, has zero velocity and is not integrated; contacts between
-//! sleeping bodies, or between a sleeping body and a static one, stay in
-//! the contact list with their last impulses (so `is_standing`, `contacts`
-//! and events see them) but are not solved.
+//! position, has zero velocity and is not integrated. Its contacts with
+//! other sleeping bodies and with static ones are stored as they were when
+//! it fell asleep (so `contacts`, `is_standing` and events still see them)
+//! and cost nothing: the broad phase skips pairs of sleeping bodies, and
+//! sleeping bodies are not queried against static ones.
 //!
-//! An island wakes, all of it, when an awake dynamic body comes within
-//! contact distance of one of its bodies, and when game code changes one
-//! of its bodies (force, impulse, velocity, position, material, removal).
-//! Changing the world's settings, its force models or a static body wakes
-//! every body. Every decision depends only on the state, in a fixed order,
-//! so sleeping is as deterministic as the rest of the step.
+//! An awake body reaching a sleeping one meets it as if it were static for
+//! that step; if they touch, the sleeping island wakes, all of it, for the
+//! next step. Game code changing a body (force, impulse, velocity,
+//! position, material, removal) wakes its island at once; changing the
+//! world's settings, its force models or a static body wakes every body.
+//! Bodies inside a sensor stay awake. Every decision depends only on the
+//! state, in a fixed order, so sleeping is as deterministic as the rest of
+//! the step.
 
 use crate::body::DynamicBodies;
 use crate::constants::{SLEEP_SPEED, TIME_TO_SLEEP};
@@ -117,56 +120,34 @@ impl Islands {
         self.to_wake.clear();
     }
 
-    /// Wakes the sleeping islands that an awake body may touch this step
-    /// (a contact, speculative or not, between an awake and a sleeping
-    /// dynamic body).
-    pub fn wake_touched<'a>(
-        &mut self,
-        bodies: &mut DynamicBodies,
-        constraints: impl Iterator<Item = &'a Constraint>,
-    ) {
-        for c in constraints {
-            if c.b & STATIC_BODY != 0 {
-                continue;
-            }
-            let (a, b) = (c.a as usize, c.b as usize);
-            match (bodies.sleep[a].is_asleep(), bodies.sleep[b].is_asleep()) {
-                (true, false) => self.wake_body(bodies, a),
-                (false, true) => self.wake_body(bodies, b),
-                _ => {}
-            }
-        }
-        self.wake_marked(bodies);
-    }
-
     /// After a step: adds `dt` to the rest time of every awake body that
     /// ends the step slower than [`SLEEP_SPEED`] and moved less than that
     /// speed allows (so a body still being pushed out of an overlap, with
-    /// zero velocity, is not resting), and resets the others; joins awake
-    /// bodies that touch into islands, and puts to sleep each island whose
-    /// bodies have all rested for [`TIME_TO_SLEEP`]. `moved` is each body's
-    /// displacement over the step. Returns how many bodies sleep.
-    pub fn update(
-        &mut self,
-        bodies: &mut DynamicBodies,
-        contacts: (&[Constraint], &[ContactInfo]),
-        moved: &[glam::Vec2],
-        dt: f32,
-    ) -> usize {
-        let (constraints, infos) = contacts;
-        let n = bodies.len();
+    /// zero velocity, is not resting), and resets the others. `moved` is
+    /// each body's displacement over the step.
+    pub fn rest(&mut self, bodies: &mut DynamicBodies, moved: &[glam::Vec2], dt: f32) {
         let sleep_sq = SLEEP_SPEED * SLEEP_SPEED;
         let travel_sq = sleep_sq * dt * dt;
         let states = bodies.sleep.iter_mut().zip(&bodies.vel).zip(moved);
         for ((s, v), d) in states {
             if !s.is_asleep() {
-                s.rest_time = if v.length_squared() < sleep_sq && d.length_squared() < travel_sq {
-                    s.rest_time + dt
-                } else {
-                    0.0
-                };
+                let resting = v.length_squared() < sleep_sq && d.length_squared() < travel_sq;
+                s.rest_time = if resting { s.rest_time + dt } else { 0.0 };
             }
         }
+    }
+
+    /// Joins awake bodies that touch into islands and puts to sleep each
+    /// island whose bodies have all rested for [`TIME_TO_SLEEP`] (their
+    /// velocities become exactly zero). Returns whether any island fell
+    /// asleep.
+    pub fn fall_asleep(
+        &mut self,
+        bodies: &mut DynamicBodies,
+        constraints: &[Constraint],
+        infos: &[ContactInfo],
+    ) -> bool {
+        let n = bodies.len();
         self.parent.clear();
         self.parent.extend(0..n as u32);
         for (c, info) in constraints.iter().zip(infos) {
@@ -188,20 +169,19 @@ impl Islands {
                 self.least_rest[root] = self.least_rest[root].min(bodies.sleep[i].rest_time);
             }
         }
-        let mut sleeping = 0;
+        let mut fell = false;
         for i in 0..n {
             if bodies.sleep[i].is_asleep() {
-                sleeping += 1;
                 continue;
             }
             let root = self.find(i as u32) as usize;
             if self.least_rest[root] >= TIME_TO_SLEEP {
                 bodies.sleep[i].island = bodies.meta[root].id.index;
                 bodies.vel[i] = glam::Vec2::ZERO;
-                sleeping += 1;
+                fell = true;
             }
         }
-        sleeping
+        fell
     }
 }
 

@@ -149,6 +149,11 @@ impl WorldSnapshot {
                 shape.validate()?;
             }
         }
+        if let Some(contacts) = &self.contacts {
+            contacts
+                .validate(d, s)
+                .map_err(PhysicsError::InvalidSnapshot)?;
+        }
         Ok(())
     }
 

@@ -41,7 +41,8 @@ pub(crate) const STATIC_BODY: u32 = 1 << 31;
 /// What the solver reads and writes of one contact between a dynamic body
 /// A and a dynamic or static body B: kept small (56 bytes), so the passes
 /// over every contact stay in cache.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Constraint {
     pub a: u32,
     pub b: u32,
@@ -61,7 +62,8 @@ pub(crate) struct Constraint {
 }
 
 /// The rest of a contact: who, where, and what restitution needs.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactInfo {
     pub id_a: BodyId,
     pub id_b: BodyId,
@@ -104,6 +106,10 @@ impl Constraint {
     ) -> (Self, ContactInfo) {
         let ai = a as usize;
         let b_static = b & STATIC_BODY != 0;
+        // A sleeping body holds like a static one: it is not solved this
+        // step (an awake body touching it wakes its island for the next).
+        let asleep = |i: usize| dynamic.sleep[i].is_asleep();
+        let (a_holds, b_holds) = (asleep(ai), b_static || asleep(b as usize));
         let (inv_mass_b, friction_b, restitution_b, vel_b) = if b_static {
             let s = (b & !STATIC_BODY) as usize;
             (
@@ -115,13 +121,13 @@ impl Constraint {
         } else {
             let bi = b as usize;
             (
-                dynamic.inv_mass[bi],
+                if b_holds { 0.0 } else { dynamic.inv_mass[bi] },
                 dynamic.friction[bi],
                 dynamic.meta[bi].restitution,
                 dynamic.vel[bi],
             )
         };
-        let inv_mass_a = dynamic.inv_mass[ai];
+        let inv_mass_a = if a_holds { 0.0 } else { dynamic.inv_mass[ai] };
         let k = inv_mass_a + inv_mass_b;
         // Restitution reflects the normal velocity at the moment of impact,
         // in the form the integrator conserves. With a relative normal
@@ -132,11 +138,10 @@ impl Constraint {
         // bounce sets `u <- -e u`. An elastic ball then keeps `Q`, and so its
         // height, bounce after bounce, wherever in a step the impact falls.
         let vn = (vel_b - dynamic.vel[ai]).dot(m.normal);
-        let a_n = if b_static {
-            -gravity.dot(m.normal)
-        } else {
-            0.0
-        };
+        // Relative normal acceleration: gravity moves only the bodies that
+        // are free to fall (a static or sleeping body holds).
+        let falls = |holds: bool| if holds { Vec2::ZERO } else { gravity };
+        let a_n = (falls(b_holds) - falls(a_holds)).dot(m.normal);
         let half_an_h = 0.5 * a_n * h;
         let u0 = vn + half_an_h;
         let mut impact_u = u0;
@@ -175,6 +180,27 @@ impl Constraint {
 
     pub fn is_static(&self) -> bool {
         self.b & STATIC_BODY != 0
+    }
+
+    /// Whether every number is finite and every mass term >= 0 (for
+    /// snapshots).
+    pub fn is_valid(&self) -> bool {
+        let numbers = [
+            self.base_separation,
+            self.inv_mass_a,
+            self.inv_mass_b,
+            self.mass,
+            self.friction,
+            self.normal_impulse,
+            self.tangent_impulse,
+            self.push_impulse,
+            self.max_normal_impulse,
+        ];
+        self.normal.is_finite()
+            && numbers.iter().all(|x| x.is_finite())
+            && self.inv_mass_a >= 0.0
+            && self.inv_mass_b >= 0.0
+            && self.mass >= 0.0
     }
 }
 

@@ -286,13 +286,15 @@ impl World {
     /// Wakes every body. Changing the settings, the force models or a
     /// static body does this already.
     pub fn wake_all(&mut self) {
-        wake_all(&mut self.dynamic);
+        match &mut self.contacts {
+            Some(cw) => cw.wake_all(&mut self.dynamic),
+            None => wake_all(&mut self.dynamic),
+        }
     }
 
     fn wake_index(&mut self, i: usize) {
         if let Some(cw) = &mut self.contacts {
-            cw.islands.wake_body(&mut self.dynamic, i);
-            cw.islands.wake_marked(&mut self.dynamic);
+            cw.wake_body(&mut self.dynamic, i);
         }
     }
 
@@ -366,7 +368,7 @@ impl World {
                 slot.location = Location::Static(self.statics.len() as u32);
                 self.statics.push(&def, meta);
                 self.statics_dirty = true;
-                wake_all(&mut self.dynamic);
+                self.wake_all();
             }
         }
         Ok(id)
@@ -387,6 +389,10 @@ impl World {
                 }
                 // What rested on it must fall.
                 self.wake_index(i as usize);
+                let last = self.dynamic.len() as u32 - 1;
+                if let Some(cw) = &mut self.contacts {
+                    cw.body_moved(last, i);
+                }
                 self.dynamic.swap_remove(i as usize)
             }
             Location::Static(i) => {
@@ -725,14 +731,12 @@ impl World {
         match self.contact_settings() {
             Some(contacts) => self.step_with_contacts(dt, &contacts),
             None => {
-                // Sleeping belongs to the contact stage: without it, no body sleeps.
-                if self.contacts.is_some() {
-                    wake_all(&mut self.dynamic);
+                // Sleeping belongs to the contact stage: without it, no body
+                // sleeps (the idle step wakes them all).
+                if let Some(cw) = &mut self.contacts {
+                    cw.idle_step(&mut self.dynamic, &self.statics);
                 }
                 self.step_bodies(dt);
-                if let Some(cw) = &mut self.contacts {
-                    cw.idle_step(&self.dynamic, &self.statics);
-                }
             }
         }
         self.clear_forces();
@@ -822,11 +826,10 @@ impl World {
             parallel,
         };
         if !settings.sleeping {
-            wake_all(&mut self.dynamic);
+            cw.wake_all(&mut self.dynamic);
         }
         cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
-        let any_asleep =
-            cw.active < cw.constraints.len() || self.dynamic.sleep.iter().any(|s| s.is_asleep());
+        let any_asleep = !cw.asleep.is_empty() || self.dynamic.sleep.iter().any(|s| s.is_asleep());
         let integrator = self.settings.integrator;
         let limits = self.speed_limits();
         let mut resets = 0;
@@ -836,19 +839,16 @@ impl World {
         // loops can walk it beside the velocities.
         correction.clear();
         correction.resize(self.dynamic.len(), Vec2::ZERO);
+        // Only contacts with an awake body are solved (sleeping ones wait
+        // in `cw.asleep`).
         let ContactWorld {
-            constraints,
-            infos,
-            active,
+            constraints: solved,
+            infos: solved_infos,
             start,
             delta,
             push,
-            islands,
             ..
         } = &mut *cw;
-        // Only contacts with an awake body are solved (sleeping ones wait
-        // behind them).
-        let (solved, solved_infos) = (&mut constraints[..*active], &mut infos[..*active]);
         // The velocity update of the common case needs no general path.
         let kernel = PointMassKernel::new(
             &self.settings.forces,
@@ -953,10 +953,12 @@ impl World {
                 uniform.unwrap_or(b.limits[i]).apply(&mut b.vel[i]);
             }
         }
-        if settings.sleeping {
-            islands.update(b, (constraints, infos), delta, dt);
-        }
-        cw.end_step(&self.dynamic, &self.statics);
+
+        cw.end_step(
+            &mut self.dynamic,
+            &self.statics,
+            settings.sleeping.then_some(dt),
+        );
         self.contacts = Some(cw);
         self.correction = correction;
         self.stats.non_finite_resets += resets;

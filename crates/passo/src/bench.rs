@@ -309,7 +309,7 @@ fn sleep(args: &SleepBenchArgs) -> Result<()> {
         let t_on = time_steps(args.ticks, || on.step(1.0 / 60.0)).mean_ms;
         let t_off = time_steps(args.ticks, || off.step(1.0 / 60.0)).mean_ms;
         println!(
-            "| {name} | {} | {asleep} | {t_on:.3} | {t_off:.2} | {:.0}× |",
+            "| {name} | {} | {asleep} | {t_on:.2} | {t_off:.2} | {:.1}× |",
             world.dynamic_len(),
             t_off / t_on
         );
