@@ -294,3 +294,46 @@ fn rollback_through_a_sleeping_world_gives_the_same_bits() {
     assert_eq!(restored.state_hash(), straight.state_hash());
     assert_eq!(restored.sleeping_len(), straight.sleeping_len());
 }
+
+#[test]
+fn removing_a_body_keeps_the_sleeping_ones_reachable() {
+    // Enough sleeping boxes for the sleep tree (more than 64), and a body
+    // stored first that keeps moving: removing it moves the last box (asleep
+    // on top of the last stack) into its place in storage.
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    let faller = w
+        .add_body(BodyDef {
+            position: Vec2::new(100.0, 0.0),
+            shape: Some(Shape::circle(0.1)),
+            ..Default::default()
+        })
+        .unwrap();
+    add_static_box(&mut w, Vec2::new(-30.0, -1.0), Vec2::new(30.0, 0.0));
+    let stacks: Vec<Vec<BodyId>> = (0..10).map(|s| stack(&mut w, s as f32 * 2.0, 8)).collect();
+    run(&mut w, 2.0);
+    assert_eq!(w.sleeping_len(), 80);
+    w.remove_body(faller).unwrap();
+    assert_eq!(w.sleeping_len(), 80, "removing an awake body wakes no one");
+    // A ball dropped on the box that moved in storage lands on it.
+    let top = *stacks[9].last().unwrap();
+    let top_y = w.body(top).unwrap().position.y;
+    let ball = w
+        .add_body(BodyDef {
+            position: Vec2::new(18.0, top_y + 3.0),
+            shape: Some(Shape::circle(0.3)),
+            ..Default::default()
+        })
+        .unwrap();
+    run(&mut w, 2.0);
+    let rest = w.body(ball).unwrap().position.y;
+    assert!(
+        (rest - (top_y + 0.5 + 0.3)).abs() < 0.02,
+        "the ball rests on the top box: {rest} vs {}",
+        top_y + 0.8
+    );
+    assert_eq!(
+        asleep(&w, &stacks[0]),
+        vec![true; 8],
+        "a stack nothing reached sleeps on"
+    );
+}

@@ -267,6 +267,34 @@ pub(crate) struct StepParams {
     pub parallel: bool,
 }
 
+/// No proxy (or no body) here.
+const NO_PROXY: u32 = u32::MAX;
+
+/// Sleeping bodies outside the sleep tree that trigger its rebuild, at the
+/// least (below it they are simply binned with the awake ones).
+const SLEEP_TREE_MIN: usize = 64;
+
+/// How far a proxy is grown: half the speculative distance, plus the
+/// body's possible travel this step with continuous collision.
+#[derive(Clone, Copy, Debug, Default)]
+struct ProxyMargin {
+    /// Speed gravity can add this step, m/s.
+    fall: f32,
+    dt: f32,
+    continuous: bool,
+}
+
+impl ProxyMargin {
+    fn of(&self, velocity: Vec2) -> f32 {
+        let travel = if self.continuous {
+            (velocity.length() + self.fall) * self.dt
+        } else {
+            0.0
+        };
+        0.5 * SPECULATIVE_DISTANCE + travel
+    }
+}
+
 /// What decides whether a contact reaches a sleeping body this step.
 struct Closing {
     slop: f32,
@@ -413,8 +441,19 @@ pub(crate) struct ContactWorld {
     scratch: (Vec<Constraint>, Vec<ContactInfo>),
     /// Per proxy: whether its body sleeps (empty when none does).
     proxy_asleep: Vec<bool>,
-    /// Per dynamic body: its proxy (while waking islands).
+    /// Per dynamic body: its proxy this step, or `NO_PROXY`.
     body_proxy: Vec<u32>,
+    /// How far proxies are grown this step.
+    proxy_margin: ProxyMargin,
+    /// Sleeping bodies, in a tree rebuilt only now and then (see
+    /// `update_sleep_tree`); items are `sleep_tree_bodies` entries.
+    sleep_tree: StaticTree,
+    /// Dynamic index per sleep-tree item (`NO_PROXY` once removed).
+    sleep_tree_bodies: Vec<u32>,
+    /// Per dynamic body: whether it is in the sleep tree.
+    tree_member: Vec<bool>,
+    /// Sleeping bodies one proxy reaches (scratch).
+    hits: Vec<u32>,
     /// Island bookkeeping for sleeping.
     pub islands: Islands,
     /// Positions at the start of the step.
@@ -493,41 +532,63 @@ impl ContactWorld {
 
         // Proxies: shaped dynamic bodies, grown by their possible travel.
         // Pairs of two sleeping bodies, and of a sleeping and a static one,
-        // are not looked for: their contacts wait in `asleep`.
+        // are not looked for: their contacts wait in `asleep`. Most sleeping
+        // bodies are not even binned: they sit in the sleep tree, and only
+        // those an awake proxy reaches get a proxy.
         self.proxy_body.clear();
         self.proxies.clear();
         self.margins.clear();
         self.proxy_asleep.clear();
         let any_asleep = !self.asleep.is_empty() || dynamic.sleep.iter().any(|s| s.is_asleep());
-        let fall = gravity.length() * dt;
+        self.proxy_margin = ProxyMargin {
+            fall: gravity.length() * dt,
+            dt,
+            continuous: settings.continuous,
+        };
+        self.body_proxy.clear();
+        self.body_proxy.resize(dynamic.len(), NO_PROXY);
+        self.tree_member.resize(dynamic.len(), false);
+        if any_asleep {
+            self.update_sleep_tree(dynamic);
+        }
         for (i, meta) in dynamic.meta.iter().enumerate() {
-            let Some(shape) = &meta.shape else { continue };
-            if any_asleep {
-                self.proxy_asleep.push(dynamic.sleep[i].is_asleep());
+            if meta.shape.is_none() {
+                continue;
             }
-            let travel = if settings.continuous {
-                (dynamic.vel[i].length() + fall) * dt
-            } else {
-                0.0
-            };
-            let margin = 0.5 * SPECULATIVE_DISTANCE + travel;
-            self.proxy_body.push(i as u32);
-            self.proxies
-                .push(Aabb::from_centre(dynamic.pos[i], shape.half_extents()).grown(margin));
-            self.margins.push(margin);
+            let asleep = dynamic.sleep[i].is_asleep();
+            if !(asleep && self.tree_member[i]) {
+                self.add_proxy(dynamic, i, any_asleep);
+            }
         }
         self.pairs.clear();
         self.broad_phase
             .find_pairs(&self.proxies, &self.proxy_asleep, &mut self.pairs);
-        for (p, aabb) in self.proxies.iter().enumerate() {
+        let binned = self.proxies.len();
+        for p in 0..binned {
             if self.proxy_asleep.get(p) == Some(&true) {
                 continue;
             }
+            let aabb = self.proxies[p];
             let pairs = &mut self.pairs;
             let items = &self.tree_items;
-            self.tree.query(aabb, |item| {
+            self.tree.query(&aabb, |item| {
                 pairs.push((p as u32, STATIC_BODY | items[item as usize]))
             });
+            if any_asleep {
+                // Sleeping bodies in the sleep tree that this proxy reaches.
+                self.hits.clear();
+                let (hits, bodies) = (&mut self.hits, &self.sleep_tree_bodies);
+                self.sleep_tree.query(&aabb, |item| {
+                    let body = bodies[item as usize];
+                    if body != NO_PROXY && dynamic.sleep[body as usize].is_asleep() {
+                        hits.push(body);
+                    }
+                });
+                for k in 0..self.hits.len() {
+                    let q = self.proxy_of(dynamic, self.hits[k] as usize);
+                    self.pairs.push((p as u32, q));
+                }
+            }
         }
 
         // Narrow phase in a fixed order: by the pair's body ids. Sorting the
@@ -618,6 +679,70 @@ impl ContactWorld {
         }
     }
 
+    /// Adds a proxy for dynamic body `i` (which has a shape).
+    fn add_proxy(&mut self, dynamic: &DynamicBodies, i: usize, any_asleep: bool) -> u32 {
+        let shape = dynamic.meta[i].shape.expect("a proxy's body has a shape");
+        let margin = self.proxy_margin.of(dynamic.vel[i]);
+        let p = self.proxies.len() as u32;
+        self.body_proxy[i] = p;
+        self.proxy_body.push(i as u32);
+        self.proxies
+            .push(Aabb::from_centre(dynamic.pos[i], shape.half_extents()).grown(margin));
+        self.margins.push(margin);
+        if any_asleep {
+            self.proxy_asleep.push(dynamic.sleep[i].is_asleep());
+        }
+        p
+    }
+
+    /// The proxy of dynamic body `i`, made now if it has none.
+    fn proxy_of(&mut self, dynamic: &DynamicBodies, i: usize) -> u32 {
+        match self.body_proxy[i] {
+            NO_PROXY => self.add_proxy(dynamic, i, true),
+            p => p,
+        }
+    }
+
+    /// Rebuilds the sleep tree over every sleeping shaped body when enough
+    /// sleeping bodies are missing from it (they are binned each step until
+    /// then) or enough of its bodies woke (they are skipped until then):
+    /// a tree build costs `O(n log n)`, so it waits for a quarter of the
+    /// tree's size to change.
+    fn update_sleep_tree(&mut self, dynamic: &DynamicBodies) {
+        let (mut missing, mut woke) = (0, 0);
+        for (i, s) in dynamic.sleep.iter().enumerate() {
+            let shaped = dynamic.meta[i].shape.is_some();
+            missing += usize::from(shaped && s.is_asleep() && !self.tree_member[i]);
+            woke += usize::from(self.tree_member[i] && !s.is_asleep());
+        }
+        let size = self.sleep_tree.len();
+        if missing < (size / 4).max(SLEEP_TREE_MIN) && 2 * woke <= size {
+            return;
+        }
+        self.tree_member.fill(false);
+        self.sleep_tree_bodies.clear();
+        // Room for every body: later rebuilds allocate nothing.
+        let n = dynamic.len();
+        self.sleep_tree_bodies.reserve(n);
+        self.sleep_tree.reserve(n);
+        self.hits.reserve(n);
+        for (i, s) in dynamic.sleep.iter().enumerate() {
+            if s.is_asleep() && dynamic.meta[i].shape.is_some() {
+                self.sleep_tree_bodies.push(i as u32);
+                self.tree_member[i] = true;
+            }
+        }
+        let margin = self.proxy_margin.of(Vec2::ZERO);
+        let boxes = self.sleep_tree_bodies.iter().map(|&i| {
+            let half = dynamic.meta[i as usize]
+                .shape
+                .expect("shaped")
+                .half_extents();
+            Aabb::from_centre(dynamic.pos[i as usize], half).grown(margin)
+        });
+        self.sleep_tree.rebuild(boxes);
+    }
+
     /// Wakes the sleeping islands an awake body reaches this step (a
     /// contact touching within the slop, or closing to it at the bodies'
     /// speeds), so they are solved in this step already. The contacts
@@ -641,12 +766,15 @@ impl ContactWorld {
             return;
         }
         self.islands.wake_marked(dynamic);
-        // Proxy of each body, and whether it woke just now.
-        let none = u32::MAX;
-        self.body_proxy.clear();
-        self.body_proxy.resize(dynamic.len(), none);
-        for (p, &body) in self.proxy_body.iter().enumerate() {
-            self.body_proxy[body as usize] = p as u32;
+        // Every body that woke gets a proxy (those from the sleep tree
+        // have none yet).
+        for k in 0..self.asleep.len() {
+            let c = self.asleep[k];
+            for body in [c.a, c.b] {
+                if body & STATIC_BODY == 0 && !dynamic.sleep[body as usize].is_asleep() {
+                    let _ = self.proxy_of(dynamic, body as usize);
+                }
+            }
         }
         let proxy_asleep = &self.proxy_asleep;
         let body_proxy = &self.body_proxy;
@@ -902,10 +1030,23 @@ impl ContactWorld {
         crate::sleep::wake_all(dynamic);
         self.asleep.clear();
         self.asleep_infos.clear();
+        self.sleep_tree.rebuild([]);
+        self.sleep_tree_bodies.clear();
+        self.tree_member.fill(false);
     }
 
     /// Dynamic body `from` now sits at index `to` (a removal moved it).
     pub fn body_moved(&mut self, from: u32, to: u32) {
+        for body in &mut self.sleep_tree_bodies {
+            if *body == to {
+                *body = NO_PROXY; // removed
+            } else if *body == from {
+                *body = to;
+            }
+        }
+        // `from` is the last body: the removal moves it into `to`.
+        self.tree_member.resize(from as usize + 1, false);
+        self.tree_member.swap_remove(to as usize);
         for c in &mut self.asleep {
             if c.a == from {
                 c.a = to;

@@ -25,20 +25,42 @@ pub(crate) struct StaticTree {
 impl StaticTree {
     /// Builds the tree over `boxes` (the item number is the index).
     pub fn build(boxes: Vec<Aabb>) -> Self {
-        let mut tree = Self {
-            nodes: Vec::new(),
-            items: (0..boxes.len() as u32).collect(),
-            boxes,
-        };
-        if !tree.items.is_empty() {
-            tree.nodes.push(Node {
-                aabb: tree.boxes[0],
+        let mut tree = Self::default();
+        tree.rebuild(boxes);
+        tree
+    }
+
+    /// Builds the tree again over `boxes`, reusing its buffers (no
+    /// allocation once they have grown).
+    pub fn rebuild(&mut self, boxes: impl IntoIterator<Item = Aabb>) {
+        self.boxes.clear();
+        self.boxes.extend(boxes);
+        self.items.clear();
+        self.items.extend(0..self.boxes.len() as u32);
+        self.nodes.clear();
+        if !self.items.is_empty() {
+            self.nodes.push(Node {
+                aabb: self.boxes[0],
                 first: 0,
                 count: 0,
             });
-            tree.split(0, 0, tree.items.len());
+            self.split(0, 0, self.items.len());
         }
-        tree
+    }
+
+    /// Makes room for a tree of `n` items, so rebuilding one no larger
+    /// allocates nothing.
+    pub fn reserve(&mut self, n: usize) {
+        let more = |len: usize, want: usize| want.saturating_sub(len);
+        self.boxes.reserve(more(self.boxes.len(), n));
+        self.items.reserve(more(self.items.len(), n));
+        // A binary tree with leaves of at least one item has < 2n nodes.
+        self.nodes.reserve(more(self.nodes.len(), 2 * n));
+    }
+
+    /// Number of items.
+    pub fn len(&self) -> usize {
+        self.items.len()
     }
 
     fn split(&mut self, node: usize, start: usize, end: usize) {
