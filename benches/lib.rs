@@ -119,10 +119,21 @@ pub struct StepTimes {
 }
 
 /// Steps `ticks` times with `step`, timing each.
-pub fn time_steps(ticks: u32, mut step: impl FnMut()) -> StepTimes {
+pub fn time_steps(ticks: u32, step: impl FnMut()) -> StepTimes {
+    time_steps_with(ticks, step, |_| {})
+}
+
+/// Like [`time_steps`], with `between(tick)` called before each step and
+/// left out of the timing (for measurements of the state).
+pub fn time_steps_with(
+    ticks: u32,
+    mut step: impl FnMut(),
+    mut between: impl FnMut(u32),
+) -> StepTimes {
     let tail = (ticks / 5).max(1);
     let (mut all, mut last) = (0.0, 0.0);
     for t in 0..ticks {
+        between(t);
         let start = Instant::now();
         step();
         let ms = start.elapsed().as_secs_f64() * 1e3;
