@@ -830,26 +830,13 @@ impl ContactWorld {
             h: at.h,
         };
         // Merge the contacts found again into the solved list, in key order.
-        let (old, old_infos) = (&mut self.scratch.0, &mut self.scratch.1);
-        old.clear();
-        old_infos.clear();
-        old.append(&mut self.constraints);
-        old_infos.append(&mut self.infos);
-        let mut j = 0;
+        let mut merge = Merge::new(&mut self.constraints, &mut self.infos, &mut self.scratch);
         for &(_, pa, pb) in keyed.iter() {
-            let Outcome::Contact(row, info) = narrow.pair(pa, pb) else {
-                continue;
-            };
-            while j < old.len() && old_infos[j].key() < info.key() {
-                self.constraints.push(old[j]);
-                self.infos.push(old_infos[j]);
-                j += 1;
+            if let Outcome::Contact(row, info) = narrow.pair(pa, pb) {
+                merge.push(row, info);
             }
-            self.constraints.push(row);
-            self.infos.push(info);
         }
-        self.constraints.extend_from_slice(&old[j..]);
-        self.infos.extend_from_slice(&old_infos[j..]);
+        merge.finish();
         self.drop_awake_contacts(dynamic);
     }
 
@@ -972,30 +959,19 @@ impl ContactWorld {
     /// Moves the solved contacts whose bodies all sleep now into `asleep`,
     /// keeping both lists in key order.
     fn store_sleeping_contacts(&mut self, dynamic: &DynamicBodies) {
-        let (old, old_infos) = (&mut self.scratch.0, &mut self.scratch.1);
-        old.clear();
-        old_infos.clear();
-        old.append(&mut self.asleep);
-        old_infos.append(&mut self.asleep_infos);
-        let (mut kept, mut j) = (0, 0);
+        let mut merge = Merge::new(&mut self.asleep, &mut self.asleep_infos, &mut self.scratch);
+        let mut kept = 0;
         for i in 0..self.constraints.len() {
             let (c, info) = (self.constraints[i], self.infos[i]);
             if has_awake_body(dynamic, &c) {
                 self.constraints[kept] = c;
                 self.infos[kept] = info;
                 kept += 1;
-                continue;
+            } else {
+                merge.push(c, info);
             }
-            while j < old.len() && old_infos[j].key() < info.key() {
-                self.asleep.push(old[j]);
-                self.asleep_infos.push(old_infos[j]);
-                j += 1;
-            }
-            self.asleep.push(c);
-            self.asleep_infos.push(info);
         }
-        self.asleep.extend_from_slice(&old[j..]);
-        self.asleep_infos.extend_from_slice(&old_infos[j..]);
+        merge.finish();
         self.constraints.truncate(kept);
         self.infos.truncate(kept);
     }
@@ -1091,6 +1067,51 @@ impl ContactWorld {
             asleep_infos: state.asleep_infos,
             ..Self::new()
         }
+    }
+}
+
+/// Adds contacts, given in key order, to a contact list sorted by key: the
+/// list's old content waits in a scratch pair of vectors (kept between
+/// steps, so merging allocates nothing once warm).
+struct Merge<'a> {
+    rows: &'a mut Vec<Constraint>,
+    infos: &'a mut Vec<ContactInfo>,
+    old: &'a (Vec<Constraint>, Vec<ContactInfo>),
+    next: usize,
+}
+
+impl<'a> Merge<'a> {
+    fn new(
+        rows: &'a mut Vec<Constraint>,
+        infos: &'a mut Vec<ContactInfo>,
+        scratch: &'a mut (Vec<Constraint>, Vec<ContactInfo>),
+    ) -> Self {
+        scratch.0.clear();
+        scratch.1.clear();
+        scratch.0.append(rows);
+        scratch.1.append(infos);
+        Self {
+            rows,
+            infos,
+            old: scratch,
+            next: 0,
+        }
+    }
+
+    fn push(&mut self, row: Constraint, info: ContactInfo) {
+        let (old, old_infos) = (&self.old.0, &self.old.1);
+        while self.next < old.len() && old_infos[self.next].key() < info.key() {
+            self.rows.push(old[self.next]);
+            self.infos.push(old_infos[self.next]);
+            self.next += 1;
+        }
+        self.rows.push(row);
+        self.infos.push(info);
+    }
+
+    fn finish(self) {
+        self.rows.extend_from_slice(&self.old.0[self.next..]);
+        self.infos.extend_from_slice(&self.old.1[self.next..]);
     }
 }
 

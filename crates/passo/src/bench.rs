@@ -251,6 +251,20 @@ fn scaling(args: &ScalingBenchArgs) -> Result<()> {
     Ok(())
 }
 
+/// The benchmark scenes, named: rains of the given sizes, then pyramids of
+/// the given base widths.
+fn scenes<'a>(
+    rain: &'a [usize],
+    pyramid: &'a [usize],
+) -> impl Iterator<Item = (String, passo_physics::World)> + 'a {
+    let rains = rain.iter().map(|&n| (format!("rain {n}"), rain_world(n)));
+    rains.chain(
+        pyramid
+            .iter()
+            .map(|&b| (format!("pyramid {b}"), pyramid_world(b))),
+    )
+}
+
 fn physics(args: &PhysicsBenchArgs) -> Result<()> {
     println!(
         "| scene | bodies | ms per step (mean of {} ticks) | ms per step (last {}) | max penetration at the end (mm) | worst of every 30th tick (mm) |",
@@ -258,15 +272,7 @@ fn physics(args: &PhysicsBenchArgs) -> Result<()> {
         (args.ticks / 5).max(1)
     );
     println!("|---|---:|---:|---:|---:|---:|");
-    let scenes = args
-        .rain
-        .iter()
-        .map(|&n| (format!("rain {n}"), rain_world(n)))
-        .chain(
-            args.pyramid
-                .iter()
-                .map(|&b| (format!("pyramid {b}"), pyramid_world(b))),
-        );
+    let scenes = scenes(&args.rain, &args.pyramid);
     for (name, world) in scenes {
         // Penetration is sampled between timed steps, outside the timing.
         let worst = std::cell::Cell::new(0.0f32);
@@ -300,15 +306,7 @@ fn sleep(args: &SleepBenchArgs) -> Result<()> {
         args.settle
     );
     println!("|---|---:|---:|---:|---:|---:|");
-    let scenes = args
-        .rain
-        .iter()
-        .map(|&n| (format!("rain {n}"), rain_world(n)))
-        .chain(
-            args.pyramid
-                .iter()
-                .map(|&b| (format!("pyramid {b}"), pyramid_world(b))),
-        );
+    let scenes = scenes(&args.rain, &args.pyramid);
     for (name, mut world) in scenes {
         for _ in 0..args.settle * 60 {
             world.step(1.0 / 60.0);
