@@ -34,6 +34,9 @@ pub(crate) struct BroadPhase {
     sorted: Vec<Entry>,
     starts: Vec<u32>,
     large: Vec<u32>,
+    /// Pairs found by each parallel task, concatenated in task order.
+    #[cfg(feature = "parallel")]
+    task_pairs: Vec<Vec<(u32, u32)>>,
 }
 
 #[inline]
@@ -45,7 +48,16 @@ fn bucket(cell: (i32, i32), mask: usize) -> usize {
 impl BroadPhase {
     /// Appends to `pairs` every `(i, j)`, `i < j`, whose boxes overlap,
     /// except pairs of two proxies marked in `asleep` (empty: none is).
-    pub fn find_pairs(&mut self, proxies: &[Aabb], asleep: &[bool], pairs: &mut Vec<(u32, u32)>) {
+    /// With `parallel` (and the feature), a large grid's cells are searched
+    /// on rayon's pool in contiguous runs whose results are concatenated in
+    /// order: the output is the same, in the same order.
+    pub fn find_pairs(
+        &mut self,
+        proxies: &[Aabb],
+        asleep: &[bool],
+        parallel: bool,
+        pairs: &mut Vec<(u32, u32)>,
+    ) {
         let both_asleep =
             |a: u32, b: u32| !asleep.is_empty() && asleep[a as usize] && asleep[b as usize];
         if proxies.len() < 2 {
@@ -108,19 +120,54 @@ impl BroadPhase {
             self.starts[0] = 0;
         }
 
-        for k in 0..table {
-            let run = &self.sorted[self.starts[k] as usize..self.starts[k + 1] as usize];
-            for (x, ea) in run.iter().enumerate() {
-                for eb in &run[x + 1..] {
-                    if ea.cell != eb.cell || both_asleep(ea.proxy, eb.proxy) {
-                        continue; // a hash collision between two cells, or resting
-                    }
-                    let (a, b) = (&proxies[ea.proxy as usize], &proxies[eb.proxy as usize]);
-                    if a.overlaps(b) && cell_of(a.min.max(b.min)) == ea.cell {
-                        pairs.push(ordered(ea.proxy, eb.proxy));
+        // The pairs of the buckets in `range`, in bucket order.
+        let (sorted, starts) = (&self.sorted, &self.starts);
+        let search = |range: std::ops::Range<usize>, out: &mut Vec<(u32, u32)>| {
+            for k in range {
+                let run = &sorted[starts[k] as usize..starts[k + 1] as usize];
+                for (x, ea) in run.iter().enumerate() {
+                    for eb in &run[x + 1..] {
+                        if ea.cell != eb.cell || both_asleep(ea.proxy, eb.proxy) {
+                            continue; // a hash collision between two cells, or resting
+                        }
+                        let (a, b) = (&proxies[ea.proxy as usize], &proxies[eb.proxy as usize]);
+                        if a.overlaps(b) && cell_of(a.min.max(b.min)) == ea.cell {
+                            out.push(ordered(ea.proxy, eb.proxy));
+                        }
                     }
                 }
             }
+        };
+        #[cfg(feature = "parallel")]
+        if crate::parallel::goes_parallel(parallel, self.entries.len()) {
+            use rayon::prelude::*;
+            // Runs of buckets holding about PARALLEL_CHUNK entries each.
+            let tasks = self
+                .entries
+                .len()
+                .div_ceil(crate::constants::PARALLEL_CHUNK);
+            let per_task = table.div_ceil(tasks);
+            let tasks = table.div_ceil(per_task);
+            if self.task_pairs.len() < tasks {
+                self.task_pairs.resize_with(tasks, Vec::new);
+            }
+            self.task_pairs[..tasks]
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(t, out)| {
+                    out.clear();
+                    search(t * per_task..((t + 1) * per_task).min(table), out);
+                });
+            for out in &self.task_pairs[..tasks] {
+                pairs.extend_from_slice(out);
+            }
+        } else {
+            search(0..table, pairs);
+        }
+        #[cfg(not(feature = "parallel"))]
+        {
+            let _ = parallel;
+            search(0..table, pairs);
         }
 
         for &l in &self.large {
@@ -172,7 +219,7 @@ mod tests {
 
     fn grid_pairs(proxies: &[Aabb]) -> Vec<(u32, u32)> {
         let mut pairs = Vec::new();
-        BroadPhase::default().find_pairs(proxies, &[], &mut pairs);
+        BroadPhase::default().find_pairs(proxies, &[], false, &mut pairs);
         let count = pairs.len();
         pairs.sort_unstable();
         pairs.dedup();
@@ -212,13 +259,42 @@ mod tests {
         ) {
             let (boxes, asleep): (Vec<Aabb>, Vec<bool>) = proxies.into_iter().unzip();
             let mut pairs = Vec::new();
-            BroadPhase::default().find_pairs(&boxes, &asleep, &mut pairs);
+            BroadPhase::default().find_pairs(&boxes, &asleep, false, &mut pairs);
             pairs.sort_unstable();
             let expected: Vec<_> = brute_force(&boxes)
                 .into_iter()
                 .filter(|&(a, b)| !(asleep[a as usize] && asleep[b as usize]))
                 .collect();
             prop_assert_eq!(pairs, expected);
+        }
+    }
+
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn the_parallel_search_gives_the_same_pairs_in_the_same_order() {
+        // Enough boxes for the thread pool, some asleep, spread like a pile.
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let mut boxes = Vec::new();
+        let mut asleep = Vec::new();
+        for _ in 0..6000 {
+            let (x, y, r) = (next() * 40.0, next() * 40.0, 0.1 + next() * 0.3);
+            boxes.push(Aabb::from_centre(Vec2::new(x, y), Vec2::splat(r)));
+            asleep.push(next() < 0.3);
+        }
+        let (mut serial, mut threaded) = (Vec::new(), Vec::new());
+        BroadPhase::default().find_pairs(&boxes, &asleep, false, &mut serial);
+        let mut grid = BroadPhase::default();
+        for _ in 0..2 {
+            threaded.clear();
+            grid.find_pairs(&boxes, &asleep, true, &mut threaded);
+            assert!(serial.len() > 1000);
+            assert_eq!(threaded, serial);
         }
     }
 

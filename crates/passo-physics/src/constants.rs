@@ -88,9 +88,10 @@ pub const SLEEP_SPEED: f32 = 0.05;
 pub const TIME_TO_SLEEP: f32 = 0.5;
 
 /// Worlds with at least this many dynamic bodies (or contact pairs) run
-/// their per-body stages and narrow phase on rayon's thread pool, with the
-/// `parallel` feature. Below it the cost of handing work to threads
-/// outweighs the gain. Results are the same bits either way.
+/// their per-body stages, broad-phase pair search and narrow phase on
+/// rayon's thread pool, with the `parallel` feature. Below it the cost of
+/// handing work to threads outweighs the gain. Results are the same bits
+/// either way.
 pub const PARALLEL_MIN_ITEMS: usize = 4096;
 
 /// Bodies (or pairs) per parallel task: large enough that handing out a

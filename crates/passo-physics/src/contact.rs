@@ -562,7 +562,7 @@ impl ContactWorld {
         }
         self.pairs.clear();
         self.broad_phase
-            .find_pairs(&self.proxies, &self.proxy_asleep, &mut self.pairs);
+            .find_pairs(&self.proxies, &self.proxy_asleep, parallel, &mut self.pairs);
         let binned = self.proxies.len();
         for p in 0..binned {
             if self.proxy_asleep.get(p) == Some(&true) {

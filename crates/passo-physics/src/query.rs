@@ -129,7 +129,7 @@ impl World {
             })
             .collect();
         let mut pairs = Vec::new();
-        BroadPhase::default().find_pairs(&boxes, &[], &mut pairs);
+        BroadPhase::default().find_pairs(&boxes, &[], false, &mut pairs);
         let mut deepest = 0.0f32;
         for (i, j) in pairs {
             let (a, b) = (&bodies[i as usize], &bodies[j as usize]);

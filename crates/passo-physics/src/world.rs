@@ -298,8 +298,8 @@ impl World {
         }
     }
 
-    /// Lets large worlds run their per-body stages and narrow phase on
-    /// rayon's thread pool (with the `parallel` feature; the default is on).
+    /// Lets large worlds run their per-body stages, broad-phase pair search
+    /// and narrow phase on rayon's thread pool (with the `parallel` feature; the default is on).
     /// The results are the same bits either way; off, a step never hands
     /// work to another thread.
     pub fn set_parallel(&mut self, parallel: bool) {
