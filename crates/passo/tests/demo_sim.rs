@@ -225,3 +225,26 @@ fn the_rain_count_slider_rebuilds_the_scene() {
     assert_eq!(sim.rain_count(), Some(300));
     assert_eq!(sim.lanes[0].world.dynamic_len(), 300);
 }
+
+#[test]
+fn a_settled_scene_sleeps_in_the_demo_and_a_slider_wakes_it() {
+    let mut sim = load(&Entry::File("stack".into())).unwrap();
+    run(&mut sim, 180, Input::default());
+    let (sleeping, solved, contacts) = sim.sleep_counts();
+    let bodies = sim.lanes[0].world.dynamic_len();
+    assert_eq!(sleeping, bodies, "every box of the stack sleeps");
+    assert_eq!(solved, 0);
+    assert!(contacts >= bodies);
+    // A slider (new settings) wakes them all.
+    let mut knobs = sim.knobs;
+    knobs.gravity = -5.0;
+    sim.command(passo::demo::replay::Command::Knobs {
+        knobs,
+        friction: false,
+        restitution: false,
+        drag: false,
+    })
+    .unwrap();
+    run(&mut sim, 1, Input::default());
+    assert_eq!(sim.sleep_counts().0, 0);
+}
