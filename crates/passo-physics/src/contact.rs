@@ -454,6 +454,8 @@ pub(crate) struct ContactWorld {
     tree_member: Vec<bool>,
     /// Sleeping bodies one proxy reaches (scratch).
     hits: Vec<u32>,
+    /// Some body fell asleep or woke since the sleep tree last looked.
+    sleepers_changed: bool,
     /// Island bookkeeping for sleeping.
     pub islands: Islands,
     /// Positions at the start of the step.
@@ -715,8 +717,12 @@ impl ContactWorld {
             missing += usize::from(shaped && s.is_asleep() && !self.tree_member[i]);
             woke += usize::from(self.tree_member[i] && !s.is_asleep());
         }
+        // A quiet step (nobody fell asleep or woke in the last one) takes
+        // in the stragglers, so a settled world bins nothing.
+        let quiet = !std::mem::take(&mut self.sleepers_changed);
         let size = self.sleep_tree.len();
-        if missing < (size / 4).max(SLEEP_TREE_MIN) && 2 * woke <= size {
+        let stragglers = missing > 0 && quiet;
+        if !stragglers && missing < (size / 4).max(SLEEP_TREE_MIN) && 2 * woke <= size {
             return;
         }
         self.tree_member.fill(false);
@@ -766,6 +772,7 @@ impl ContactWorld {
             return;
         }
         self.islands.wake_marked(dynamic);
+        self.sleepers_changed = true;
         // Every body that woke gets a proxy (those from the sleep tree
         // have none yet).
         for k in 0..self.asleep.len() {
@@ -947,11 +954,13 @@ impl ContactWorld {
         if woke {
             self.islands.wake_marked(dynamic);
             self.drop_awake_contacts(dynamic);
+            self.sleepers_changed = true;
         }
         if self
             .islands
             .fall_asleep(dynamic, &self.constraints, &self.infos)
         {
+            self.sleepers_changed = true;
             self.store_sleeping_contacts(dynamic);
         }
     }
@@ -998,6 +1007,7 @@ impl ContactWorld {
         if was_asleep {
             self.islands.wake_marked(dynamic);
             self.drop_awake_contacts(dynamic);
+            self.sleepers_changed = true;
         }
     }
 
@@ -1009,6 +1019,7 @@ impl ContactWorld {
         self.sleep_tree.rebuild([]);
         self.sleep_tree_bodies.clear();
         self.tree_member.fill(false);
+        self.sleepers_changed = true;
     }
 
     /// Dynamic body `from` now sits at index `to` (a removal moved it).

@@ -830,6 +830,13 @@ impl World {
         }
         cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
         let any_asleep = !cw.asleep.is_empty() || self.dynamic.sleep.iter().any(|s| s.is_asleep());
+        // With every body asleep nothing moves: the substeps would only
+        // confirm it.
+        let substeps = if any_asleep && self.dynamic.sleep.iter().all(|s| s.is_asleep()) {
+            0
+        } else {
+            substeps
+        };
         let integrator = self.settings.integrator;
         let limits = self.speed_limits();
         let mut resets = 0;
