@@ -164,8 +164,9 @@ pub fn triad_bandwidth(len: usize) -> f64 {
 }
 
 /// Nanoseconds per body-step of `n` point masses under gravity and
-/// quadratic drag (the best of five timed runs).
-pub fn integration_ns(n: usize) -> f64 {
+/// quadratic drag (the best of five timed runs), on the calling thread
+/// alone or (`parallel`) on the thread pool for large worlds.
+pub fn integration_ns(n: usize, parallel: bool) -> f64 {
     let mut world = passo_physics::World::new(passo_physics::WorldSettings {
         forces: passo_physics::ForceModels {
             quadratic_drag: Some(passo_physics::QuadraticDrag::default()),
@@ -182,6 +183,7 @@ pub fn integration_ns(n: usize) -> f64 {
         };
         world.add_body(def).expect("valid body");
     }
+    world.set_parallel(parallel);
     let steps = (20_000_000 / n.max(1)).clamp(5, 20_000);
     world.step(1.0 / 60.0);
     (0..5)
@@ -196,17 +198,21 @@ pub fn integration_ns(n: usize) -> f64 {
 }
 
 fn integration(args: &IntegrationBenchArgs) -> Result<()> {
+    // One thread against one thread: the copy and triad loops run on the
+    // calling thread, and so does the kernel for the fraction; the last
+    // column is the same step with the thread pool (large worlds only).
     println!(
-        "| bodies | ns per body-step | kernel bandwidth | copy bandwidth | triad bandwidth | fraction of copy |"
+        "| bodies | ns per body-step | kernel bandwidth | copy bandwidth | triad bandwidth | fraction of copy | ns per body-step, thread pool |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|");
     for &n in &args.sizes {
-        let ns = integration_ns(n);
+        let ns = integration_ns(n, false);
         let kernel = INTEGRATION_BYTES / ns; // bytes per ns = GB/s
         let copy = copy_bandwidth(n * 32) / 1e9;
         let triad = triad_bandwidth(n * 8) / 1e9;
+        let pooled = integration_ns(n, true);
         println!(
-            "| {n} | {ns:.2} | {kernel:.1} GB/s | {copy:.1} GB/s | {triad:.1} GB/s | {:.0} % |",
+            "| {n} | {ns:.2} | {kernel:.1} GB/s | {copy:.1} GB/s | {triad:.1} GB/s | {:.0} % | {pooled:.2} |",
             100.0 * kernel / copy
         );
     }
