@@ -337,3 +337,26 @@ fn removing_a_body_keeps_the_sleeping_ones_reachable() {
         "a stack nothing reached sleeps on"
     );
 }
+
+#[test]
+fn a_body_inside_a_sensor_stays_awake_and_inside() {
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    let zone = w
+        .add_body(BodyDef {
+            sensor: true,
+            ..BodyDef::fixed(Vec2::new(0.0, 1.0), Shape::rect(3.0, 2.0))
+        })
+        .unwrap();
+    let inside = add_box(&mut w, Vec2::new(0.0, 0.5), Vec2::ONE, 1.0);
+    let outside = add_box(&mut w, Vec2::new(6.0, 0.5), Vec2::ONE, 1.0);
+    run(&mut w, 3.0);
+    assert!(w.is_asleep(outside).unwrap());
+    assert!(!w.is_asleep(inside).unwrap(), "a sensor keeps seeing it");
+    assert_eq!(w.sensor_overlaps().len(), 1);
+    assert_eq!(w.sensor_overlaps()[0].sensor, zone);
+    for _ in 0..60 {
+        w.step(DT);
+        assert!(w.events().sensor_end.is_empty());
+    }
+}
