@@ -138,3 +138,65 @@ fn a_saved_snapshot_resumes_to_the_same_hash_as_an_uninterrupted_run() {
     }
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// The cells of the table rows (lines starting with `| ` and not a header).
+fn table_rows(text: &str) -> Vec<Vec<String>> {
+    text.lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| scene") && !l.starts_with("|-"))
+        .map(|l| {
+            l.trim_matches('|')
+                .split('|')
+                .map(|c| c.trim().to_owned())
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn bench_sleep_reports_a_settled_pyramid_asleep_and_cheaper() {
+    let out = passo(&[
+        "bench",
+        "sleep",
+        "--rain",
+        "200",
+        "--pyramid",
+        "6",
+        "--settle",
+        "3",
+        "--ticks",
+        "10",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows = table_rows(&stdout(&out));
+    assert_eq!(rows.len(), 2, "{}", stdout(&out));
+    let pyramid = &rows[1];
+    assert_eq!(pyramid[0], "pyramid 6");
+    assert_eq!(pyramid[1], "21");
+    assert_eq!(pyramid[2], "21", "every box of the pyramid sleeps");
+    let on: f64 = pyramid[3].parse().unwrap();
+    let off: f64 = pyramid[4].parse().unwrap();
+    assert!(on >= 0.0 && off > 0.0);
+}
+
+#[test]
+fn bench_physics_reports_every_scene_with_its_penetration() {
+    let out = passo(&[
+        "bench",
+        "physics",
+        "--rain",
+        "200",
+        "--pyramid",
+        "5",
+        "--ticks",
+        "30",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows = table_rows(&stdout(&out));
+    let names: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
+    assert_eq!(names, ["rain 200", "pyramid 5"]);
+    for row in &rows {
+        let end: f64 = row[4].parse().unwrap();
+        let worst: f64 = row[5].parse().unwrap();
+        assert!((0.0..50.0).contains(&end) && worst >= end, "{row:?}");
+    }
+}
