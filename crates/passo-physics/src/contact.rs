@@ -10,7 +10,7 @@ use crate::constants::{
 };
 use crate::error::{non_negative, positive};
 use crate::manifold::collide;
-use crate::sleep::Islands;
+use crate::sleep::{Islands, SleepState};
 use crate::solver::{Constraint, ContactInfo, STATIC_BODY};
 use crate::static_tree::StaticTree;
 use crate::{Aabb, BodyId, PhysicsError, Shape};
@@ -293,14 +293,6 @@ impl ProxyMargin {
         };
         0.5 * SPECULATIVE_DISTANCE + travel
     }
-}
-
-/// What decides whether a contact reaches a sleeping body this step.
-struct Closing {
-    slop: f32,
-    dt: f32,
-    gravity: Vec2,
-    h: f32,
 }
 
 /// What the narrow phase makes of one candidate pair.
@@ -597,13 +589,6 @@ impl ContactWorld {
         // small pairs (not the contacts) keeps this cheap, and the contacts
         // come out sorted for the warm-start merge below.
         self.keyed.clear();
-        let slot = |body: u32| -> u64 {
-            if body & STATIC_BODY != 0 {
-                u64::from(statics.meta[(body & !STATIC_BODY) as usize].id.index)
-            } else {
-                u64::from(dynamic.meta[body as usize].id.index)
-            }
-        };
         for &(pa, pb) in &self.pairs {
             let a_body = self.proxy_body[pa as usize];
             let b_body = if pb & STATIC_BODY != 0 {
@@ -611,8 +596,8 @@ impl ContactWorld {
             } else {
                 self.proxy_body[pb as usize]
             };
-            let (x, y) = (slot(a_body), slot(b_body));
-            self.keyed.push((x.min(y) << 32 | x.max(y), pa, pb));
+            let key = pair_order(dynamic, statics, a_body, b_body);
+            self.keyed.push((key, pa, pb));
         }
         self.keyed.sort_unstable_by_key(|k| k.0);
         let mut outcomes = std::mem::take(&mut self.outcomes);
@@ -666,13 +651,7 @@ impl ContactWorld {
         }
         self.outcomes = outcomes;
         if settings.sleeping && any_asleep {
-            let closing = Closing {
-                slop: settings.slop,
-                dt,
-                gravity,
-                h,
-            };
-            self.wake_reached(dynamic, statics, &closing);
+            self.wake_reached(dynamic, statics, step, settings.slop);
         }
 
         // Warm starting: last step's impulses (both sorted by key).
@@ -754,7 +733,13 @@ impl ContactWorld {
     /// speeds), so they are solved in this step already. The contacts
     /// found with them held static, and the stored contacts of the woken
     /// bodies, are found again with everyone awake.
-    fn wake_reached(&mut self, dynamic: &mut DynamicBodies, statics: &StaticBodies, at: &Closing) {
+    fn wake_reached(
+        &mut self,
+        dynamic: &mut DynamicBodies,
+        statics: &StaticBodies,
+        step: &StepParams,
+        slop: f32,
+    ) {
         let mut woke = false;
         for c in &self.constraints {
             if c.is_static() {
@@ -763,7 +748,7 @@ impl ContactWorld {
             let (a, b) = (c.a as usize, c.b as usize);
             let (sa, sb) = (dynamic.sleep[a].is_asleep(), dynamic.sleep[b].is_asleep());
             let vn = (dynamic.vel[b] - dynamic.vel[a]).dot(c.normal);
-            if sa != sb && c.base_separation + vn.min(0.0) * at.dt <= at.slop {
+            if sa != sb && c.base_separation + vn.min(0.0) * step.dt <= slop {
                 self.islands.wake_body(dynamic, if sa { a } else { b });
                 woke = true;
             }
@@ -790,13 +775,6 @@ impl ContactWorld {
                 && !dynamic.sleep[body as usize].is_asleep()
                 && proxy_asleep[body_proxy[body as usize] as usize]
         };
-        let slot = |body: u32| -> u64 {
-            if body & STATIC_BODY != 0 {
-                u64::from(statics.meta[(body & !STATIC_BODY) as usize].id.index)
-            } else {
-                u64::from(dynamic.meta[body as usize].id.index)
-            }
-        };
         let proxy = |body: u32| {
             if body & STATIC_BODY != 0 {
                 body
@@ -810,8 +788,8 @@ impl ContactWorld {
         for i in 0..self.constraints.len() {
             let c = self.constraints[i];
             if woke_now(c.a) || woke_now(c.b) {
-                let (x, y) = (slot(c.a), slot(c.b));
-                keyed.push((x.min(y) << 32 | x.max(y), proxy(c.a), proxy(c.b)));
+                let key = pair_order(dynamic, statics, c.a, c.b);
+                keyed.push((key, proxy(c.a), proxy(c.b)));
             } else {
                 self.constraints[kept] = c;
                 self.infos[kept] = self.infos[i];
@@ -822,8 +800,8 @@ impl ContactWorld {
         self.infos.truncate(kept);
         for c in &self.asleep {
             if woke_now(c.a) || woke_now(c.b) {
-                let (x, y) = (slot(c.a), slot(c.b));
-                keyed.push((x.min(y) << 32 | x.max(y), proxy(c.a), proxy(c.b)));
+                let key = pair_order(dynamic, statics, c.a, c.b);
+                keyed.push((key, proxy(c.a), proxy(c.b)));
             }
         }
         keyed.sort_unstable_by_key(|k| k.0);
@@ -833,8 +811,8 @@ impl ContactWorld {
             margins: &self.margins,
             dynamic,
             statics,
-            gravity: at.gravity,
-            h: at.h,
+            gravity: step.gravity,
+            h: step.h,
         };
         // Merge the contacts found again into the solved list, in key order.
         let mut merge = Merge::new(&mut self.constraints, &mut self.infos, &mut self.scratch);
@@ -1012,7 +990,16 @@ impl ContactWorld {
     }
 
     /// Wakes every body.
+    /// Nothing happens when every body is already awake with no rest time
+    /// and nothing is stored: the step calls this while sleeping is off
+    /// and while the stage is idle.
     pub fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
+        let nothing_to_do = self.asleep.is_empty()
+            && self.sleep_tree.len() == 0
+            && dynamic.sleep.iter().all(|s| *s == SleepState::awake());
+        if nothing_to_do {
+            return;
+        }
         crate::sleep::wake_all(dynamic);
         self.asleep.clear();
         self.asleep_infos.clear();
@@ -1124,6 +1111,21 @@ impl<'a> Merge<'a> {
         self.rows.extend_from_slice(&self.old.0[self.next..]);
         self.infos.extend_from_slice(&self.old.1[self.next..]);
     }
+}
+
+/// The order key of the pair of collider references `a` and `b` (dynamic
+/// index, or `STATIC_BODY | static index`): the two slot indices, lower
+/// first, so the order depends on ids, not on storage.
+fn pair_order(dynamic: &DynamicBodies, statics: &StaticBodies, a: u32, b: u32) -> u64 {
+    let slot = |body: u32| -> u64 {
+        if body & STATIC_BODY != 0 {
+            u64::from(statics.meta[(body & !STATIC_BODY) as usize].id.index)
+        } else {
+            u64::from(dynamic.meta[body as usize].id.index)
+        }
+    };
+    let (x, y) = (slot(a), slot(b));
+    x.min(y) << 32 | x.max(y)
 }
 
 /// Whether a contact has an awake dynamic body (so the solver works on it).

@@ -66,7 +66,7 @@ pub(crate) struct Islands {
     /// Least rest time in each island, by root.
     least_rest: Vec<f32>,
     /// Islands to wake at the next chance, sorted and deduplicated there.
-    pub to_wake: Vec<u32>,
+    to_wake: Vec<u32>,
 }
 
 impl Islands {

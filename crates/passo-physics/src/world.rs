@@ -298,10 +298,20 @@ impl World {
         }
     }
 
+    /// A body changed: a dynamic one wakes its island; a static one may
+    /// have held anything up, so every body wakes.
+    fn wake_after_change(&mut self, location: Location) {
+        match location {
+            Location::Dynamic(i) => self.wake_index(i as usize),
+            Location::Static(_) => self.wake_all(),
+            Location::Free => {}
+        }
+    }
+
     /// Lets large worlds run their per-body stages, broad-phase pair search
-    /// and narrow phase on rayon's thread pool (with the `parallel` feature; the default is on).
-    /// The results are the same bits either way; off, a step never hands
-    /// work to another thread.
+    /// and narrow phase on rayon's thread pool (with the `parallel` feature;
+    /// the default is on). The results are the same bits either way; off, a
+    /// step never hands work to another thread.
     pub fn set_parallel(&mut self, parallel: bool) {
         self.parallel = parallel;
     }
@@ -452,21 +462,21 @@ impl World {
     /// drawing jumps too).
     pub fn set_position(&mut self, id: BodyId, position: Vec2) -> Result<(), PhysicsError> {
         finite_vec("position", position)?;
-        match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        match location {
             Location::Dynamic(i) => {
                 self.dynamic.pos[i as usize] = position;
                 if let Some(prev) = self.dynamic.prev_pos.get_mut(i as usize) {
                     *prev = position;
                 }
-                self.wake_index(i as usize);
             }
             Location::Static(i) => {
                 self.statics.pos[i as usize] = position;
                 self.statics_dirty = true;
-                self.wake_all();
             }
             Location::Free => unreachable!(),
         }
+        self.wake_after_change(location);
         Ok(())
     }
 
@@ -523,17 +533,13 @@ impl World {
     /// and contacts.
     pub fn set_friction(&mut self, id: BodyId, mu: f32) -> Result<(), PhysicsError> {
         non_negative("friction", mu)?;
-        match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
-            Location::Dynamic(i) => {
-                self.dynamic.friction[i as usize] = mu;
-                self.wake_index(i as usize);
-            }
-            Location::Static(i) => {
-                self.statics.friction[i as usize] = mu;
-                self.wake_all();
-            }
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        match location {
+            Location::Dynamic(i) => self.dynamic.friction[i as usize] = mu,
+            Location::Static(i) => self.statics.friction[i as usize] = mu,
             Location::Free => unreachable!(),
         }
+        self.wake_after_change(location);
         Ok(())
     }
 
@@ -547,17 +553,13 @@ impl World {
                 allowed: "in [0, 1]",
             });
         }
-        match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
-            Location::Dynamic(i) => {
-                self.dynamic.meta[i as usize].restitution = restitution;
-                self.wake_index(i as usize);
-            }
-            Location::Static(i) => {
-                self.statics.meta[i as usize].restitution = restitution;
-                self.wake_all();
-            }
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        match location {
+            Location::Dynamic(i) => self.dynamic.meta[i as usize].restitution = restitution,
+            Location::Static(i) => self.statics.meta[i as usize].restitution = restitution,
             Location::Free => unreachable!(),
         }
+        self.wake_after_change(location);
         Ok(())
     }
 
