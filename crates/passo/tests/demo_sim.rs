@@ -19,6 +19,14 @@ fn run(sim: &mut Sim, frames: usize, input: Input) {
     }
 }
 
+/// The playground with its player moved to `at`.
+fn playground_with_player_at(at: Vec2) -> Sim {
+    let mut sim = playground();
+    let id = sim.player.unwrap();
+    sim.lanes[0].world.set_position(id, at).unwrap();
+    sim
+}
+
 fn player(sim: &Sim) -> passo_physics::Body {
     sim.lanes[0].world.body(sim.player.unwrap()).unwrap()
 }
@@ -103,10 +111,8 @@ fn jumping_works_only_when_standing() {
 #[test]
 fn the_ice_patch_lets_the_player_slide_much_further() {
     let stop_distance = |x: f32| {
-        let mut sim = playground();
+        let mut sim = playground_with_player_at(Vec2::new(x, 0.81));
         let id = sim.player.unwrap();
-        let world = &mut sim.lanes[0].world;
-        world.set_position(id, Vec2::new(x, 0.81)).unwrap();
         run(&mut sim, 10, Input::default());
         sim.lanes[0]
             .world
@@ -129,12 +135,7 @@ fn the_ice_patch_lets_the_player_slide_much_further() {
 #[test]
 fn gliding_opens_a_large_drag_area_and_falls_slowly() {
     let fall_speed = |glide: bool| {
-        let mut sim = playground();
-        let id = sim.player.unwrap();
-        sim.lanes[0]
-            .world
-            .set_position(id, Vec2::new(-12.0, 12.0))
-            .unwrap();
+        let mut sim = playground_with_player_at(Vec2::new(-12.0, 12.0));
         run(
             &mut sim,
             90,
@@ -153,12 +154,7 @@ fn gliding_opens_a_large_drag_area_and_falls_slowly() {
 
 #[test]
 fn wind_pushes_through_drag() {
-    let mut sim = playground();
-    let id = sim.player.unwrap();
-    sim.lanes[0]
-        .world
-        .set_position(id, Vec2::new(-12.0, 12.0))
-        .unwrap();
+    let mut sim = playground_with_player_at(Vec2::new(-12.0, 12.0));
     sim.knobs.wind = true;
     sim.knobs.wind_speed = 20.0;
     sim.apply_knobs();
