@@ -359,9 +359,7 @@ impl Dissipation {
     #[inline(always)]
     pub fn apply_stable(&self, mut v: Vec2, b: &BodyParams, dt: f32) -> Vec2 {
         if let Some(half_rho) = self.half_rho {
-            let rel = v - self.air;
-            let c = half_rho * b.drag_area * b.inv_mass;
-            v = self.air + rel / (1.0 + c * rel.length() * dt);
+            v = stable_quadratic_drag(v, self.air, half_rho * b.drag_area * b.inv_mass, dt);
         }
         if let Some(damping) = self.linear {
             v = self.air + (v - self.air) * (-damping * b.inv_mass * dt).exp();
@@ -375,6 +373,16 @@ impl Dissipation {
         }
         v
     }
+}
+
+/// Quadratic drag over `dt` in its exact form, `v <- air + rel / (1 + c
+/// |rel| dt)` with `rel = v - air` and `c = rho Cd A / (2 m)` (see
+/// [`Dissipation::apply_stable`]). Every path that applies stable drag
+/// calls this, so they give the same bits.
+#[inline(always)]
+pub(crate) fn stable_quadratic_drag(v: Vec2, air: Vec2, c: f32, dt: f32) -> Vec2 {
+    let rel = v - air;
+    air + rel / (1.0 + c * rel.length() * dt)
 }
 
 /// Potential energy, joules, of a body of `mass` at `p` under the

@@ -8,7 +8,9 @@
 //! path computes (the same operations in the same order, so the same bits);
 //! a test checks that.
 
-use crate::body::{DynamicBodies, SpeedLimits, flush_subnormal};
+use crate::bodies::{DynamicBodies, SpeedLimits, flush_subnormal};
+use crate::forces::stable_quadratic_drag;
+use crate::parallel::for_chunks;
 use crate::{ForceForm, ForceModels, Integrator};
 use glam::Vec2;
 
@@ -95,11 +97,8 @@ impl PointMassKernel {
         let a = self.gravity + (f + self.field) * im;
         let mut nv = v + a * dt;
         if DRAG {
-            // `Dissipation::apply_stable`: v <- air + rel / (1 + c |rel| dt).
             let (half_rho, air) = self.drag.unwrap_or((0.0, Vec2::ZERO));
-            let rel = nv - air;
-            let c = half_rho * cda * im;
-            nv = air + rel / (1.0 + c * rel.length() * dt);
+            nv = stable_quadratic_drag(nv, air, half_rho * cda * im, dt);
         }
         let finite = nv.length_squared().is_finite();
         (
@@ -182,11 +181,8 @@ impl PointMassKernel {
             let ay = self.gravity.y + (force[k].y + self.field.y) * im;
             let (mut x, mut y) = (vel[k].x + ax * dt, vel[k].y + ay * dt);
             if DRAG {
-                let (rx, ry) = (x - air.x, y - air.y);
                 let c = half_rho * drag_area[k] * im;
-                let d = 1.0 + c * (rx * rx + ry * ry).sqrt() * dt;
-                x = air.x + rx / d;
-                y = air.y + ry / d;
+                (x, y) = stable_quadratic_drag(Vec2::new(x, y), air, c, dt).into();
             }
             let finite = (x * x + y * y).is_finite();
             reset[k] = u32::from(!finite);
@@ -225,7 +221,7 @@ impl PointMassKernel {
 }
 
 /// The arrays the kernel reads and writes, for a run of bodies.
-pub(crate) struct Slices<'a> {
+struct Slices<'a> {
     pub pos: &'a mut [Vec2],
     pub vel: &'a mut [Vec2],
     pub force: &'a [Vec2],
@@ -233,44 +229,33 @@ pub(crate) struct Slices<'a> {
     pub drag_area: &'a [f32],
 }
 
-/// Runs `work` over the bodies: in chunks on rayon's pool for large worlds
-/// (with the `parallel` feature), else in one go. Every body's result is
-/// the same either way; the counts are summed (integers: any order).
-pub(crate) fn in_chunks(
+/// Runs `work` over the bodies, in chunks on the thread pool for large
+/// worlds (see [`for_chunks`]).
+fn in_chunks(
     b: &mut DynamicBodies,
     parallel: bool,
     work: impl Fn(Slices<'_>) -> u64 + Sync,
 ) -> u64 {
-    #[cfg(feature = "parallel")]
-    if crate::parallel::goes_parallel(parallel, b.pos.len()) {
-        use rayon::prelude::*;
-        let c = crate::constants::PARALLEL_CHUNK;
-        return b
-            .pos
-            .par_chunks_mut(c)
-            .zip(b.vel.par_chunks_mut(c))
-            .zip(b.force.par_chunks(c))
-            .zip(b.inv_mass.par_chunks(c))
-            .zip(b.drag_area.par_chunks(c))
-            .map(|((((pos, vel), force), inv_mass), drag_area)| {
-                work(Slices {
-                    pos,
-                    vel,
-                    force,
-                    inv_mass,
-                    drag_area,
-                })
+    let parts = (
+        &mut b.pos[..],
+        &mut b.vel[..],
+        &b.force[..],
+        &b.inv_mass[..],
+        &b.drag_area[..],
+    );
+    for_chunks(
+        parallel,
+        parts,
+        |_, (pos, vel, force, inv_mass, drag_area)| {
+            work(Slices {
+                pos,
+                vel,
+                force,
+                inv_mass,
+                drag_area,
             })
-            .sum();
-    }
-    let _ = parallel;
-    work(Slices {
-        pos: &mut b.pos,
-        vel: &mut b.vel,
-        force: &b.force,
-        inv_mass: &b.inv_mass,
-        drag_area: &b.drag_area,
-    })
+        },
+    )
 }
 
 /// Bodies the fast kernel handles at once.

@@ -32,39 +32,57 @@
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
+// Modules in the order data flows through them; each imports only from
+// those above it (checked by `tests/module_graph.rs`).
 mod aabb;
+mod bodies;
 mod body;
+mod body_edit;
 mod broad_phase;
+mod collider;
 pub mod constants;
+mod constraint;
 mod contact;
+mod contact_state;
+mod contact_world;
+mod diagnostics;
 mod error;
+mod events;
+mod filter;
 mod forces;
 mod integrator;
+mod island;
 mod kernel;
 mod manifold;
+mod narrow_phase;
 mod parallel;
+mod proxies;
 mod query;
+mod settings;
 mod shape;
-mod sleep;
+mod sleeping;
 mod snapshot;
 mod solver;
 mod static_tree;
+mod step;
 mod world;
 
 pub use aabb::Aabb;
 pub use body::{Body, BodyDef, BodyId, BodyKind};
-pub use contact::{
-    CollisionFilter, Contact, ContactEvents, ContactPair, ContactSettings, SensorPair,
-};
+pub use contact::{Contact, ContactEvents, ContactPair, ContactSettings, SensorPair};
 pub use error::PhysicsError;
+pub use filter::CollisionFilter;
 pub use forces::{
     CentralGravity, ForceForm, ForceModel, ForceModels, LinearDrag, QuadraticDrag, Spring,
     SurfaceFriction,
 };
 pub use glam;
 pub use integrator::Integrator;
+#[doc(hidden)]
 pub use manifold::{Manifold, collide};
 pub use query::RayHit;
+pub use settings::WorldSettings;
 pub use shape::Shape;
 pub use snapshot::WorldSnapshot;
-pub use world::{Stage, StepStats, World, WorldSettings};
+pub use step::{ContactStage, Stage};
+pub use world::{StepStats, World};

@@ -50,7 +50,7 @@ impl World {
     /// with an awake body. The rest (between sleeping bodies, or sleeping
     /// and static ones) are kept but cost no solver work.
     pub fn solved_contacts(&self) -> usize {
-        self.contacts.as_ref().map_or(0, |cw| cw.constraints.len())
+        self.contacts.as_ref().map_or(0, |cw| cw.solved.len())
     }
 
     /// The contacts of one body, each seen from it (`contact.a == id`, the
@@ -99,7 +99,7 @@ impl World {
 
     /// Contact and sensor events of the last step.
     pub fn events(&self) -> &ContactEvents {
-        self.contacts.as_ref().map_or(&NO_EVENTS, |cw| &cw.events)
+        self.contacts.as_ref().map_or(&NO_EVENTS, |cw| cw.events())
     }
 
     /// Bodies inside each sensor after the last step, sorted.

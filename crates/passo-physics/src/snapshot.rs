@@ -1,7 +1,8 @@
 //! Snapshots: the whole state of a world, to save, send or roll back to.
 
-use crate::body::{DynamicBodies, StaticBodies};
-use crate::contact::{ContactState, ContactWorld};
+use crate::bodies::{DynamicBodies, StaticBodies};
+use crate::contact_state::ContactState;
+use crate::contact_world::ContactWorld;
 use crate::world::{Location, Slot};
 use crate::{PhysicsError, StepStats, World, WorldSettings};
 
@@ -111,11 +112,7 @@ impl WorldSnapshot {
             }
             self.check_slot(s.meta[i].id, Location::Static(i as u32))?;
         }
-        let live = self
-            .slots
-            .iter()
-            .filter(|s| s.location != Location::Free)
-            .count();
+        let live = self.slots.iter().filter(|s| s.location.is_some()).count();
         if live != n + s.pos.len() {
             return bad(format!("{live} live slots for {} bodies", n + s.pos.len()));
         }
@@ -123,7 +120,7 @@ impl WorldSnapshot {
             if self
                 .slots
                 .get(f as usize)
-                .is_none_or(|s| s.location != Location::Free)
+                .is_none_or(|s| s.location.is_some())
             {
                 return bad(format!("free list names slot {f}, which is not free"));
             }
@@ -159,7 +156,9 @@ impl WorldSnapshot {
 
     fn check_slot(&self, id: crate::BodyId, location: Location) -> Result<(), PhysicsError> {
         match self.slots.get(id.index as usize) {
-            Some(slot) if slot.generation == id.generation && slot.location == location => Ok(()),
+            Some(slot) if slot.generation == id.generation && slot.location == Some(location) => {
+                Ok(())
+            }
             _ => Err(PhysicsError::InvalidSnapshot(format!(
                 "{id:?} and its slot disagree"
             ))),
@@ -201,6 +200,10 @@ impl World {
         world.shaped_dynamic = snapshot.shaped_dynamic;
         world.shaped_static = snapshot.shaped_static;
         world.stats = snapshot.stats;
+        world.bouncy = (world.dynamic.meta.iter())
+            .chain(&world.statics.meta)
+            .filter(|m| m.restitution > 0.0)
+            .count();
         world.statics_dirty = true;
         world.contacts = snapshot.contacts.map(|c| Box::new(ContactWorld::resume(c)));
         Ok(world)

@@ -30,178 +30,28 @@
 //! would turn every overlap into kinetic energy, so bodies created
 //! overlapping would fly apart; the push never becomes velocity.
 
-use crate::body::{DynamicBodies, StaticBodies};
-use crate::manifold::Manifold;
-use crate::{BodyId, ContactSettings};
+use crate::constraint::{Constraint, ContactInfo};
 use glam::Vec2;
 
-/// Marks a constraint's body B as static; the low bits are its static index.
-pub(crate) const STATIC_BODY: u32 = 1 << 31;
-
-/// What the solver reads and writes of one contact between a dynamic body
-/// A and a dynamic or static body B: kept small (56 bytes), so the passes
-/// over every contact stay in cache.
+/// What the solver needs of the contact settings, for one step.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub(crate) struct Constraint {
-    pub a: u32,
-    pub b: u32,
-    pub normal: Vec2,
-    /// Separation when the step began.
-    pub base_separation: f32,
-    inv_mass_a: f32,
-    inv_mass_b: f32,
-    /// `1 / (1/m_a + 1/m_b)`, the same for the normal and the friction row.
-    mass: f32,
-    friction: f32,
-    pub normal_impulse: f32,
-    pub tangent_impulse: f32,
-    /// Push (position) impulse of the current substep.
-    push_impulse: f32,
-    pub max_normal_impulse: f32,
-}
-
-/// The rest of a contact: who, where, and what restitution needs.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub(crate) struct ContactInfo {
-    pub id_a: BodyId,
-    pub id_b: BodyId,
-    /// Separation after the last substep.
-    pub separation: f32,
-    pub points: [Vec2; 2],
-    pub point_count: u8,
-    restitution: f32,
-    /// `u = v_n + a_n h / 2` at impact (negative when approaching).
-    impact_u: f32,
-    /// `a_n h / 2`.
-    half_an_h: f32,
-}
-
-impl ContactInfo {
-    /// The pair's order key (see `contact::key`).
-    pub fn key(&self) -> (BodyId, BodyId) {
-        crate::contact::key(self.id_a, self.id_b)
-    }
-
-    /// Touching: the solver pushed the bodies apart this step, or they overlap.
-    pub fn is_touching(&self, c: &Constraint) -> bool {
-        c.max_normal_impulse > 0.0 || self.separation < 0.0
-    }
-}
-
-impl Constraint {
-    /// The solver row and the rest of a new contact.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        m: &Manifold,
-        a: u32,
-        b: u32,
-        id_a: BodyId,
-        id_b: BodyId,
-        dynamic: &DynamicBodies,
-        statics: &StaticBodies,
-        gravity: Vec2,
-        h: f32,
-    ) -> (Self, ContactInfo) {
-        let ai = a as usize;
-        let b_static = b & STATIC_BODY != 0;
-        // A sleeping body holds like a static one: it is not solved this
-        // step (an awake body touching it wakes its island for the next).
-        let asleep = |i: usize| dynamic.sleep[i].is_asleep();
-        let (a_holds, b_holds) = (asleep(ai), b_static || asleep(b as usize));
-        let (inv_mass_b, friction_b, restitution_b, vel_b) = if b_static {
-            let s = (b & !STATIC_BODY) as usize;
-            (
-                0.0,
-                statics.friction[s],
-                statics.meta[s].restitution,
-                Vec2::ZERO,
-            )
-        } else {
-            let bi = b as usize;
-            (
-                if b_holds { 0.0 } else { dynamic.inv_mass[bi] },
-                dynamic.friction[bi],
-                dynamic.meta[bi].restitution,
-                dynamic.vel[bi],
-            )
-        };
-        let inv_mass_a = if a_holds { 0.0 } else { dynamic.inv_mass[ai] };
-        let k = inv_mass_a + inv_mass_b;
-        // Restitution reflects the normal velocity at the moment of impact,
-        // in the form the integrator conserves. With a relative normal
-        // acceleration `a_n` (gravity; only a static B does not fall with A),
-        // semi-implicit Euler over substeps `h` conserves exactly
-        // `Q = 1/2 u^2 - a_n s` with `u = v_n + a_n h / 2`. A contact still
-        // apart closes the gap `s`, so at impact `u^2 = u0^2 - 2 a_n s`; the
-        // bounce sets `u <- -e u`. An elastic ball then keeps `Q`, and so its
-        // height, bounce after bounce, wherever in a step the impact falls.
-        let vn = (vel_b - dynamic.vel[ai]).dot(m.normal);
-        // Relative normal acceleration: gravity moves only the bodies that
-        // are free to fall (a static or sleeping body holds).
-        let falls = |holds: bool| if holds { Vec2::ZERO } else { gravity };
-        let a_n = (falls(b_holds) - falls(a_holds)).dot(m.normal);
-        let half_an_h = 0.5 * a_n * h;
-        let u0 = vn + half_an_h;
-        let mut impact_u = u0;
-        if m.separation > 0.0 && (u0 < 0.0 || a_n < 0.0) {
-            let u2 = u0 * u0 - 2.0 * a_n * m.separation;
-            if u2 > 0.0 {
-                impact_u = -u2.sqrt();
-            }
-        }
-        let row = Self {
-            a,
-            b,
-            normal: m.normal,
-            base_separation: m.separation,
-            inv_mass_a,
-            inv_mass_b,
-            mass: if k > 0.0 { 1.0 / k } else { 0.0 },
-            friction: (dynamic.friction[ai] * friction_b).sqrt(),
-            normal_impulse: 0.0,
-            tangent_impulse: 0.0,
-            push_impulse: 0.0,
-            max_normal_impulse: 0.0,
-        };
-        let info = ContactInfo {
-            id_a,
-            id_b,
-            separation: m.separation,
-            points: m.points,
-            point_count: m.point_count,
-            restitution: dynamic.meta[ai].restitution.max(restitution_b),
-            impact_u,
-            half_an_h,
-        };
-        (row, info)
-    }
-
-    pub fn is_static(&self) -> bool {
-        self.b & STATIC_BODY != 0
-    }
-
-    /// Whether every number is finite and every mass term >= 0 (for
-    /// snapshots).
-    pub fn is_valid(&self) -> bool {
-        let numbers = [
-            self.base_separation,
-            self.inv_mass_a,
-            self.inv_mass_b,
-            self.mass,
-            self.friction,
-            self.normal_impulse,
-            self.tangent_impulse,
-            self.push_impulse,
-            self.max_normal_impulse,
-        ];
-        self.normal.is_finite()
-            && numbers.iter().all(|x| x.is_finite())
-            && self.inv_mass_a >= 0.0
-            && self.inv_mass_b >= 0.0
-            && self.mass >= 0.0
-    }
+pub(crate) struct SolverParams {
+    /// The substep, seconds.
+    pub h: f32,
+    /// Apply the last substep's impulses first.
+    pub warm_starting: bool,
+    /// Gauss-Seidel passes with the push, per substep.
+    pub iterations: u32,
+    /// Velocity passes after positions moved, per substep.
+    pub relax_iterations: u32,
+    /// Fraction of the overlap beyond the slop removed per substep.
+    pub position_correction: f32,
+    /// Cap on the push-apart speed, metres per second.
+    pub push_out_speed: f32,
+    /// Allowed penetration, metres.
+    pub slop: f32,
+    /// Impacts slower than this do not bounce, metres per second.
+    pub restitution_threshold: f32,
 }
 
 /// The solver's view of the bodies during one step.
@@ -217,10 +67,9 @@ impl SolverBodies<'_> {
     #[inline(always)]
     fn velocity(&self, c: &Constraint) -> (Vec2, Vec2) {
         let va = self.vel[c.a as usize];
-        let vb = if c.is_static() {
-            Vec2::ZERO
-        } else {
-            self.vel[c.b as usize]
+        let vb = match c.b.dynamic_index() {
+            Some(b) => self.vel[b],
+            None => Vec2::ZERO,
         };
         (va, vb)
     }
@@ -228,8 +77,8 @@ impl SolverBodies<'_> {
     #[inline(always)]
     fn apply(&mut self, c: &Constraint, impulse: Vec2) {
         self.vel[c.a as usize] -= impulse * c.inv_mass_a;
-        if !c.is_static() {
-            self.vel[c.b as usize] += impulse * c.inv_mass_b;
+        if let Some(b) = c.b.dynamic_index() {
+            self.vel[b] += impulse * c.inv_mass_b;
         }
     }
 
@@ -239,10 +88,9 @@ impl SolverBodies<'_> {
     #[inline(always)]
     fn separation(&self, c: &Constraint) -> f32 {
         let da = self.delta[c.a as usize];
-        let db = if c.is_static() {
-            Vec2::ZERO
-        } else {
-            self.delta[c.b as usize]
+        let db = match c.b.dynamic_index() {
+            Some(b) => self.delta[b],
+            None => Vec2::ZERO,
         };
         c.base_separation + (db - da).dot(c.normal)
     }
@@ -271,14 +119,14 @@ pub(crate) fn begin_substep(
 pub(crate) fn solve(
     constraints: &mut [Constraint],
     bodies: &mut SolverBodies<'_>,
-    settings: &ContactSettings,
-    h: f32,
+    params: &SolverParams,
     push: bool,
 ) {
-    let inv_h = 1.0 / h;
-    let push_rate = settings.position_correction * inv_h;
+    let inv_h = 1.0 / params.h;
+    let push_rate = params.position_correction * inv_h;
     for c in constraints.iter_mut() {
-        let (ia, ib) = (c.a as usize, c.b as usize);
+        // `ib` is only read for a dynamic B.
+        let (ia, ib) = (c.a as usize, c.b.index());
         let b_static = c.is_static();
         let (mut va, mut vb) = bodies.velocity(c);
         let tangent = c.normal.perp();
@@ -311,7 +159,7 @@ pub(crate) fn solve(
 
         // Push out of overlap deeper than the slop.
         if push {
-            let target = (push_rate * (-s - settings.slop)).clamp(0.0, settings.push_out_speed);
+            let target = (push_rate * (-s - params.slop)).clamp(0.0, params.push_out_speed);
             let pa = bodies.push[ia];
             let pb = if b_static {
                 Vec2::ZERO
@@ -361,5 +209,38 @@ pub(crate) fn store_separations(
 ) {
     for (c, info) in constraints.iter().zip(infos) {
         info.separation = bodies.separation(c);
+    }
+}
+
+/// Per-body buffers of the substeps, kept between steps.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Motion {
+    /// Positions at the start of the step.
+    pub start: Vec<Vec2>,
+    /// Displacement since the start of the step, per dynamic body
+    /// (separations are updated from it).
+    pub delta: Vec<Vec2>,
+    /// Push velocities of the current substep, per dynamic body.
+    pub push: Vec<Vec2>,
+}
+
+impl Motion {
+    /// Starts a step at positions `pos`.
+    pub fn begin(&mut self, pos: &[Vec2]) {
+        self.start.clear();
+        self.start.extend_from_slice(pos);
+        self.delta.clear();
+        self.delta.resize(pos.len(), Vec2::ZERO);
+        self.push.clear();
+        self.push.resize(pos.len(), Vec2::ZERO);
+    }
+
+    /// The solver's view of the bodies with velocities `vel`.
+    pub fn bodies<'a>(&'a mut self, vel: &'a mut [Vec2]) -> SolverBodies<'a> {
+        SolverBodies {
+            vel,
+            push: &mut self.push,
+            delta: &self.delta,
+        }
     }
 }

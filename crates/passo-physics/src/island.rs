@@ -1,62 +1,10 @@
-//! Sleeping: bodies at rest stop costing contact work.
-//!
-//! A pile that has settled is solved again every step for nothing: the
-//! minimum-speed snap already holds its velocities at exactly zero, and the
-//! solver only confirms that the weights are carried. So the contact stage
-//! groups dynamic bodies into islands (bodies joined by touching contacts)
-//! and puts an island to sleep when every body in it has been slower than
-//! [`SLEEP_SPEED`] for [`TIME_TO_SLEEP`]. A sleeping body keeps its
-//! position, has zero velocity and is not integrated. Its contacts with
-//! other sleeping bodies and with static ones are stored as they were when
-//! it fell asleep (so `contacts`, `is_standing` and events still see them)
-//! and cost nothing: the broad phase skips pairs of sleeping bodies, and
-//! sleeping bodies are not queried against static ones.
-//!
-//! An awake body reaching a sleeping one meets it as if it were static for
-//! that step; if they touch, the sleeping island wakes, all of it, for the
-//! next step. Game code changing a body (force, impulse, velocity,
-//! position, material, removal) wakes its island at once; changing the
-//! world's settings, its force models or a static body wakes every body.
-//! Bodies inside a sensor stay awake. Every decision depends only on the
-//! state, in a fixed order, so sleeping is as deterministic as the rest of
-//! the step.
+//! Islands: dynamic bodies joined by touching contacts. An island falls
+//! asleep when all its bodies have rested long enough, and wakes as one
+//! (see `sleeping` for what sleeping means to the step).
 
-use crate::body::DynamicBodies;
+use crate::bodies::{DynamicBodies, SleepState};
 use crate::constants::{SLEEP_SPEED, TIME_TO_SLEEP};
-use crate::solver::{Constraint, ContactInfo, STATIC_BODY};
-
-/// `SleepState::island` of an awake body.
-const AWAKE: u32 = u32::MAX;
-
-/// How long a dynamic body has rested, and whether it sleeps.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub(crate) struct SleepState {
-    /// Seconds the body has been slower than [`SLEEP_SPEED`].
-    pub rest_time: f32,
-    /// The island the body sleeps in (the slot index of one of its bodies),
-    /// or [`AWAKE`].
-    island: u32,
-}
-
-impl SleepState {
-    pub const fn awake() -> Self {
-        Self {
-            rest_time: 0.0,
-            island: AWAKE,
-        }
-    }
-
-    #[inline(always)]
-    pub fn is_asleep(&self) -> bool {
-        self.island != AWAKE
-    }
-
-    /// Whether the state is one a step can produce (for snapshots).
-    pub fn is_valid(&self) -> bool {
-        self.rest_time.is_finite() && self.rest_time >= 0.0
-    }
-}
+use crate::constraint::{Constraint, ContactInfo};
 
 /// Scratch space of the island pass, kept between steps so it allocates
 /// nothing once warm.
@@ -95,11 +43,10 @@ impl Islands {
     /// to be woken.
     pub fn wake_body(&mut self, bodies: &mut DynamicBodies, i: usize) {
         let s = &mut bodies.sleep[i];
-        if s.is_asleep() {
-            self.to_wake.push(s.island);
-            s.island = AWAKE;
+        if let Some(island) = s.island() {
+            self.to_wake.push(island);
         }
-        s.rest_time = 0.0;
+        *s = SleepState::awake();
     }
 
     /// Wakes every body of the islands marked by [`wake_body`]: one pass
@@ -113,7 +60,9 @@ impl Islands {
         self.to_wake.sort_unstable();
         self.to_wake.dedup();
         for s in &mut bodies.sleep {
-            if s.is_asleep() && self.to_wake.binary_search(&s.island).is_ok() {
+            if s.island()
+                .is_some_and(|i| self.to_wake.binary_search(&i).is_ok())
+            {
                 *s = SleepState::awake();
             }
         }
@@ -151,11 +100,13 @@ impl Islands {
         self.parent.clear();
         self.parent.extend(0..n as u32);
         for (c, info) in constraints.iter().zip(infos) {
-            let both_awake = c.b & STATIC_BODY == 0
-                && !bodies.sleep[c.a as usize].is_asleep()
-                && !bodies.sleep[c.b as usize].is_asleep();
+            let Some(b) = c.b.dynamic_index() else {
+                continue;
+            };
+            let both_awake =
+                !bodies.sleep[c.a as usize].is_asleep() && !bodies.sleep[b].is_asleep();
             if both_awake && info.is_touching(c) {
-                self.union(c.a, c.b);
+                self.union(c.a, b as u32);
             }
         }
         self.least_rest.clear();
@@ -176,16 +127,11 @@ impl Islands {
             }
             let root = self.find(i as u32) as usize;
             if self.least_rest[root] >= TIME_TO_SLEEP {
-                bodies.sleep[i].island = bodies.meta[root].id.index;
+                bodies.sleep[i].sleep_in(bodies.meta[root].id.index);
                 bodies.vel[i] = glam::Vec2::ZERO;
                 fell = true;
             }
         }
         fell
     }
-}
-
-/// Wakes every body and forgets how long each rested.
-pub(crate) fn wake_all(bodies: &mut DynamicBodies) {
-    bodies.sleep.fill(SleepState::awake());
 }

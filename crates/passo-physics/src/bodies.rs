@@ -1,0 +1,359 @@
+//! The packed body arrays the world steps: dynamic bodies in
+//! structure-of-arrays form (hot data apart from cold), static bodies, and
+//! the small per-body records (metadata, speed limits, sleep state).
+
+use crate::Shape;
+use crate::body::{Body, BodyDef, BodyId, BodyKind};
+use crate::collider::ColliderRef;
+use crate::filter::CollisionFilter;
+use crate::forces::BodyParams;
+use glam::Vec2;
+
+/// `SleepState::island` of an awake body.
+const AWAKE: u32 = u32::MAX;
+
+/// How long a dynamic body has rested, and whether it sleeps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct SleepState {
+    /// Seconds the body has been slower than [`SLEEP_SPEED`].
+    pub rest_time: f32,
+    /// The island the body sleeps in (the slot index of one of its bodies),
+    /// or [`AWAKE`].
+    island: u32,
+}
+
+impl SleepState {
+    pub const fn awake() -> Self {
+        Self {
+            rest_time: 0.0,
+            island: AWAKE,
+        }
+    }
+
+    #[inline(always)]
+    pub fn is_asleep(&self) -> bool {
+        self.island != AWAKE
+    }
+
+    /// The island the body sleeps in, or `None` while it is awake.
+    #[inline(always)]
+    pub fn island(&self) -> Option<u32> {
+        self.is_asleep().then_some(self.island)
+    }
+
+    /// Puts the body to sleep in `island` (the slot index of one of the
+    /// island's bodies).
+    pub fn sleep_in(&mut self, island: u32) {
+        debug_assert!(island != AWAKE);
+        self.island = island;
+    }
+
+    /// Whether the state is one a step can produce (for snapshots).
+    pub fn is_valid(&self) -> bool {
+        self.rest_time.is_finite() && self.rest_time >= 0.0
+    }
+}
+
+/// What the step never touches: kept apart from the hot arrays.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct BodyMeta {
+    pub id: BodyId,
+    pub mass: f32,
+    pub shape: Option<Shape>,
+    pub drag_area: f32,
+    pub restitution: f32,
+    pub filter: CollisionFilter,
+    pub sensor: bool,
+    pub min_speed: Option<f32>,
+    pub max_speed: Option<f32>,
+    pub user_data: u64,
+}
+
+/// Flushes velocity components smaller than the smallest normal `f32`
+/// (1.2e-38 m/s) to zero. A component that decays under drag while the
+/// other does not (the horizontal speed of a body falling at terminal
+/// speed) would otherwise become a subnormal float and stay one, and
+/// arithmetic on subnormals makes the whole step several times slower.
+#[inline(always)]
+pub(crate) fn flush_subnormal(v: Vec2) -> Vec2 {
+    Vec2::select(v.abs().cmplt(Vec2::splat(f32::MIN_POSITIVE)), Vec2::ZERO, v)
+}
+
+/// Speed limits of one body, resolved from its overrides and the world's
+/// defaults (`max_sq` is at most `f32::MAX`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct SpeedLimits {
+    pub min_sq: f32,
+    pub max: f32,
+    pub max_sq: f32,
+}
+
+impl SpeedLimits {
+    pub fn new(min: f32, max: f32) -> Self {
+        Self {
+            min_sq: min * min,
+            max,
+            max_sq: (max * max).min(f32::MAX),
+        }
+    }
+
+    /// Snaps a velocity below the minimum speed to exactly zero and scales
+    /// one above the maximum to the maximum speed (`v * max / |v|`). `v`
+    /// must have a finite `|v|^2` (see `guard_finite`).
+    #[inline(always)]
+    pub fn apply(&self, v: &mut Vec2) {
+        let s2 = v.length_squared();
+        if s2 > self.max_sq {
+            *v *= self.max / s2.sqrt();
+        }
+        if s2 < self.min_sq {
+            *v = Vec2::ZERO;
+        }
+    }
+}
+
+/// Dynamic bodies in structure-of-arrays form: the step walks these slices.
+///
+/// Removal swaps the last body into the hole, so the arrays stay packed.
+#[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct DynamicBodies {
+    pub pos: Vec<Vec2>,
+    pub vel: Vec<Vec2>,
+    pub force: Vec<Vec2>,
+    pub inv_mass: Vec<f32>,
+    /// `Cd * A` per body, square metres.
+    pub drag_area: Vec<f32>,
+    /// `mu` per body.
+    pub friction: Vec<f32>,
+    /// Friction force magnitude `mu |N|` applied by game code this step, newtons.
+    pub friction_force: Vec<f32>,
+    pub limits: Vec<SpeedLimits>,
+    /// Positions at the start of the last step; empty unless interpolation is on.
+    pub prev_pos: Vec<Vec2>,
+    /// Rest time and island of each body (see `sleep`).
+    pub sleep: Vec<SleepState>,
+    pub meta: Vec<BodyMeta>,
+}
+
+/// The arrays a body's forces are computed from, borrowed apart from the
+/// positions and velocities that a step writes.
+pub(crate) struct BodyArrays<'a> {
+    pub force: &'a [Vec2],
+    pub inv_mass: &'a [f32],
+    pub drag_area: &'a [f32],
+    pub friction: &'a [f32],
+    pub friction_force: &'a [f32],
+    pub limits: &'a [SpeedLimits],
+}
+
+impl BodyArrays<'_> {
+    /// What the force models read for body `i`.
+    #[inline(always)]
+    pub fn params(&self, i: usize) -> BodyParams {
+        BodyParams {
+            inv_mass: self.inv_mass[i],
+            force: self.force[i],
+            drag_area: self.drag_area[i],
+            friction: self.friction[i],
+            friction_force: self.friction_force[i],
+        }
+    }
+}
+
+impl DynamicBodies {
+    pub fn len(&self) -> usize {
+        self.pos.len()
+    }
+
+    /// Positions and velocities to write, the rest to read.
+    pub fn split(&mut self) -> (&mut [Vec2], &mut [Vec2], BodyArrays<'_>) {
+        (
+            &mut self.pos,
+            &mut self.vel,
+            BodyArrays {
+                force: &self.force,
+                inv_mass: &self.inv_mass,
+                drag_area: &self.drag_area,
+                friction: &self.friction,
+                friction_force: &self.friction_force,
+                limits: &self.limits,
+            },
+        )
+    }
+
+    pub fn push(&mut self, def: &BodyDef, meta: BodyMeta, limits: SpeedLimits, keep_prev: bool) {
+        self.pos.push(def.position);
+        self.vel.push(def.velocity);
+        self.force.push(Vec2::ZERO);
+        self.inv_mass.push(1.0 / def.mass);
+        self.drag_area.push(def.drag_area);
+        self.friction.push(def.friction);
+        self.friction_force.push(0.0);
+        self.limits.push(limits);
+        if keep_prev {
+            self.prev_pos.push(def.position);
+        }
+        self.sleep.push(SleepState::awake());
+        self.meta.push(meta);
+    }
+
+    /// Removes body `i`; returns the id of the body moved into `i`, if any.
+    pub fn swap_remove(&mut self, i: usize) -> Option<BodyId> {
+        self.pos.swap_remove(i);
+        self.vel.swap_remove(i);
+        self.force.swap_remove(i);
+        self.inv_mass.swap_remove(i);
+        self.drag_area.swap_remove(i);
+        self.friction.swap_remove(i);
+        self.friction_force.swap_remove(i);
+        self.limits.swap_remove(i);
+        if !self.prev_pos.is_empty() {
+            self.prev_pos.swap_remove(i);
+        }
+        self.sleep.swap_remove(i);
+        self.meta.swap_remove(i);
+        self.meta.get(i).map(|m| m.id)
+    }
+
+    /// Wakes every body and forgets how long each rested.
+    pub fn wake_all(&mut self) {
+        self.sleep.fill(SleepState::awake());
+    }
+
+    /// Whether every body is awake with no rest time.
+    pub fn all_fresh(&self) -> bool {
+        self.sleep.iter().all(|s| *s == SleepState::awake())
+    }
+
+    pub fn view(&self, i: usize) -> Body {
+        let m = &self.meta[i];
+        Body {
+            id: m.id,
+            kind: BodyKind::Dynamic,
+            position: self.pos[i],
+            velocity: self.vel[i],
+            force: self.force[i],
+            mass: m.mass,
+            shape: m.shape,
+            drag_area: self.drag_area[i],
+            friction: self.friction[i],
+            restitution: m.restitution,
+            filter: m.filter,
+            sensor: m.sensor,
+            min_speed: m.min_speed,
+            max_speed: m.max_speed,
+            user_data: m.user_data,
+            asleep: self.sleep[i].is_asleep(),
+        }
+    }
+}
+
+/// Static bodies: never integrated.
+#[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct StaticBodies {
+    pub pos: Vec<Vec2>,
+    pub friction: Vec<f32>,
+    pub meta: Vec<BodyMeta>,
+}
+
+impl StaticBodies {
+    pub fn len(&self) -> usize {
+        self.pos.len()
+    }
+
+    pub fn push(&mut self, def: &BodyDef, meta: BodyMeta) {
+        self.pos.push(def.position);
+        self.friction.push(def.friction);
+        self.meta.push(meta);
+    }
+
+    pub fn swap_remove(&mut self, i: usize) -> Option<BodyId> {
+        self.pos.swap_remove(i);
+        self.friction.swap_remove(i);
+        self.meta.swap_remove(i);
+        self.meta.get(i).map(|m| m.id)
+    }
+
+    pub fn view(&self, i: usize) -> Body {
+        let m = &self.meta[i];
+        Body {
+            id: m.id,
+            kind: BodyKind::Static,
+            position: self.pos[i],
+            velocity: Vec2::ZERO,
+            force: Vec2::ZERO,
+            mass: f32::INFINITY,
+            shape: m.shape,
+            drag_area: m.drag_area,
+            friction: self.friction[i],
+            restitution: m.restitution,
+            filter: m.filter,
+            sensor: m.sensor,
+            min_speed: m.min_speed,
+            max_speed: m.max_speed,
+            user_data: m.user_data,
+            asleep: false,
+        }
+    }
+}
+
+/// Both body arrays, read through collider references.
+#[derive(Clone, Copy)]
+pub(crate) struct Colliders<'a> {
+    pub dynamic: &'a DynamicBodies,
+    pub statics: &'a StaticBodies,
+}
+
+impl<'a> Colliders<'a> {
+    /// The body's cold data.
+    #[inline(always)]
+    pub fn meta(&self, r: ColliderRef) -> &'a BodyMeta {
+        match r.dynamic_index() {
+            Some(i) => &self.dynamic.meta[i],
+            None => &self.statics.meta[r.index()],
+        }
+    }
+
+    /// The body's cold data, or `None` if the index is out of range (for
+    /// checking snapshots).
+    pub fn get_meta(&self, r: ColliderRef) -> Option<&'a BodyMeta> {
+        match r.dynamic_index() {
+            Some(i) => self.dynamic.meta.get(i),
+            None => self.statics.meta.get(r.index()),
+        }
+    }
+
+    /// The body's position.
+    #[inline(always)]
+    pub fn position(&self, r: ColliderRef) -> Vec2 {
+        match r.dynamic_index() {
+            Some(i) => self.dynamic.pos[i],
+            None => self.statics.pos[r.index()],
+        }
+    }
+
+    /// The shape and position of a body that has a shape.
+    ///
+    /// # Panics
+    /// If the body has no shape: only shaped bodies become colliders.
+    pub fn shape_at(&self, r: ColliderRef) -> (Shape, Vec2) {
+        let shape = self.meta(r).shape.expect("a collider has a shape");
+        (shape, self.position(r))
+    }
+
+    /// The order key of a pair: the two slot indices, lower first, so the
+    /// order depends on ids, not on storage.
+    #[inline(always)]
+    pub fn pair_order(&self, a: ColliderRef, b: ColliderRef) -> u64 {
+        let (x, y) = (
+            u64::from(self.meta(a).id.index),
+            u64::from(self.meta(b).id.index),
+        );
+        x.min(y) << 32 | x.max(y)
+    }
+}

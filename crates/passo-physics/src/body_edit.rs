@@ -1,0 +1,140 @@
+//! What game code changes on a body between steps: position, velocity,
+//! forces and impulses, material. Every value is checked where it enters,
+//! and a change wakes what it may have disturbed.
+
+use crate::error::{finite, finite_vec, non_negative};
+use crate::world::{Location, World};
+use crate::{BodyId, PhysicsError};
+use glam::Vec2;
+
+impl World {
+    /// Moves a body (a teleport: no velocity is implied, and an interpolated
+    /// drawing jumps too).
+    pub fn set_position(&mut self, id: BodyId, position: Vec2) -> Result<(), PhysicsError> {
+        finite_vec("position", position)?;
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        match location {
+            Location::Dynamic(i) => {
+                self.dynamic.pos[i as usize] = position;
+                if let Some(prev) = self.dynamic.prev_pos.get_mut(i as usize) {
+                    *prev = position;
+                }
+            }
+            Location::Static(i) => {
+                self.statics.pos[i as usize] = position;
+                self.statics_dirty = true;
+            }
+        }
+        self.wake_after_change(location);
+        Ok(())
+    }
+
+    /// Sets a body's velocity, metres per second. Ignored for static bodies.
+    pub fn set_velocity(&mut self, id: BodyId, velocity: Vec2) -> Result<(), PhysicsError> {
+        finite_vec("velocity", velocity)?;
+        if let Some(i) = self.dynamic_index(id)? {
+            self.dynamic.vel[i] = velocity;
+            self.wake_index(i);
+        }
+        Ok(())
+    }
+
+    /// Adds a force, newtons, to the body's accumulator for the next step
+    /// (acceleration = F / m). Forces are cleared after each step. Ignored
+    /// for static bodies.
+    pub fn apply_force(&mut self, id: BodyId, force: Vec2) -> Result<(), PhysicsError> {
+        finite_vec("force", force)?;
+        if let Some(i) = self.dynamic_index(id)? {
+            self.dynamic.force[i] += force;
+            self.wake_index(i);
+        }
+        Ok(())
+    }
+
+    /// Changes the body's velocity now by `impulse / m` (impulse in newton
+    /// seconds): a jump, a hit. Ignored for static bodies.
+    pub fn apply_impulse(&mut self, id: BodyId, impulse: Vec2) -> Result<(), PhysicsError> {
+        finite_vec("impulse", impulse)?;
+        if let Some(i) = self.dynamic_index(id)? {
+            self.dynamic.vel[i] += impulse * self.dynamic.inv_mass[i];
+            self.wake_index(i);
+        }
+        Ok(())
+    }
+
+    /// Applies kinetic friction `-mu |N| v_hat` for the next step, with the
+    /// normal force magnitude `normal` in newtons (the seed's
+    /// `ApplyFriction(mu, N)`). With [`ForceForm::Stable`](crate::ForceForm::Stable) it slows the body
+    /// by at most its speed: it stops, never reverses. Accumulates like a
+    /// force and is cleared after each step. Ignored for static bodies.
+    pub fn apply_friction(&mut self, id: BodyId, mu: f32, normal: f32) -> Result<(), PhysicsError> {
+        non_negative("mu", mu)?;
+        finite("normal", normal)?;
+        if let Some(i) = self.dynamic_index(id)? {
+            self.dynamic.friction_force[i] += mu * normal.abs();
+            self.wake_index(i);
+            self.game_friction = true;
+        }
+        Ok(())
+    }
+
+    /// Sets a body's friction coefficient `mu` (>= 0), for surface friction
+    /// and contacts.
+    pub fn set_friction(&mut self, id: BodyId, mu: f32) -> Result<(), PhysicsError> {
+        non_negative("friction", mu)?;
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        match location {
+            Location::Dynamic(i) => self.dynamic.friction[i as usize] = mu,
+            Location::Static(i) => self.statics.friction[i as usize] = mu,
+        }
+        self.wake_after_change(location);
+        Ok(())
+    }
+
+    /// Sets a body's restitution, in `[0, 1]`.
+    pub fn set_restitution(&mut self, id: BodyId, restitution: f32) -> Result<(), PhysicsError> {
+        non_negative("restitution", restitution)?;
+        if restitution > 1.0 {
+            return Err(PhysicsError::OutOfRange {
+                what: "restitution",
+                value: restitution,
+                allowed: "in [0, 1]",
+            });
+        }
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        let meta = match location {
+            Location::Dynamic(i) => &mut self.dynamic.meta[i as usize],
+            Location::Static(i) => &mut self.statics.meta[i as usize],
+        };
+        let was_bouncy = meta.restitution > 0.0;
+        meta.restitution = restitution;
+        self.bouncy = self.bouncy - usize::from(was_bouncy) + usize::from(restitution > 0.0);
+        self.wake_after_change(location);
+        Ok(())
+    }
+
+    /// Sets a body's drag area `Cd A`, square metres (>= 0): a glider
+    /// opening its wings.
+    pub fn set_drag_area(&mut self, id: BodyId, drag_area: f32) -> Result<(), PhysicsError> {
+        non_negative("drag_area", drag_area)?;
+        match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
+            Location::Dynamic(i) => {
+                self.dynamic.drag_area[i as usize] = drag_area;
+                self.dynamic.meta[i as usize].drag_area = drag_area;
+                self.wake_index(i as usize);
+            }
+            Location::Static(i) => self.statics.meta[i as usize].drag_area = drag_area,
+        }
+        Ok(())
+    }
+
+    /// Where to draw a body between the last two steps: `lerp(previous,
+    /// current, alpha)` with `alpha` in `[0, 1]` (clamped). Without
+    /// [`WorldSettings::interpolation`](crate::WorldSettings::interpolation) this is the current position.
+    pub fn interpolated_position(&self, id: BodyId, alpha: f32) -> Option<Vec2> {
+        Some(match self.locate(id)? {
+            Location::Dynamic(i) => self.lerp_dynamic(i as usize, alpha),
+            Location::Static(i) => self.statics.pos[i as usize],
+        })
+    }
+}

@@ -1,0 +1,282 @@
+//! Contact rows: what the solver reads and writes of one contact, and the
+//! rest of it (who, where, what restitution needs), prepared from a
+//! manifold at the start of a step.
+
+use crate::BodyId;
+use crate::bodies::Colliders;
+use crate::collider::ColliderRef;
+use crate::manifold::Manifold;
+use glam::Vec2;
+
+/// What the solver reads and writes of one contact between a dynamic body
+/// A and a dynamic or static body B: kept small (52 bytes), so the passes
+/// over every contact stay in cache.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct Constraint {
+    /// Body A: always dynamic, by its dynamic index.
+    pub a: u32,
+    /// Body B: dynamic or static.
+    pub b: ColliderRef,
+    pub normal: Vec2,
+    /// Separation when the step began.
+    pub base_separation: f32,
+    pub inv_mass_a: f32,
+    pub inv_mass_b: f32,
+    /// `1 / (1/m_a + 1/m_b)`, the same for the normal and the friction row.
+    pub mass: f32,
+    pub friction: f32,
+    pub normal_impulse: f32,
+    pub tangent_impulse: f32,
+    /// Push (position) impulse of the current substep.
+    pub push_impulse: f32,
+    pub max_normal_impulse: f32,
+}
+
+/// The rest of a contact: who, where, and what restitution needs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct ContactInfo {
+    pub id_a: BodyId,
+    pub id_b: BodyId,
+    /// Separation after the last substep.
+    pub separation: f32,
+    pub points: [Vec2; 2],
+    pub point_count: u8,
+    pub restitution: f32,
+    /// `u = v_n + a_n h / 2` at impact (negative when approaching).
+    pub impact_u: f32,
+    /// `a_n h / 2`.
+    pub half_an_h: f32,
+}
+
+const _: () = assert!(std::mem::size_of::<Constraint>() == 52);
+
+/// A pair's order key: the body with the lower slot index first.
+pub(crate) fn key(a: BodyId, b: BodyId) -> (BodyId, BodyId) {
+    if a.index() <= b.index() {
+        (a, b)
+    } else {
+        (b, a)
+    }
+}
+
+impl ContactInfo {
+    /// The pair's order key (see [`key`]).
+    pub fn key(&self) -> (BodyId, BodyId) {
+        key(self.id_a, self.id_b)
+    }
+
+    /// Touching: the solver pushed the bodies apart this step, or they overlap.
+    pub fn is_touching(&self, c: &Constraint) -> bool {
+        c.max_normal_impulse > 0.0 || self.separation < 0.0
+    }
+}
+
+impl Constraint {
+    /// The solver row and the rest of a new contact between dynamic body
+    /// `a` and body `b`, from their manifold.
+    pub fn new(
+        m: &Manifold,
+        a: u32,
+        b: ColliderRef,
+        bodies: Colliders<'_>,
+        gravity: Vec2,
+        h: f32,
+    ) -> (Self, ContactInfo) {
+        let dynamic = bodies.dynamic;
+        let ai = a as usize;
+        // A sleeping body holds like a static one: it is not solved this
+        // step (an awake body touching it wakes its island for the next).
+        let asleep = |i: usize| dynamic.sleep[i].is_asleep();
+        let (a_holds, b_holds) = (asleep(ai), b.dynamic_index().is_none_or(asleep));
+        let (inv_mass_b, friction_b, restitution_b, vel_b) = match b.dynamic_index() {
+            None => {
+                let s = b.index();
+                (
+                    0.0,
+                    bodies.statics.friction[s],
+                    bodies.statics.meta[s].restitution,
+                    Vec2::ZERO,
+                )
+            }
+            Some(bi) => (
+                if b_holds { 0.0 } else { dynamic.inv_mass[bi] },
+                dynamic.friction[bi],
+                dynamic.meta[bi].restitution,
+                dynamic.vel[bi],
+            ),
+        };
+        let inv_mass_a = if a_holds { 0.0 } else { dynamic.inv_mass[ai] };
+        let k = inv_mass_a + inv_mass_b;
+        // Restitution reflects the normal velocity at the moment of impact,
+        // in the form the integrator conserves. With a relative normal
+        // acceleration `a_n` (gravity; only a static B does not fall with A),
+        // semi-implicit Euler over substeps `h` conserves exactly
+        // `Q = 1/2 u^2 - a_n s` with `u = v_n + a_n h / 2`. A contact still
+        // apart closes the gap `s`, so at impact `u^2 = u0^2 - 2 a_n s`; the
+        // bounce sets `u <- -e u`. An elastic ball then keeps `Q`, and so its
+        // height, bounce after bounce, wherever in a step the impact falls.
+        let vn = (vel_b - dynamic.vel[ai]).dot(m.normal);
+        // Relative normal acceleration: gravity moves only the bodies that
+        // are free to fall (a static or sleeping body holds).
+        let falls = |holds: bool| if holds { Vec2::ZERO } else { gravity };
+        let a_n = (falls(b_holds) - falls(a_holds)).dot(m.normal);
+        let half_an_h = 0.5 * a_n * h;
+        let u0 = vn + half_an_h;
+        let mut impact_u = u0;
+        if m.separation > 0.0 && (u0 < 0.0 || a_n < 0.0) {
+            let u2 = u0 * u0 - 2.0 * a_n * m.separation;
+            if u2 > 0.0 {
+                impact_u = -u2.sqrt();
+            }
+        }
+        let row = Self {
+            a,
+            b,
+            normal: m.normal,
+            base_separation: m.separation,
+            inv_mass_a,
+            inv_mass_b,
+            mass: if k > 0.0 { 1.0 / k } else { 0.0 },
+            friction: (dynamic.friction[ai] * friction_b).sqrt(),
+            normal_impulse: 0.0,
+            tangent_impulse: 0.0,
+            push_impulse: 0.0,
+            max_normal_impulse: 0.0,
+        };
+        let info = ContactInfo {
+            id_a: dynamic.meta[ai].id,
+            id_b: bodies.meta(b).id,
+            separation: m.separation,
+            points: m.points,
+            point_count: m.point_count,
+            restitution: dynamic.meta[ai].restitution.max(restitution_b),
+            impact_u,
+            half_an_h,
+        };
+        (row, info)
+    }
+
+    /// Whether body B is static.
+    #[inline(always)]
+    pub fn is_static(&self) -> bool {
+        self.b.is_static()
+    }
+
+    /// Whether every number is finite and every mass term >= 0 (for
+    /// snapshots).
+    pub fn is_valid(&self) -> bool {
+        let numbers = [
+            self.base_separation,
+            self.inv_mass_a,
+            self.inv_mass_b,
+            self.mass,
+            self.friction,
+            self.normal_impulse,
+            self.tangent_impulse,
+            self.push_impulse,
+            self.max_normal_impulse,
+        ];
+        self.normal.is_finite()
+            && numbers.iter().all(|x| x.is_finite())
+            && self.inv_mass_a >= 0.0
+            && self.inv_mass_b >= 0.0
+            && self.mass >= 0.0
+    }
+}
+
+/// Contact rows and the rest of each contact, side by side, sorted by the
+/// pair's key.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct ContactList {
+    pub rows: Vec<Constraint>,
+    pub infos: Vec<ContactInfo>,
+}
+
+impl ContactList {
+    pub fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    pub fn clear(&mut self) {
+        self.rows.clear();
+        self.infos.clear();
+    }
+
+    pub fn push(&mut self, row: Constraint, info: ContactInfo) {
+        self.rows.push(row);
+        self.infos.push(info);
+    }
+
+    /// Each row with the rest of its contact.
+    pub fn iter(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> {
+        self.rows.iter().zip(&self.infos)
+    }
+
+    /// Keeps the contacts for which `keep` holds, in order, and hands the
+    /// others to `removed`, in order.
+    pub fn retain(
+        &mut self,
+        mut keep: impl FnMut(&Constraint) -> bool,
+        mut removed: impl FnMut(Constraint, ContactInfo),
+    ) {
+        let mut kept = 0;
+        for i in 0..self.rows.len() {
+            let (c, info) = (self.rows[i], self.infos[i]);
+            if keep(&c) {
+                self.rows[kept] = c;
+                self.infos[kept] = info;
+                kept += 1;
+            } else {
+                removed(c, info);
+            }
+        }
+        self.rows.truncate(kept);
+        self.infos.truncate(kept);
+    }
+}
+
+/// Adds contacts, given in key order, to a contact list sorted by key: the
+/// list's old content waits in a scratch list (kept between steps, so
+/// merging allocates nothing once warm).
+pub(crate) struct Merge<'a> {
+    list: &'a mut ContactList,
+    old: &'a ContactList,
+    next: usize,
+}
+
+impl<'a> Merge<'a> {
+    pub fn new(list: &'a mut ContactList, scratch: &'a mut ContactList) -> Self {
+        scratch.clear();
+        scratch.rows.append(&mut list.rows);
+        scratch.infos.append(&mut list.infos);
+        Self {
+            list,
+            old: scratch,
+            next: 0,
+        }
+    }
+
+    pub fn push(&mut self, row: Constraint, info: ContactInfo) {
+        let old = self.old;
+        while self.next < old.len() && old.infos[self.next].key() < info.key() {
+            self.list.push(old.rows[self.next], old.infos[self.next]);
+            self.next += 1;
+        }
+        self.list.push(row, info);
+    }
+
+    pub fn finish(self) {
+        self.list
+            .rows
+            .extend_from_slice(&self.old.rows[self.next..]);
+        self.list
+            .infos
+            .extend_from_slice(&self.old.infos[self.next..]);
+    }
+}

@@ -1,0 +1,296 @@
+//! The contact stage's state between steps, and the two ends of a step
+//! that surround the solver: finding the contacts (proxies, pairs, narrow
+//! phase, waking what is reached, warm starting) and recording what
+//! happened (sensors, sleeping, events).
+
+use crate::bodies::{Colliders, DynamicBodies, StaticBodies};
+use crate::collider::ColliderRef;
+use crate::constraint::{Constraint, ContactInfo, ContactList, Merge};
+use crate::contact_state::ContactState;
+use crate::events::EventTracker;
+use crate::narrow_phase::{Narrow, NarrowPhase, Outcome};
+use crate::proxies::{Proxies, ProxyMargin};
+use crate::sleeping::SleepingContacts;
+use crate::solver::Motion;
+use crate::{ContactEvents, ContactSettings, SensorPair};
+use glam::Vec2;
+
+/// What a step tells the contact stage.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StepParams {
+    /// Gravitational acceleration (for restitution's impact speed).
+    pub gravity: Vec2,
+    /// The step, seconds (for speculative margins).
+    pub dt: f32,
+    /// The substep, seconds.
+    pub h: f32,
+    /// Whether large loops may use the thread pool.
+    pub parallel: bool,
+}
+
+/// Everything the contact stage keeps between steps. Created the first time
+/// the stage runs, so a world without colliders never allocates it.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ContactWorld {
+    proxies: Proxies,
+    narrow: NarrowPhase,
+    /// Contacts with an awake body, solved this step; sorted by pair.
+    pub solved: ContactList,
+    /// Stored contacts of sleeping islands, and how to find them.
+    pub sleeping: SleepingContacts,
+    /// Per-body buffers of the substeps.
+    pub motion: Motion,
+    events: EventTracker,
+    /// Room for merging contacts found again, kept between steps.
+    scratch: ContactList,
+}
+
+impl ContactWorld {
+    pub fn new() -> Self {
+        Self {
+            proxies: Proxies::new(),
+            ..Self::default()
+        }
+    }
+
+    /// Static bodies changed: rebuild the static tree at the next step.
+    pub fn statics_changed(&mut self) {
+        self.proxies.statics_changed();
+    }
+
+    /// Finds the step's contacts: proxies, pairs, the narrow phase, waking
+    /// the sleeping islands an awake body reaches, warm starting.
+    pub fn begin_step(
+        &mut self,
+        dynamic: &mut DynamicBodies,
+        statics: &StaticBodies,
+        settings: &ContactSettings,
+        step: &StepParams,
+    ) {
+        self.motion.begin(&dynamic.pos);
+        let any_asleep = self.sleeping.any(dynamic);
+        let margin = ProxyMargin {
+            fall: step.gravity.length() * step.dt,
+            dt: step.dt,
+            continuous: settings.continuous,
+        };
+        self.proxies.begin(statics, dynamic.len(), margin);
+        self.sleeping.begin(dynamic, any_asleep, &margin);
+        self.add_proxies(dynamic, any_asleep);
+        self.proxies.find_pairs(step.parallel);
+        if any_asleep {
+            self.pair_with_sleepers(dynamic);
+        }
+        let narrow = Narrow {
+            proxies: &self.proxies,
+            bodies: Colliders { dynamic, statics },
+            gravity: step.gravity,
+            h: step.h,
+        };
+        self.narrow.run(&narrow, step.parallel, &mut self.solved);
+        if settings.sleeping && any_asleep {
+            self.wake_reached(dynamic, statics, step, settings.slop);
+        }
+        if settings.warm_starting {
+            self.events.warm_start(&mut self.solved);
+        }
+    }
+
+    /// Proxies for the shaped dynamic bodies, grown by their possible
+    /// travel. Sleeping bodies in the sleep tree get one only when an awake
+    /// proxy reaches them (see [`pair_with_sleepers`](Self::pair_with_sleepers)).
+    fn add_proxies(&mut self, dynamic: &DynamicBodies, any_asleep: bool) {
+        for (i, meta) in dynamic.meta.iter().enumerate() {
+            if meta.shape.is_none() {
+                continue;
+            }
+            if !(dynamic.sleep[i].is_asleep() && self.sleeping.in_tree(i)) {
+                self.proxies.add(dynamic, i, any_asleep);
+            }
+        }
+    }
+
+    /// Pairs each awake proxy with the sleeping bodies of the sleep tree it
+    /// reaches. Pairs of two sleeping bodies, and of a sleeping and a static
+    /// one, are not looked for: their contacts are stored.
+    fn pair_with_sleepers(&mut self, dynamic: &DynamicBodies) {
+        let binned = self.proxies.boxes.len();
+        for p in 0..binned {
+            if self.proxies.is_asleep(p) {
+                continue;
+            }
+            let aabb = self.proxies.boxes[p];
+            for &body in self.sleeping.reached(&aabb, dynamic) {
+                let q = self.proxies.of(dynamic, body as usize);
+                self.proxies.pairs.push((p as u32, q));
+            }
+        }
+    }
+
+    /// Wakes the sleeping islands an awake body reaches this step (a
+    /// contact touching within the slop, or closing to it at the bodies'
+    /// speeds), so they are solved in this step already. The contacts
+    /// found with them held static, and the stored contacts of the woken
+    /// bodies, are found again with everyone awake.
+    fn wake_reached(
+        &mut self,
+        dynamic: &mut DynamicBodies,
+        statics: &StaticBodies,
+        step: &StepParams,
+        slop: f32,
+    ) {
+        let mut woke = false;
+        for c in &self.solved.rows {
+            let Some(b) = c.b.dynamic_index() else {
+                continue;
+            };
+            let a = c.a as usize;
+            let (sa, sb) = (dynamic.sleep[a].is_asleep(), dynamic.sleep[b].is_asleep());
+            let vn = (dynamic.vel[b] - dynamic.vel[a]).dot(c.normal);
+            if sa != sb && c.base_separation + vn.min(0.0) * step.dt <= slop {
+                self.sleeping.mark(dynamic, if sa { a } else { b });
+                woke = true;
+            }
+        }
+        if !woke {
+            return;
+        }
+        self.sleeping.wake_marked_islands(dynamic);
+        // Every body that woke gets a proxy (those from the sleep tree
+        // have none yet).
+        for k in 0..self.sleeping.list.len() {
+            let c = self.sleeping.list.rows[k];
+            for body in [ColliderRef::dynamic(c.a), c.b] {
+                if let Some(i) = body.dynamic_index()
+                    && !dynamic.sleep[i].is_asleep()
+                {
+                    self.proxies.of(dynamic, i);
+                }
+            }
+        }
+        let dynamic: &DynamicBodies = dynamic;
+        let bodies = Colliders { dynamic, statics };
+        let proxies = &self.proxies;
+        let woke_now = |body: ColliderRef| {
+            body.dynamic_index().is_some_and(|i| {
+                !dynamic.sleep[i].is_asleep() && proxies.asleep[proxies.of_body[i] as usize]
+            })
+        };
+        let keyed_pair = |c: &Constraint| {
+            let a = ColliderRef::dynamic(c.a);
+            let b = match c.b.dynamic_index() {
+                Some(i) => ColliderRef::dynamic(proxies.of_body[i]),
+                None => c.b,
+            };
+            (bodies.pair_order(a, c.b), proxies.of_body[c.a as usize], b)
+        };
+        let keyed = &mut self.narrow.keyed;
+        keyed.clear();
+        let woken = |c: &Constraint| woke_now(ColliderRef::dynamic(c.a)) || woke_now(c.b);
+        self.solved
+            .retain(|c| !woken(c), |c, _| keyed.push(keyed_pair(&c)));
+        for c in self.sleeping.list.rows.iter().filter(|c| woken(c)) {
+            keyed.push(keyed_pair(c));
+        }
+        keyed.sort_unstable_by_key(|k| k.0);
+        keyed.dedup_by_key(|k| k.0);
+        let narrow = Narrow {
+            proxies,
+            bodies,
+            gravity: step.gravity,
+            h: step.h,
+        };
+        // Merge the contacts found again into the solved list, in key order.
+        let mut merge = Merge::new(&mut self.solved, &mut self.scratch);
+        for &(_, pa, pb) in keyed.iter() {
+            if let Outcome::Contact(row, info) = narrow.pair(pa, pb) {
+                merge.push(row, info);
+            }
+        }
+        merge.finish();
+        self.sleeping.drop_awake(dynamic);
+    }
+
+    /// After the last substep: finds which bodies are inside sensors now,
+    /// does the sleeping bookkeeping (with `sleep_dt`, the step's length,
+    /// when sleeping is on), caches impulses for warm starting and works
+    /// out which pairs began and ended touching.
+    pub fn end_step(
+        &mut self,
+        dynamic: &mut DynamicBodies,
+        statics: &StaticBodies,
+        sleep_dt: Option<f32>,
+    ) {
+        self.events
+            .find_sensor_overlaps(&self.narrow.sensor_candidates, dynamic, statics);
+        if let Some(dt) = sleep_dt {
+            self.sleeping
+                .after_step(&mut self.solved, dynamic, &self.motion.delta, dt);
+        }
+        self.events.record(&self.solved, &self.sleeping.list);
+    }
+
+    /// A step in which the contact stage has nothing to do (its colliders
+    /// were removed, or contacts were turned off): every contact and
+    /// overlap ends, and every body wakes.
+    pub fn idle_step(&mut self, dynamic: &mut DynamicBodies, statics: &StaticBodies) {
+        self.solved.clear();
+        self.narrow.sensor_candidates.clear();
+        self.wake_all(dynamic);
+        self.end_step(dynamic, statics, None);
+    }
+
+    /// Wakes dynamic body `i` and its island now.
+    pub fn wake_body(&mut self, dynamic: &mut DynamicBodies, i: usize) {
+        self.sleeping.wake_body(dynamic, i);
+    }
+
+    /// Wakes every body (nothing to do when every body is awake).
+    pub fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
+        self.sleeping.wake_all(dynamic);
+    }
+
+    /// Dynamic body `from` now sits at index `to` (a removal moved it).
+    pub fn body_moved(&mut self, from: u32, to: u32) {
+        self.sleeping.body_moved(from, to);
+    }
+
+    /// Every contact after the last step: the solved ones, then those
+    /// between sleeping bodies.
+    pub fn all_contacts(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> {
+        self.solved.iter().chain(self.sleeping.list.iter())
+    }
+
+    /// Sensor overlaps after the last step.
+    pub fn sensor_overlaps(&self) -> &[SensorPair] {
+        &self.events.sensors_prev
+    }
+
+    /// Contact and sensor events of the last step.
+    pub fn events(&self) -> &ContactEvents {
+        &self.events.events
+    }
+
+    /// What the next step needs from the last one: warm-start impulses,
+    /// who touched whom (for begin and end events) and the stored contacts
+    /// of sleeping islands.
+    pub fn carried_state(&self) -> ContactState {
+        ContactState {
+            cache: self.events.cache.clone(),
+            touching: self.events.touching_prev.clone(),
+            sensors: self.events.sensors_prev.clone(),
+            asleep: self.sleeping.list.rows.clone(),
+            asleep_infos: self.sleeping.list.infos.clone(),
+        }
+    }
+
+    /// A contact stage resuming from a carried state.
+    pub fn resume(state: ContactState) -> Self {
+        let mut world = Self::new();
+        world.sleeping = SleepingContacts::resume(state.sleeping());
+        world.events.cache = state.cache;
+        world.events.touching_prev = state.touching;
+        world.events.sensors_prev = state.sensors;
+        world
+    }
+}

@@ -1,0 +1,159 @@
+//! What a world can tell about itself without changing: the model force
+//! on a body, energy, momentum, and a hash of the state.
+
+use crate::BodyId;
+use crate::forces::{BodyParams, Dissipation, Drive, potential_energy};
+use crate::world::{Location, World};
+use glam::Vec2;
+
+impl World {
+    // ----- diagnostics -----
+
+    /// The force the world's force models exert on a body in its current
+    /// state, newtons: weight, drag, friction, fields, springs, custom
+    /// models, in their plain form (not the forces game code applied). For
+    /// drawing force vectors; zero for a static body.
+    pub fn model_force(&self, id: BodyId) -> Option<Vec2> {
+        let i = match self.locate(id)? {
+            Location::Dynamic(i) => i as usize,
+            _ => return Some(Vec2::ZERO),
+        };
+        let b = &self.dynamic;
+        let params = BodyParams {
+            inv_mass: b.inv_mass[i],
+            force: Vec2::ZERO,
+            drag_area: b.drag_area[i],
+            friction: b.friction[i],
+            friction_force: 0.0,
+        };
+        let drive = Drive::new(&self.settings().forces, &self.custom);
+        let dissipation = Dissipation::new(&self.settings().forces, false);
+        let a = drive.accel(b.pos[i], b.vel[i], &params) + dissipation.accel(b.vel[i], &params);
+        Some(a * b.meta[i].mass)
+    }
+
+    /// Kinetic energy `sum 1/2 m |v|^2`, joules (summed in f64, in storage order).
+    pub fn kinetic_energy(&self) -> f64 {
+        (0..self.dynamic.len())
+            .map(|i| {
+                0.5 * f64::from(self.dynamic.meta[i].mass)
+                    * f64::from(self.dynamic.vel[i].length_squared())
+            })
+            .sum()
+    }
+
+    /// Potential energy of the conservative force models, joules: gravity
+    /// (`-m g . p`, zero at the origin), the force field, the spring,
+    /// central gravity and custom models.
+    pub fn potential_energy(&self) -> f64 {
+        (0..self.dynamic.len())
+            .map(|i| {
+                potential_energy(
+                    &self.settings().forces,
+                    &self.custom,
+                    self.dynamic.pos[i],
+                    self.dynamic.meta[i].mass,
+                )
+            })
+            .sum()
+    }
+
+    /// Kinetic plus potential energy, joules.
+    pub fn total_energy(&self) -> f64 {
+        self.kinetic_energy() + self.potential_energy()
+    }
+
+    /// Linear momentum `sum m v`, kilogram metres per second (f64).
+    pub fn momentum(&self) -> [f64; 2] {
+        let mut p = [0.0f64; 2];
+        for i in 0..self.dynamic.len() {
+            let m = f64::from(self.dynamic.meta[i].mass);
+            p[0] += m * f64::from(self.dynamic.vel[i].x);
+            p[1] += m * f64::from(self.dynamic.vel[i].y);
+        }
+        p
+    }
+
+    /// A 64-bit FNV-1a hash of every body's position and velocity bits, in
+    /// id order. Equal states give equal hashes on every platform; use it to
+    /// check determinism.
+    pub fn state_hash(&self) -> u64 {
+        const PRIME: u64 = 0x0000_0100_0000_01b3;
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        let mut eat = |word: u32| {
+            for byte in word.to_le_bytes() {
+                h = (h ^ u64::from(byte)).wrapping_mul(PRIME);
+            }
+        };
+        for b in self.bodies() {
+            for x in [b.position.x, b.position.y, b.velocity.x, b.velocity.y] {
+                eat(x.to_bits());
+            }
+        }
+        h
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{BodyDef, WorldSettings};
+
+    fn ball(x: f32) -> BodyDef {
+        BodyDef::dynamic(Vec2::new(x, 0.0))
+    }
+
+    #[test]
+    fn model_force_is_weight_plus_drag() {
+        let mut settings = WorldSettings::default();
+        settings.forces.quadratic_drag = Some(crate::QuadraticDrag { density: 2.0 });
+        let mut world = World::new(settings).unwrap();
+        let id = world
+            .add_body(BodyDef {
+                mass: 3.0,
+                velocity: Vec2::new(0.0, -4.0),
+                drag_area: 0.5,
+                ..Default::default()
+            })
+            .unwrap();
+        // m g = -29.43 N; drag 1/2 rho v^2 CdA = 8 N upward.
+        let f = world.model_force(id).unwrap();
+        assert!((f - Vec2::new(0.0, -29.43 + 8.0)).length() < 1e-4, "{f}");
+        world.apply_force(id, Vec2::new(100.0, 0.0)).unwrap();
+        assert_eq!(
+            world.model_force(id).unwrap().x,
+            0.0,
+            "game forces are not included"
+        );
+    }
+
+    #[test]
+    fn energy_and_momentum_diagnostics() {
+        let mut world = World::default();
+        world
+            .add_body(BodyDef {
+                mass: 2.0,
+                position: Vec2::new(0.0, 10.0),
+                velocity: Vec2::new(3.0, 4.0),
+                ..Default::default()
+            })
+            .unwrap();
+        assert!((world.kinetic_energy() - 25.0).abs() < 1e-9);
+        assert!((world.potential_energy() - 2.0 * 9.81 * 10.0).abs() < 1e-4);
+        assert_eq!(world.momentum(), [6.0, 8.0]);
+    }
+
+    #[test]
+    fn equal_states_hash_equal_and_any_bit_changes_the_hash() {
+        let make = |x: f32| {
+            let mut w = World::default();
+            w.add_body(ball(x)).unwrap();
+            w
+        };
+        assert_eq!(make(1.0).state_hash(), make(1.0).state_hash());
+        assert_ne!(
+            make(1.0).state_hash(),
+            make(f32::from_bits(1.0f32.to_bits() + 1)).state_hash()
+        );
+    }
+}

@@ -1,0 +1,179 @@
+//! The narrow phase: exact geometry for each candidate pair, in a fixed
+//! order. A pair becomes a contact row (touching, or speculative: close
+//! enough to touch within the step), a sensor candidate, or nothing.
+
+use crate::bodies::Colliders;
+use crate::collider::ColliderRef;
+use crate::constraint::{Constraint, ContactInfo, ContactList};
+use crate::filter::CollisionFilter;
+use crate::manifold::collide;
+use crate::parallel::for_chunks;
+use crate::proxies::{Proxies, ProxyMargin};
+use crate::{BodyId, SensorPair, Shape};
+use glam::Vec2;
+
+/// A sensor and a body that may be inside it at the end of the step.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SensorCandidate {
+    pub pair: SensorPair,
+    pub sensor: ColliderRef,
+    pub visitor: ColliderRef,
+}
+
+/// What the narrow phase makes of one candidate pair.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Outcome {
+    /// Filtered out, or too far apart.
+    Skip,
+    /// A sensor and a body that may end the step inside it.
+    Sensor(SensorCandidate),
+    /// A contact to solve.
+    Contact(Constraint, ContactInfo),
+}
+
+/// A candidate pair in the narrow phase's order: `(order key, proxy A,
+/// B)`, where B is a proxy (as `ColliderRef::dynamic(proxy)`) or a static
+/// body.
+pub(crate) type KeyedPair = (u64, u32, ColliderRef);
+
+/// A collider as the narrow phase sees it.
+#[derive(Clone, Copy)]
+struct Collider {
+    shape: Shape,
+    body: ColliderRef,
+    id: BodyId,
+    sensor: bool,
+    filter: CollisionFilter,
+}
+
+/// What the narrow phase reads (shared by the threads that run it).
+pub(crate) struct Narrow<'a> {
+    pub proxies: &'a Proxies,
+    pub bodies: Colliders<'a>,
+    /// Gravitational acceleration (for restitution's impact speed).
+    pub gravity: Vec2,
+    /// The substep, seconds.
+    pub h: f32,
+}
+
+impl Narrow<'_> {
+    fn collider(&self, body: ColliderRef) -> Collider {
+        let meta = self.bodies.meta(body);
+        Collider {
+            shape: meta.shape.expect("a collider has a shape"),
+            body,
+            id: meta.id,
+            sensor: meta.sensor,
+            filter: meta.filter,
+        }
+    }
+
+    /// The body behind a pair end (a proxy or a static body).
+    pub fn body_of(&self, end: ColliderRef) -> ColliderRef {
+        match end.dynamic_index() {
+            Some(p) => ColliderRef::dynamic(self.proxies.body[p]),
+            None => end,
+        }
+    }
+
+    /// The order key of a candidate pair.
+    pub fn key(&self, pa: u32, pb: ColliderRef) -> KeyedPair {
+        let a = ColliderRef::dynamic(self.proxies.body[pa as usize]);
+        (self.bodies.pair_order(a, self.body_of(pb)), pa, pb)
+    }
+
+    /// The contact (or sensor candidate) of proxy `pa` with `pb`.
+    pub fn pair(&self, pa: u32, pb: ColliderRef) -> Outcome {
+        let margins = &self.proxies.margins;
+        let a_body = ColliderRef::dynamic(self.proxies.body[pa as usize]);
+        let margin = margins[pa as usize]
+            + match pb.dynamic_index() {
+                Some(q) => margins[q],
+                None => ProxyMargin::STATIC,
+            };
+        let (ca, cb) = (self.collider(a_body), self.collider(self.body_of(pb)));
+        if !ca.filter.allows(&cb.filter) || (ca.sensor && cb.sensor) {
+            return Outcome::Skip;
+        }
+        if ca.sensor || cb.sensor {
+            let (s, v) = if ca.sensor { (ca, cb) } else { (cb, ca) };
+            return Outcome::Sensor(SensorCandidate {
+                pair: SensorPair {
+                    sensor: s.id,
+                    visitor: v.id,
+                },
+                sensor: s.body,
+                visitor: v.body,
+            });
+        }
+        // A static body is always B; otherwise the lower id is A, so a
+        // contact's orientation does not depend on storage order.
+        let (ca, cb) = if cb.body.is_static() || ca.id.index() <= cb.id.index() {
+            (ca, cb)
+        } else {
+            (cb, ca)
+        };
+        let position = |c: &Collider| self.bodies.position(c.body);
+        match collide(&ca.shape, position(&ca), &cb.shape, position(&cb), margin) {
+            Some(m) => {
+                let a = ca.body.index() as u32;
+                let (row, info) =
+                    Constraint::new(&m, a, cb.body, self.bodies, self.gravity, self.h);
+                Outcome::Contact(row, info)
+            }
+            None => Outcome::Skip,
+        }
+    }
+}
+
+/// The narrow phase's buffers, kept between steps.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct NarrowPhase {
+    /// Candidate pairs in key order.
+    pub keyed: Vec<KeyedPair>,
+    outcomes: Vec<Outcome>,
+    /// Sensor-visitor pairs close enough to overlap by the end of the step.
+    pub sensor_candidates: Vec<SensorCandidate>,
+}
+
+impl NarrowPhase {
+    /// Runs the narrow phase over the proxies' pairs: contacts go to
+    /// `contacts` in key order, sensor candidates to `sensor_candidates`.
+    ///
+    /// The order is fixed by the pair's body ids. Sorting the small keyed
+    /// pairs (not the contacts) keeps this cheap, and the contacts come out
+    /// sorted for the warm-start merge. Each pair's outcome depends on that
+    /// pair alone, so the pairs can be split across threads.
+    pub fn run(&mut self, narrow: &Narrow<'_>, parallel: bool, contacts: &mut ContactList) {
+        let proxies = narrow.proxies;
+        self.keyed.clear();
+        for &(pa, pb) in &proxies.pairs {
+            self.keyed.push(narrow.key(pa, ColliderRef::dynamic(pb)));
+        }
+        for &(p, s) in &proxies.static_pairs {
+            self.keyed.push(narrow.key(p, ColliderRef::fixed(s)));
+        }
+        self.keyed.sort_unstable_by_key(|k| k.0);
+        self.outcomes.clear();
+        self.outcomes.resize(self.keyed.len(), Outcome::Skip);
+        for_chunks(
+            parallel,
+            (&mut self.outcomes[..], &self.keyed[..]),
+            |_, (out, pairs)| {
+                for (o, &(_, pa, pb)) in out.iter_mut().zip(pairs) {
+                    *o = narrow.pair(pa, pb);
+                }
+                0
+            },
+        );
+        contacts.clear();
+        self.sensor_candidates.clear();
+        for o in &self.outcomes {
+            match o {
+                Outcome::Skip => {}
+                Outcome::Sensor(candidate) => self.sensor_candidates.push(*candidate),
+                Outcome::Contact(row, info) => contacts.push(*row, *info),
+            }
+        }
+    }
+}

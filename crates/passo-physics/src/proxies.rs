@@ -1,0 +1,157 @@
+//! Candidate pairs: each shaped dynamic body's bounding box (its proxy),
+//! grown by how far it can move this step, is paired with the proxies of
+//! the grid ([`BroadPhase`]) and the static bodies of the static tree whose
+//! boxes it overlaps.
+
+use crate::Aabb;
+use crate::bodies::{DynamicBodies, StaticBodies};
+use crate::broad_phase::BroadPhase;
+use crate::constants::SPECULATIVE_DISTANCE;
+use crate::static_tree::StaticTree;
+use glam::Vec2;
+
+/// No proxy (or no body) here.
+pub(crate) const NO_PROXY: u32 = u32::MAX;
+
+/// How far a proxy is grown: half the speculative distance, plus the
+/// body's possible travel this step with continuous collision.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct ProxyMargin {
+    /// Speed gravity can add this step, m/s.
+    pub fall: f32,
+    pub dt: f32,
+    pub continuous: bool,
+}
+
+impl ProxyMargin {
+    /// The margin of a body moving at `velocity`, metres.
+    pub fn of(&self, velocity: Vec2) -> f32 {
+        let travel = if self.continuous {
+            (velocity.length() + self.fall) * self.dt
+        } else {
+            0.0
+        };
+        0.5 * SPECULATIVE_DISTANCE + travel
+    }
+
+    /// The margin a static body adds to a pair.
+    pub const STATIC: f32 = 0.5 * SPECULATIVE_DISTANCE;
+}
+
+/// The proxies of one step and the pairs found among them, with the static
+/// tree they are queried against. Kept between steps so it allocates
+/// nothing once warm.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Proxies {
+    grid: BroadPhase,
+    tree: StaticTree,
+    /// Static index per tree item.
+    tree_items: Vec<u32>,
+    tree_dirty: bool,
+    /// Proxy -> dynamic index.
+    pub body: Vec<u32>,
+    /// Proxy boxes, grown by their margins.
+    pub boxes: Vec<Aabb>,
+    /// Per proxy: its body's travel margin this step.
+    pub margins: Vec<f32>,
+    /// Per proxy: whether its body sleeps (empty when none does).
+    pub asleep: Vec<bool>,
+    /// Per dynamic body: its proxy this step, or [`NO_PROXY`].
+    pub of_body: Vec<u32>,
+    /// How far proxies are grown this step.
+    pub margin: ProxyMargin,
+    /// Pairs of proxies, lower proxy first.
+    pub pairs: Vec<(u32, u32)>,
+    /// Pairs of a proxy and a static body (by static index).
+    pub static_pairs: Vec<(u32, u32)>,
+}
+
+impl Proxies {
+    pub fn new() -> Self {
+        Self {
+            tree_dirty: true,
+            ..Self::default()
+        }
+    }
+
+    /// Static bodies changed: rebuild the tree at the next step.
+    pub fn statics_changed(&mut self) {
+        self.tree_dirty = true;
+    }
+
+    /// Starts a step: rebuilds the static tree if static bodies changed and
+    /// forgets the last step's proxies.
+    pub fn begin(&mut self, statics: &StaticBodies, bodies: usize, margin: ProxyMargin) {
+        if self.tree_dirty {
+            self.rebuild_tree(statics);
+        }
+        self.body.clear();
+        self.boxes.clear();
+        self.margins.clear();
+        self.asleep.clear();
+        self.margin = margin;
+        self.of_body.clear();
+        self.of_body.resize(bodies, NO_PROXY);
+    }
+
+    fn rebuild_tree(&mut self, statics: &StaticBodies) {
+        self.tree_items.clear();
+        let mut boxes = Vec::new();
+        for (i, meta) in statics.meta.iter().enumerate() {
+            if let Some(shape) = &meta.shape {
+                self.tree_items.push(i as u32);
+                boxes.push(Aabb::from_centre(statics.pos[i], shape.half_extents()));
+            }
+        }
+        self.tree = StaticTree::build(boxes);
+        self.tree_dirty = false;
+    }
+
+    /// Adds a proxy for dynamic body `i` (which has a shape); `track_sleep`
+    /// records whether it sleeps.
+    pub fn add(&mut self, dynamic: &DynamicBodies, i: usize, track_sleep: bool) -> u32 {
+        let shape = dynamic.meta[i].shape.expect("a proxy's body has a shape");
+        let margin = self.margin.of(dynamic.vel[i]);
+        let p = self.boxes.len() as u32;
+        self.of_body[i] = p;
+        self.body.push(i as u32);
+        self.boxes
+            .push(Aabb::from_centre(dynamic.pos[i], shape.half_extents()).grown(margin));
+        self.margins.push(margin);
+        if track_sleep {
+            self.asleep.push(dynamic.sleep[i].is_asleep());
+        }
+        p
+    }
+
+    /// The proxy of dynamic body `i`, made now if it has none.
+    pub fn of(&mut self, dynamic: &DynamicBodies, i: usize) -> u32 {
+        match self.of_body[i] {
+            NO_PROXY => self.add(dynamic, i, true),
+            p => p,
+        }
+    }
+
+    /// Whether proxy `p`'s body sleeps.
+    pub fn is_asleep(&self, p: usize) -> bool {
+        self.asleep.get(p) == Some(&true)
+    }
+
+    /// Finds the pairs among the proxies (except pairs of two sleeping
+    /// ones) and the static bodies each awake proxy overlaps.
+    pub fn find_pairs(&mut self, parallel: bool) {
+        self.pairs.clear();
+        self.grid
+            .find_pairs(&self.boxes, &self.asleep, parallel, &mut self.pairs);
+        self.static_pairs.clear();
+        for p in 0..self.boxes.len() {
+            if self.is_asleep(p) {
+                continue;
+            }
+            let (pairs, items) = (&mut self.static_pairs, &self.tree_items);
+            self.tree.query(&self.boxes[p], |item| {
+                pairs.push((p as u32, items[item as usize]))
+            });
+        }
+    }
+}

@@ -1,0 +1,63 @@
+//! How a world steps: its settings, checked where they enter.
+
+use crate::body::check_max_speed;
+use crate::constants::{DEFAULT_MAX_SPEED, DEFAULT_MIN_SPEED};
+use crate::error::non_negative;
+use crate::{ContactSettings, ForceForm, ForceModels, Integrator, PhysicsError};
+
+/// How a world steps. Start from [`Default`] and change what differs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
+pub struct WorldSettings {
+    /// The force models the world evaluates. Default: gravity only.
+    pub forces: ForceModels,
+    /// Time-stepping method. Default [`Integrator::SemiImplicitEuler`].
+    pub integrator: Integrator,
+    /// Stable or plain explicit drag and friction (Euler methods only).
+    /// Default [`ForceForm::Stable`].
+    pub force_form: ForceForm,
+    /// Below this speed, metres per second, a velocity becomes exactly zero.
+    /// >= 0; 0 turns the snap off. Default 0.001 ([`DEFAULT_MIN_SPEED`]).
+    pub min_speed: f32,
+    /// Velocities are clamped to this speed, metres per second. > 0;
+    /// `f32::INFINITY` turns the clamp off. Default 1000 ([`DEFAULT_MAX_SPEED`]).
+    pub max_speed: f32,
+    /// Keep each body's position from before the last step, so a renderer
+    /// can draw [`World::interpolated_position`]. Costs one copy of the
+    /// positions per step. Default `false`.
+    pub interpolation: bool,
+    /// How contacts between shaped bodies are solved; `None` turns
+    /// collisions off. Default `Some(ContactSettings::default())`. The
+    /// contact stage runs only while the world holds a shaped dynamic body
+    /// and another shaped body; it then advances in
+    /// [`ContactSettings::substeps`] substeps.
+    pub contacts: Option<ContactSettings>,
+}
+
+impl Default for WorldSettings {
+    fn default() -> Self {
+        Self {
+            forces: ForceModels::default(),
+            integrator: Integrator::default(),
+            force_form: ForceForm::default(),
+            min_speed: DEFAULT_MIN_SPEED,
+            max_speed: DEFAULT_MAX_SPEED,
+            interpolation: false,
+            contacts: Some(ContactSettings::default()),
+        }
+    }
+}
+
+impl WorldSettings {
+    /// Checks every value, naming the first one that is wrong.
+    pub fn validate(&self) -> Result<(), PhysicsError> {
+        self.forces.validate()?;
+        non_negative("WorldSettings::min_speed", self.min_speed)?;
+        check_max_speed("WorldSettings::max_speed", self.max_speed)?;
+        if let Some(contacts) = &self.contacts {
+            contacts.validate()?;
+        }
+        Ok(())
+    }
+}

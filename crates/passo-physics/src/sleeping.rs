@@ -1,0 +1,273 @@
+//! Sleeping: bodies at rest stop costing contact work.
+//!
+//! A pile that has settled is solved again every step for nothing: the
+//! minimum-speed snap already holds its velocities at exactly zero, and the
+//! solver only confirms that the weights are carried. So the contact stage
+//! groups dynamic bodies into islands (bodies joined by touching contacts)
+//! and puts an island to sleep when every body in it has been slower than
+//! [`SLEEP_SPEED`] for [`TIME_TO_SLEEP`]. A sleeping body keeps its
+//! position, has zero velocity and is not integrated. Its contacts with
+//! other sleeping bodies and with static ones are stored as they were when
+//! it fell asleep (so `contacts`, `is_standing` and events still see them)
+//! and cost nothing: the broad phase skips pairs of sleeping bodies, and
+//! sleeping bodies are not queried against static ones.
+//!
+//! An awake body reaching a sleeping one meets it as if it were static for
+//! that step; if they touch, the sleeping island wakes, all of it, for the
+//! next step. Game code changing a body (force, impulse, velocity,
+//! position, material, removal) wakes its island at once; changing the
+//! world's settings, its force models or a static body wakes every body.
+//! Bodies inside a sensor stay awake. Every decision depends only on the
+//! state, in a fixed order, so sleeping is as deterministic as the rest of
+//! the step.
+
+use crate::Aabb;
+use crate::bodies::DynamicBodies;
+use crate::constraint::{Constraint, ContactList, Merge};
+use crate::island::Islands;
+use crate::proxies::{NO_PROXY, ProxyMargin};
+use crate::static_tree::StaticTree;
+use glam::Vec2;
+
+/// Sleeping bodies outside the sleep tree that trigger its rebuild, at the
+/// least (below it they are simply binned with the awake ones).
+const SLEEP_TREE_MIN: usize = 64;
+
+/// The sleeping side of the contact stage: the stored contacts of sleeping
+/// islands, the tree that finds sleeping bodies an awake one reaches, and
+/// the island bookkeeping. Kept between steps.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct SleepingContacts {
+    /// Contacts between sleeping bodies (or a sleeping and a static one),
+    /// kept as they were when their island fell asleep; sorted by pair.
+    pub list: ContactList,
+    /// Room for merging contacts, kept between steps.
+    scratch: ContactList,
+    /// Sleeping bodies, in a tree rebuilt only now and then (see
+    /// `update_tree`); items are `tree_bodies` entries.
+    tree: StaticTree,
+    /// Dynamic index per sleep-tree item (`NO_PROXY` once removed).
+    tree_bodies: Vec<u32>,
+    /// Per dynamic body: whether it is in the sleep tree.
+    tree_member: Vec<bool>,
+    /// Sleeping bodies one proxy reaches (scratch).
+    hits: Vec<u32>,
+    /// Some body fell asleep or woke since the sleep tree last looked.
+    changed: bool,
+    /// Island bookkeeping.
+    islands: Islands,
+}
+
+impl SleepingContacts {
+    /// Sleeping contacts resumed from a snapshot.
+    pub fn resume(list: ContactList) -> Self {
+        Self {
+            list,
+            ..Self::default()
+        }
+    }
+
+    /// Whether any body sleeps or any contact is stored.
+    pub fn any(&self, dynamic: &DynamicBodies) -> bool {
+        !self.list.is_empty() || dynamic.sleep.iter().any(|s| s.is_asleep())
+    }
+
+    /// Whether dynamic body `i` sleeps in the tree (it then needs no proxy
+    /// unless an awake one reaches it).
+    pub fn in_tree(&self, i: usize) -> bool {
+        self.tree_member[i]
+    }
+
+    /// Starts a step: sizes the per-body flags, and (with sleeping bodies)
+    /// rebuilds the tree when enough changed.
+    pub fn begin(&mut self, dynamic: &DynamicBodies, any_asleep: bool, margin: &ProxyMargin) {
+        self.tree_member.resize(dynamic.len(), false);
+        if any_asleep {
+            self.update_tree(dynamic, margin);
+        }
+    }
+
+    /// Rebuilds the sleep tree over every sleeping shaped body when enough
+    /// sleeping bodies are missing from it (they are binned each step until
+    /// then) or enough of its bodies woke (they are skipped until then):
+    /// a tree build costs `O(n log n)`, so it waits for a quarter of the
+    /// tree's size to change.
+    fn update_tree(&mut self, dynamic: &DynamicBodies, margin: &ProxyMargin) {
+        let (mut missing, mut woke) = (0, 0);
+        for (i, s) in dynamic.sleep.iter().enumerate() {
+            let shaped = dynamic.meta[i].shape.is_some();
+            missing += usize::from(shaped && s.is_asleep() && !self.tree_member[i]);
+            woke += usize::from(self.tree_member[i] && !s.is_asleep());
+        }
+        // A quiet step (nobody fell asleep or woke in the last one) takes
+        // in the stragglers, so a settled world bins nothing.
+        let quiet = !std::mem::take(&mut self.changed);
+        let size = self.tree.len();
+        let stragglers = missing > 0 && quiet;
+        if !stragglers && missing < (size / 4).max(SLEEP_TREE_MIN) && 2 * woke <= size {
+            return;
+        }
+        self.tree_member.fill(false);
+        self.tree_bodies.clear();
+        // Room for every body: later rebuilds allocate nothing.
+        let n = dynamic.len();
+        self.tree_bodies.reserve(n);
+        self.tree.reserve(n);
+        self.hits.reserve(n);
+        for (i, s) in dynamic.sleep.iter().enumerate() {
+            if s.is_asleep() && dynamic.meta[i].shape.is_some() {
+                self.tree_bodies.push(i as u32);
+                self.tree_member[i] = true;
+            }
+        }
+        let margin = margin.of(Vec2::ZERO);
+        let boxes = self.tree_bodies.iter().map(|&i| {
+            let half = dynamic.meta[i as usize]
+                .shape
+                .expect("shaped")
+                .half_extents();
+            Aabb::from_centre(dynamic.pos[i as usize], half).grown(margin)
+        });
+        self.tree.rebuild(boxes);
+    }
+
+    /// The sleeping bodies of the tree whose boxes overlap `aabb`.
+    pub fn reached(&mut self, aabb: &Aabb, dynamic: &DynamicBodies) -> &[u32] {
+        self.hits.clear();
+        let (hits, bodies) = (&mut self.hits, &self.tree_bodies);
+        self.tree.query(aabb, |item| {
+            let body = bodies[item as usize];
+            if body != NO_PROXY && dynamic.sleep[body as usize].is_asleep() {
+                hits.push(body);
+            }
+        });
+        &self.hits
+    }
+
+    /// After a step (sleeping on): rest times, waking islands an awake body
+    /// touched (for the next step: during this one they held like static
+    /// bodies), and putting islands that rested long enough to sleep, with
+    /// their contacts moved from `solved` to the stored list. `moved` is
+    /// each body's displacement over the step.
+    pub fn after_step(
+        &mut self,
+        solved: &mut ContactList,
+        dynamic: &mut DynamicBodies,
+        moved: &[Vec2],
+        dt: f32,
+    ) {
+        self.islands.rest(dynamic, moved, dt);
+        let mut woke = false;
+        for (c, info) in solved.iter() {
+            if c.is_static() || !info.is_touching(c) {
+                continue;
+            }
+            for body in [c.a as usize, c.b.index()] {
+                if dynamic.sleep[body].is_asleep() {
+                    self.islands.wake_body(dynamic, body);
+                    woke = true;
+                }
+            }
+        }
+        if woke {
+            self.wake_marked(dynamic);
+        }
+        if self
+            .islands
+            .fall_asleep(dynamic, &solved.rows, &solved.infos)
+        {
+            self.changed = true;
+            self.store(solved, dynamic);
+        }
+    }
+
+    /// Moves the solved contacts whose bodies all sleep now into the stored
+    /// list, keeping both lists in key order.
+    fn store(&mut self, solved: &mut ContactList, dynamic: &DynamicBodies) {
+        let mut merge = Merge::new(&mut self.list, &mut self.scratch);
+        solved.retain(
+            |c| has_awake_body(dynamic, c),
+            |c, info| merge.push(c, info),
+        );
+        merge.finish();
+    }
+
+    /// Forgets the stored contacts of bodies that woke: the next step finds
+    /// them afresh.
+    pub fn drop_awake(&mut self, dynamic: &DynamicBodies) {
+        self.list.retain(|c| !has_awake_body(dynamic, c), |_, _| {});
+    }
+
+    /// Marks the island of dynamic body `i` to be woken (the body itself
+    /// wakes at once); [`wake_marked`](Self::wake_marked) wakes the rest.
+    pub fn mark(&mut self, dynamic: &mut DynamicBodies, i: usize) {
+        self.islands.wake_body(dynamic, i);
+    }
+
+    /// Wakes the marked islands, keeping their stored contacts for now
+    /// (see [`drop_awake`](Self::drop_awake)).
+    pub fn wake_marked_islands(&mut self, dynamic: &mut DynamicBodies) {
+        self.islands.wake_marked(dynamic);
+        self.changed = true;
+    }
+
+    /// Wakes the marked islands and forgets their stored contacts.
+    pub fn wake_marked(&mut self, dynamic: &mut DynamicBodies) {
+        self.wake_marked_islands(dynamic);
+        self.drop_awake(dynamic);
+    }
+
+    /// Wakes dynamic body `i` and its island now.
+    pub fn wake_body(&mut self, dynamic: &mut DynamicBodies, i: usize) {
+        let was_asleep = dynamic.sleep[i].is_asleep();
+        self.islands.wake_body(dynamic, i);
+        if was_asleep {
+            self.wake_marked(dynamic);
+        }
+    }
+
+    /// Wakes every body. Nothing happens when every body is already awake
+    /// with no rest time and nothing is stored: the step calls this while
+    /// sleeping is off and while the stage is idle.
+    pub fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
+        if self.list.is_empty() && self.tree.len() == 0 && dynamic.all_fresh() {
+            return;
+        }
+        dynamic.wake_all();
+        self.list.clear();
+        self.tree.rebuild([]);
+        self.tree_bodies.clear();
+        self.tree_member.fill(false);
+        self.changed = true;
+    }
+
+    /// Dynamic body `from` (the last one) now sits at index `to`: a removal
+    /// moved it.
+    pub fn body_moved(&mut self, from: u32, to: u32) {
+        for body in &mut self.tree_bodies {
+            if *body == to {
+                *body = NO_PROXY; // removed
+            } else if *body == from {
+                *body = to;
+            }
+        }
+        self.tree_member.resize(from as usize + 1, false);
+        self.tree_member.swap_remove(to as usize);
+        for c in &mut self.list.rows {
+            if c.a == from {
+                c.a = to;
+            }
+            if c.b.dynamic_index() == Some(from as usize) {
+                c.b = c.b.with_index(to);
+            }
+        }
+    }
+}
+
+/// Whether a contact has an awake dynamic body (so the solver works on it).
+pub(crate) fn has_awake_body(dynamic: &DynamicBodies, c: &Constraint) -> bool {
+    !dynamic.sleep[c.a as usize].is_asleep()
+        || c.b
+            .dynamic_index()
+            .is_some_and(|b| !dynamic.sleep[b].is_asleep())
+}
