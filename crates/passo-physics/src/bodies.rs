@@ -3,10 +3,11 @@
 //! the small per-body records (metadata, speed limits, sleep state).
 
 use crate::Shape;
-use crate::body::{Body, BodyDef, BodyId, BodyKind};
+use crate::body::{Body, BodyDef, BodyKind};
 use crate::collider::ColliderRef;
 use crate::filter::CollisionFilter;
 use crate::forces::BodyParams;
+use crate::id::BodyId;
 use glam::Vec2;
 
 /// `SleepState::island` of an awake body.

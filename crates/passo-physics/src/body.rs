@@ -4,39 +4,9 @@
 use crate::constants::{DEFAULT_DRAG_AREA, DEFAULT_FRICTION};
 use crate::error::{finite_vec, non_negative, positive};
 use crate::filter::CollisionFilter;
+use crate::id::BodyId;
 use crate::{PhysicsError, Shape};
 use glam::Vec2;
-use std::fmt;
-
-/// A small `Copy` handle to a body in a [`World`](crate::World).
-///
-/// The handle carries a generation: when a body is removed its slot's
-/// generation is bumped, so an old id never reaches the body that reuses the
-/// slot; lookups with it return `None`.
-#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct BodyId {
-    pub(crate) index: u32,
-    pub(crate) generation: u32,
-}
-
-impl BodyId {
-    /// The slot index (stable while the body lives; reused after removal).
-    pub fn index(self) -> u32 {
-        self.index
-    }
-
-    /// The slot generation (bumped each time the slot is freed).
-    pub fn generation(self) -> u32 {
-        self.generation
-    }
-}
-
-impl fmt::Debug for BodyId {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "BodyId({}v{})", self.index, self.generation)
-    }
-}
 
 /// Whether a body moves.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

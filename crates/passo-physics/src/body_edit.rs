@@ -138,3 +138,110 @@ impl World {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::ForceModels;
+    use crate::{BodyDef, PhysicsError, QuadraticDrag, Shape, World, WorldSettings};
+    use glam::Vec2;
+
+    fn ball(x: f32) -> BodyDef {
+        BodyDef::dynamic(Vec2::new(x, 0.0))
+    }
+
+    #[test]
+    fn impulse_changes_velocity_by_j_over_m() {
+        let mut world = World::default();
+        let id = world
+            .add_body(BodyDef {
+                mass: 4.0,
+                ..Default::default()
+            })
+            .unwrap();
+        world.apply_impulse(id, Vec2::new(2.0, 8.0)).unwrap();
+        assert_eq!(world.body(id).unwrap().velocity, Vec2::new(0.5, 2.0));
+    }
+
+    #[test]
+    fn non_finite_forces_and_settings_are_rejected() {
+        let mut world = World::default();
+        let id = world.add_body(ball(0.0)).unwrap();
+        let nan = Vec2::new(f32::NAN, 0.0);
+        assert!(world.apply_force(id, nan).is_err());
+        assert!(world.apply_impulse(id, nan).is_err());
+        assert!(world.set_position(id, nan).is_err());
+        assert!(world.set_velocity(id, nan).is_err());
+        assert!(world.apply_friction(id, -1.0, 10.0).is_err());
+        assert!(world.apply_friction(id, 0.5, f32::INFINITY).is_err());
+        let mut bad = WorldSettings::default();
+        bad.forces.gravity = Some(nan);
+        assert_eq!(
+            world.set_settings(bad).unwrap_err().to_string(),
+            "ForceModels::gravity must be finite (got NaN or infinity)"
+        );
+        let bad = WorldSettings {
+            min_speed: -1.0,
+            ..Default::default()
+        };
+        assert!(World::new(bad).is_err());
+        let mut bad = WorldSettings::default();
+        bad.forces.quadratic_drag = Some(QuadraticDrag { density: -1.0 });
+        assert!(World::new(bad).is_err());
+        assert_eq!(world.body(id).unwrap().force, Vec2::ZERO);
+    }
+
+    #[test]
+    fn interpolation_draws_between_the_last_two_positions() {
+        let mut world = World::new(WorldSettings {
+            forces: ForceModels::none(),
+            interpolation: true,
+            ..Default::default()
+        })
+        .unwrap();
+        let id = world
+            .add_body(BodyDef {
+                velocity: Vec2::new(2.0, 0.0),
+                ..ball(0.0)
+            })
+            .unwrap();
+        world.step(0.5);
+        assert_eq!(world.interpolated_position(id, 0.0), Some(Vec2::ZERO));
+        assert_eq!(
+            world.interpolated_position(id, 0.5),
+            Some(Vec2::new(0.5, 0.0))
+        );
+        assert_eq!(
+            world.interpolated_position(id, 1.0),
+            Some(Vec2::new(1.0, 0.0))
+        );
+        world.set_position(id, Vec2::new(9.0, 0.0)).unwrap();
+        assert_eq!(
+            world.interpolated_position(id, 0.0),
+            Some(Vec2::new(9.0, 0.0))
+        );
+    }
+
+    #[test]
+    fn material_setters_check_their_input_and_take_effect() {
+        let mut world = World::default();
+        let id = world.add_body(ball(0.0)).unwrap();
+        world.set_friction(id, 0.1).unwrap();
+        world.set_restitution(id, 0.9).unwrap();
+        world.set_drag_area(id, 2.0).unwrap();
+        let b = world.body(id).unwrap();
+        assert_eq!((b.friction, b.restitution, b.drag_area), (0.1, 0.9, 2.0));
+        assert!(world.set_friction(id, -1.0).is_err());
+        assert!(world.set_restitution(id, 1.1).is_err());
+        assert!(world.set_drag_area(id, f32::NAN).is_err());
+        let ground = world
+            .add_body(BodyDef::fixed(Vec2::ZERO, Shape::circle(1.0)))
+            .unwrap();
+        world.set_friction(ground, 0.02).unwrap();
+        assert_eq!(world.body(ground).unwrap().friction, 0.02);
+        world.remove_body(id);
+        assert_eq!(
+            world.set_friction(id, 0.5),
+            Err(PhysicsError::StaleBody(id))
+        );
+    }
+}

@@ -10,7 +10,7 @@ use crate::contact_state::ContactState;
 use crate::events::EventTracker;
 use crate::narrow_phase::{Narrow, NarrowPhase, Outcome};
 use crate::proxies::{Proxies, ProxyMargin};
-use crate::sleeping::SleepingContacts;
+use crate::sleeping::{SleepingContacts, has_awake_body};
 use crate::solver::Motion;
 use crate::{ContactEvents, ContactSettings, SensorPair};
 use glam::Vec2;
@@ -156,15 +156,15 @@ impl ContactWorld {
             return;
         }
         self.sleeping.wake_marked_islands(dynamic);
-        // Every body that woke gets a proxy (those from the sleep tree
-        // have none yet).
+        // Both bodies of every stored contact that woke get a proxy (those
+        // from the sleep tree have none yet), the one still asleep too: a
+        // speculative contact can join a woken body to another island.
         for k in 0..self.sleeping.list.len() {
             let c = self.sleeping.list.rows[k];
-            for body in [ColliderRef::dynamic(c.a), c.b] {
-                if let Some(i) = body.dynamic_index()
-                    && !dynamic.sleep[i].is_asleep()
-                {
-                    self.proxies.of(dynamic, i);
+            if has_awake_body(dynamic, &c) {
+                self.proxies.of(dynamic, c.a as usize);
+                if let Some(b) = c.b.dynamic_index() {
+                    self.proxies.of(dynamic, b);
                 }
             }
         }

@@ -1,6 +1,6 @@
 //! Errors returned where values enter the physics API.
 
-use crate::BodyId;
+use crate::id::BodyId;
 use std::fmt;
 
 /// Why the physics API refused a value.

@@ -6,6 +6,7 @@
 //! on the velocity before it moves bodies with `p <- p + v dt + c`. For
 //! semi-implicit Euler `c = 0`: it is the plain `v += a dt; p += v dt`.
 
+use crate::bodies::flush_subnormal;
 use crate::forces::{BodyParams, Dissipation, Drive, ForceForm};
 use glam::Vec2;
 
@@ -149,5 +150,36 @@ pub(crate) fn integrate_body(
             let v1 = v + (a1 + (a2 + a3) * 2.0 + a4) * sixth;
             (v1, dp - v1 * dt)
         }
+    }
+}
+
+/// One body's new velocity and position correction over `h`. A non-finite
+/// result (a broken custom force, an overflow) drops the body's motion for
+/// this step and counts a reset.
+#[inline(always)]
+pub(crate) fn integrate_velocity(
+    integrator: Integrator,
+    forces: &Forces<'_>,
+    p: Vec2,
+    v: Vec2,
+    params: &BodyParams,
+    h: f32,
+    resets: &mut u64,
+) -> (Vec2, Vec2) {
+    let (v, c) = integrate_body(integrator, forces, p, v, params, h);
+    guard_finite(v, c, resets)
+}
+
+/// Drops a step that produced a non-finite velocity or correction, or a
+/// speed whose square overflows `f32` (over 1.8e19 m/s): the body stays
+/// where it was with zero velocity, and the reset is counted. Subnormal
+/// velocity components are flushed to zero.
+#[inline(always)]
+fn guard_finite(v: Vec2, c: Vec2, resets: &mut u64) -> (Vec2, Vec2) {
+    if v.length_squared().is_finite() && c.is_finite() {
+        (flush_subnormal(v), c)
+    } else {
+        *resets += 1;
+        (Vec2::ZERO, Vec2::ZERO)
     }
 }

@@ -263,7 +263,7 @@ const LANES: usize = 8;
 
 #[cfg(test)]
 mod tests {
-    use crate::{BodyDef, ForceModel, ForceModels, QuadraticDrag, World, WorldSettings};
+    use crate::{BodyDef, ForceModel, ForceModels, QuadraticDrag, Shape, World, WorldSettings};
     use glam::Vec2;
     use std::sync::Arc;
 
@@ -283,11 +283,15 @@ mod tests {
             force_field: Some(Vec2::new(0.5, 0.0)),
             ..Default::default()
         };
-        for (forces, min_speed, max_speed) in [
-            (ForceModels::default(), 0.0, f32::INFINITY),
-            (ForceModels::default(), 0.5, 12.0),
-            (drag, 0.0, f32::INFINITY),
-            (drag, 0.3, 9.0),
+        // With shapes the contact step runs, and its velocity-only kernel
+        // is compared with the general path too.
+        for (forces, min_speed, max_speed, shaped) in [
+            (ForceModels::default(), 0.0, f32::INFINITY, false),
+            (ForceModels::default(), 0.5, 12.0, false),
+            (drag, 0.0, f32::INFINITY, false),
+            (drag, 0.3, 9.0, false),
+            (ForceModels::default(), 0.0, f32::INFINITY, true),
+            (drag, 0.3, 9.0, true),
         ] {
             let settings = WorldSettings {
                 forces,
@@ -304,15 +308,23 @@ mod tests {
                     velocity: Vec2::new((i % 13) as f32 - 6.0, (i % 5) as f32 * 3.0 - 0.2),
                     mass: 0.5 + (i % 4) as f32,
                     drag_area: (i % 3) as f32 * 0.2,
+                    shape: shaped.then_some(Shape::circle(0.15)),
                     ..Default::default()
                 };
                 fast.add_body(def).unwrap();
                 general.add_body(def).unwrap();
             }
+            if shaped {
+                let ground = BodyDef::fixed(Vec2::new(37.0, -3.0), Shape::rect(100.0, 1.0));
+                fast.add_body(ground).unwrap();
+                general.add_body(ground).unwrap();
+                assert!(!fast.contact_stages().is_empty());
+            }
             for step in 0..300 {
                 if step % 50 == 0 {
                     let kick = Vec2::new(30.0, 80.0);
                     let id = fast.bodies().nth(step / 50).unwrap().id;
+                    // (the kick also wakes a body that fell asleep)
                     fast.apply_force(id, kick).unwrap();
                     general.apply_force(id, kick).unwrap();
                 }

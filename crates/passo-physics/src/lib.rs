@@ -32,44 +32,79 @@
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
-// Modules in the order data flows through them; each imports only from
-// those above it (checked by `tests/module_graph.rs`).
-mod aabb;
-mod bodies;
-mod body;
-mod body_edit;
-mod broad_phase;
-mod collider;
-pub mod constants;
-mod constraint;
-mod contact;
-mod contact_state;
-mod contact_world;
-mod diagnostics;
+// The modules in the order data flows through them: each imports only
+// modules of the groups above it or earlier in its own group (checked by
+// `tests/module_graph.rs`).
+
+// Data: ids, errors, tuning constants, shapes, filters, bodies.
+mod id;
+
 mod error;
-mod events;
+
+pub mod constants;
+
+mod aabb;
+mod collider;
 mod filter;
-mod forces;
-mod integrator;
-mod island;
-mod kernel;
-mod manifold;
-mod narrow_phase;
-mod parallel;
-mod proxies;
-mod query;
-mod settings;
 mod shape;
-mod sleeping;
-mod snapshot;
-mod solver;
+
+mod body;
+
+mod forces;
+
+mod bodies;
+
+// Integration of forces into motion.
+mod integrator;
+mod parallel;
+
+mod kernel;
+
+// Geometry and pairs.
+mod manifold;
 mod static_tree;
-mod step;
+
+mod broad_phase;
+
+mod proxies;
+
+// Contacts: public types, rows, narrow phase, solver, sleeping, events.
+mod contact;
+
+mod constraint;
+
+mod narrow_phase;
+mod solver;
+
+mod island;
+
+mod sleeping;
+
+mod events;
+
+mod contact_state;
+
+mod contact_world;
+
+// The world and its step.
+mod settings;
+
 mod world;
 
+mod body_edit;
+mod contact_step;
+
+mod step;
+
+// What a game asks and saves.
+mod diagnostics;
+mod query;
+mod snapshot;
+
 pub use aabb::Aabb;
-pub use body::{Body, BodyDef, BodyId, BodyKind};
+pub use body::{Body, BodyDef, BodyKind};
 pub use contact::{Contact, ContactEvents, ContactPair, ContactSettings, SensorPair};
+pub use contact_step::ContactStage;
 pub use error::PhysicsError;
 pub use filter::CollisionFilter;
 pub use forces::{
@@ -77,6 +112,7 @@ pub use forces::{
     SurfaceFriction,
 };
 pub use glam;
+pub use id::BodyId;
 pub use integrator::Integrator;
 #[doc(hidden)]
 pub use manifold::{Manifold, collide};
@@ -84,5 +120,5 @@ pub use query::RayHit;
 pub use settings::WorldSettings;
 pub use shape::Shape;
 pub use snapshot::WorldSnapshot;
-pub use step::{ContactStage, Stage};
+pub use step::Stage;
 pub use world::{StepStats, World};

@@ -1,0 +1,285 @@
+//! The contact step: find the contacts, then in each substep integrate
+//! velocities, hold sleepers, warm start, solve, integrate positions and
+//! relax; after the substeps restitution, the final separations and speed
+//! limits; then record events and sleep. Each stage is a function, and
+//! each is skipped when the plan does not need it.
+
+use crate::bodies::SpeedLimits;
+use crate::contact_world::{ContactWorld, StepParams};
+use crate::integrator::integrate_velocity;
+use crate::kernel::PointMassKernel;
+use crate::parallel::for_chunks;
+use crate::solver::{self, Motion, SolverParams};
+use crate::world::{World, step_forces};
+use crate::{ContactSettings, Integrator};
+use glam::Vec2;
+
+/// One stage of the contact step, in the order [`World::contact_stages`]
+/// lists them: the first six run in every substep, the last three once
+/// after the substeps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ContactStage {
+    /// Forces turned into new velocities over the substep.
+    IntegrateVelocities,
+    /// Sleeping bodies keep zero velocity (only while some body sleeps).
+    HoldSleepers,
+    /// The last substep's impulses applied again (warm starting).
+    WarmStart,
+    /// Gauss-Seidel passes over the contacts: friction, normal, push.
+    Solve,
+    /// Speed limits, then positions moved by velocity plus push.
+    IntegratePositions,
+    /// Velocity passes at the new positions.
+    Relax,
+    /// Contacts hit fast enough bounce (only while some body bounces).
+    Restitution,
+    /// Each contact's separation at the end of the step, for queries.
+    StoreSeparations,
+    /// Minimum-speed snap and maximum-speed clamp of the final velocities.
+    ClampSpeeds,
+}
+
+/// What the substeps of a contact step run.
+struct SubstepPlan {
+    /// Substeps to run: none when every body sleeps (nothing would move).
+    substeps: u32,
+    /// The velocity kernel of the common case (no speed limits: they are
+    /// applied with the positions).
+    kernel: Option<PointMassKernel>,
+    /// Some body sleeps: sleeping bodies are held still.
+    hold_sleepers: bool,
+    /// The integrator makes position corrections (all but semi-implicit
+    /// Euler), kept per body between the velocity and position stages.
+    corrects: bool,
+    limits: Option<Option<SpeedLimits>>,
+    solver: SolverParams,
+    /// Some body bounces.
+    restitution: bool,
+}
+
+impl SubstepPlan {
+    fn new(world: &World, settings: &ContactSettings, dt: f32, any_asleep: bool) -> Self {
+        let all_asleep = any_asleep && world.dynamic.sleep.iter().all(|s| s.is_asleep());
+        Self {
+            substeps: if all_asleep { 0 } else { settings.substeps },
+            kernel: world.kernel(None),
+            hold_sleepers: any_asleep,
+            corrects: world.settings().integrator != Integrator::SemiImplicitEuler,
+            limits: world.speed_limits(),
+            solver: SolverParams {
+                h: dt / settings.substeps as f32,
+                warm_starting: settings.warm_starting,
+                iterations: settings.iterations,
+                relax_iterations: settings.relax_iterations,
+                position_correction: settings.position_correction,
+                push_out_speed: settings.push_out_speed,
+                slop: settings.slop,
+                restitution_threshold: settings.restitution_threshold,
+            },
+            restitution: world.bouncy > 0,
+        }
+    }
+
+    fn stages(&self) -> Vec<ContactStage> {
+        use ContactStage::*;
+        let s = &self.solver;
+        let steps = [
+            (self.substeps > 0, IntegrateVelocities),
+            (self.substeps > 0 && self.hold_sleepers, HoldSleepers),
+            (self.substeps > 0 && s.warm_starting, WarmStart),
+            (self.substeps > 0, Solve),
+            (self.substeps > 0, IntegratePositions),
+            (self.substeps > 0 && s.relax_iterations > 0, Relax),
+            (self.restitution, Restitution),
+            (true, StoreSeparations),
+            (self.limits.is_some(), ClampSpeeds),
+        ];
+        steps
+            .iter()
+            .filter(|(on, _)| *on)
+            .map(|(_, s)| *s)
+            .collect()
+    }
+}
+
+impl World {
+    /// The stages of the contact step with the current settings and
+    /// bodies, in order (see [`ContactStage`]); empty when the contact
+    /// stage does not run.
+    pub fn contact_stages(&self) -> Vec<ContactStage> {
+        let Some(settings) = self.contact_settings() else {
+            return Vec::new();
+        };
+        let any_asleep = match &self.contacts {
+            Some(cw) => cw.sleeping.any(&self.dynamic),
+            None => false,
+        };
+        SubstepPlan::new(self, &settings, 1.0, any_asleep).stages()
+    }
+
+    /// The contact step: find the contacts, run the substeps, finish, and
+    /// record what happened.
+    pub(crate) fn step_with_contacts(&mut self, dt: f32, settings: &ContactSettings) {
+        let mut cw = self
+            .contacts
+            .take()
+            .unwrap_or_else(|| Box::new(ContactWorld::new()));
+        if std::mem::take(&mut self.statics_dirty) {
+            cw.statics_changed();
+        }
+        if !settings.sleeping {
+            cw.wake_all(&mut self.dynamic);
+        }
+        let params = StepParams {
+            gravity: self.settings().forces.gravity.unwrap_or(Vec2::ZERO),
+            dt,
+            h: dt / settings.substeps as f32,
+            parallel: self.parallel,
+        };
+        cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
+        let plan = SubstepPlan::new(self, settings, dt, cw.sleeping.any(&self.dynamic));
+        let mut correction = std::mem::take(&mut self.correction);
+        if plan.corrects {
+            correction.clear();
+            correction.resize(self.dynamic.len(), Vec2::ZERO);
+        }
+        let mut resets = 0;
+        for _ in 0..plan.substeps {
+            resets += self.integrate_velocities(&plan, &mut correction);
+            if plan.hold_sleepers {
+                self.hold_sleepers(&mut correction, plan.corrects);
+            }
+            self.solve(&mut cw, &plan);
+            self.integrate_positions(&mut cw.motion, &plan, &correction);
+            self.relax(&mut cw, &plan);
+        }
+        self.finish_contacts(&mut cw, &plan);
+        cw.end_step(
+            &mut self.dynamic,
+            &self.statics,
+            settings.sleeping.then_some(dt),
+        );
+        self.contacts = Some(cw);
+        self.correction = correction;
+        self.stats.non_finite_resets += resets;
+    }
+
+    /// Substep stage: forces turned into velocities over `h`; the
+    /// multi-stage integrators also leave a position correction.
+    fn integrate_velocities(&mut self, plan: &SubstepPlan, correction: &mut [Vec2]) -> u64 {
+        let (h, parallel) = (plan.solver.h, self.parallel);
+        if let Some(kernel) = &plan.kernel {
+            return kernel.velocities(&mut self.dynamic, h, parallel);
+        }
+        let integrator = self.settings().integrator;
+        let forces = step_forces(&self.settings, &self.custom, self.game_friction);
+        let (pos, vel, arrays) = self.dynamic.split();
+        let pos: &[Vec2] = pos;
+        let velocity = |i: usize, v: Vec2, resets: &mut u64| {
+            integrate_velocity(integrator, &forces, pos[i], v, &arrays.params(i), h, resets)
+        };
+        if plan.corrects {
+            for_chunks(parallel, (vel, correction), |offset, (vel, correction)| {
+                let mut resets = 0;
+                for (k, (v, c)) in vel.iter_mut().zip(correction.iter_mut()).enumerate() {
+                    (*v, *c) = velocity(offset + k, *v, &mut resets);
+                }
+                resets
+            })
+        } else {
+            for_chunks(parallel, vel, |offset, vel| {
+                let mut resets = 0;
+                for (k, v) in vel.iter_mut().enumerate() {
+                    *v = velocity(offset + k, *v, &mut resets).0;
+                }
+                resets
+            })
+        }
+    }
+
+    /// Substep stage: sleeping bodies hold still (no forces, no correction).
+    fn hold_sleepers(&mut self, correction: &mut [Vec2], corrects: bool) {
+        let b = &mut self.dynamic;
+        for (i, (v, s)) in b.vel.iter_mut().zip(&b.sleep).enumerate() {
+            if s.is_asleep() {
+                *v = Vec2::ZERO;
+                if corrects {
+                    correction[i] = Vec2::ZERO;
+                }
+            }
+        }
+    }
+
+    /// Substep stages: warm start (with the push impulses cleared), then
+    /// the Gauss-Seidel passes with the push.
+    fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
+        let ContactWorld { solved, motion, .. } = cw;
+        motion.push.fill(Vec2::ZERO);
+        let mut bodies = motion.bodies(&mut self.dynamic.vel);
+        solver::begin_substep(&mut solved.rows, &mut bodies, plan.solver.warm_starting);
+        for _ in 0..plan.solver.iterations {
+            solver::solve(&mut solved.rows, &mut bodies, &plan.solver, true);
+        }
+    }
+
+    /// Substep stage: speed limits, then positions moved by velocity plus
+    /// push (and the integrator's correction), and each body's displacement
+    /// since the step began.
+    fn integrate_positions(
+        &mut self,
+        motion: &mut Motion,
+        plan: &SubstepPlan,
+        correction: &[Vec2],
+    ) {
+        let (h, limits, corrects) = (plan.solver.h, plan.limits, plan.corrects);
+        let (pos, vel, arrays) = self.dynamic.split();
+        let (push, start) = (&motion.push[..], &motion.start[..]);
+        let parts = (pos, vel, &mut motion.delta[..]);
+        for_chunks(self.parallel, parts, |offset, (pos, vel, delta)| {
+            let bodies = pos.iter_mut().zip(vel.iter_mut()).zip(delta.iter_mut());
+            for (k, ((p, v), d)) in bodies.enumerate() {
+                let i = offset + k;
+                if let Some(uniform) = limits {
+                    uniform.unwrap_or(arrays.limits[i]).apply(v);
+                }
+                // Semi-implicit Euler adds an exact zero here, as the
+                // no-contact path does: the same bits either way.
+                let c = if corrects { correction[i] } else { Vec2::ZERO };
+                *p += (*v + push[i]) * h + c;
+                *d = *p - start[i];
+            }
+            0
+        });
+    }
+
+    /// Substep stage: velocity passes at the new positions.
+    fn relax(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
+        let ContactWorld { solved, motion, .. } = cw;
+        let mut bodies = motion.bodies(&mut self.dynamic.vel);
+        for _ in 0..plan.solver.relax_iterations {
+            solver::solve(&mut solved.rows, &mut bodies, &plan.solver, false);
+        }
+    }
+
+    /// After the substeps: restitution, each contact's final separation,
+    /// and the speed limits of the final velocities.
+    fn finish_contacts(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
+        let ContactWorld { solved, motion, .. } = cw;
+        let b = &mut self.dynamic;
+        let mut bodies = motion.bodies(&mut b.vel);
+        if plan.restitution {
+            solver::restitution(
+                &mut solved.rows,
+                &solved.infos,
+                &mut bodies,
+                plan.solver.restitution_threshold,
+            );
+        }
+        solver::store_separations(&solved.rows, &mut solved.infos, &bodies);
+        if let Some(uniform) = plan.limits {
+            for (v, limits) in b.vel.iter_mut().zip(&b.limits) {
+                uniform.unwrap_or(*limits).apply(v);
+            }
+        }
+    }
+}
