@@ -25,7 +25,7 @@ pub(crate) struct SleepState {
 }
 
 impl SleepState {
-    pub const fn awake() -> Self {
+    pub(crate) const fn awake() -> Self {
         Self {
             rest_time: 0.0,
             island: AWAKE,
@@ -33,25 +33,25 @@ impl SleepState {
     }
 
     #[inline(always)]
-    pub fn is_asleep(&self) -> bool {
+    pub(crate) fn is_asleep(&self) -> bool {
         self.island != AWAKE
     }
 
     /// The island the body sleeps in, or `None` while it is awake.
     #[inline(always)]
-    pub fn island(&self) -> Option<u32> {
+    pub(crate) fn island(&self) -> Option<u32> {
         self.is_asleep().then_some(self.island)
     }
 
     /// Puts the body to sleep in `island` (the slot index of one of the
     /// island's bodies).
-    pub fn sleep_in(&mut self, island: u32) {
+    pub(crate) fn sleep_in(&mut self, island: u32) {
         debug_assert!(island != AWAKE);
         self.island = island;
     }
 
     /// Whether the state is one a step can produce (for snapshots).
-    pub fn is_valid(&self) -> bool {
+    pub(crate) fn is_valid(&self) -> bool {
         self.rest_time.is_finite() && self.rest_time >= 0.0
     }
 }
@@ -93,7 +93,7 @@ pub(crate) struct SpeedLimits {
 }
 
 impl SpeedLimits {
-    pub fn new(min: f32, max: f32) -> Self {
+    pub(crate) fn new(min: f32, max: f32) -> Self {
         Self {
             min_sq: min * min,
             max,
@@ -105,7 +105,7 @@ impl SpeedLimits {
     /// one above the maximum to the maximum speed (`v * max / |v|`). `v`
     /// must have a finite `|v|^2` (see `guard_finite`).
     #[inline(always)]
-    pub fn apply(&self, v: &mut Vec2) {
+    pub(crate) fn apply(&self, v: &mut Vec2) {
         let s2 = v.length_squared();
         if s2 > self.max_sq {
             *v *= self.max / s2.sqrt();
@@ -154,7 +154,7 @@ pub(crate) struct BodyArrays<'a> {
 impl BodyArrays<'_> {
     /// What the force models read for body `i`.
     #[inline(always)]
-    pub fn params(&self, i: usize) -> BodyParams {
+    pub(crate) fn params(&self, i: usize) -> BodyParams {
         BodyParams {
             inv_mass: self.inv_mass[i],
             force: self.force[i],
@@ -166,12 +166,12 @@ impl BodyArrays<'_> {
 }
 
 impl DynamicBodies {
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.pos.len()
     }
 
     /// Positions and velocities to write, the rest to read.
-    pub fn split(&mut self) -> (&mut [Vec2], &mut [Vec2], BodyArrays<'_>) {
+    pub(crate) fn split(&mut self) -> (&mut [Vec2], &mut [Vec2], BodyArrays<'_>) {
         (
             &mut self.pos,
             &mut self.vel,
@@ -186,7 +186,13 @@ impl DynamicBodies {
         )
     }
 
-    pub fn push(&mut self, def: &BodyDef, meta: BodyMeta, limits: SpeedLimits, keep_prev: bool) {
+    pub(crate) fn push(
+        &mut self,
+        def: &BodyDef,
+        meta: BodyMeta,
+        limits: SpeedLimits,
+        keep_prev: bool,
+    ) {
         self.pos.push(def.position);
         self.vel.push(def.velocity);
         self.force.push(Vec2::ZERO);
@@ -203,7 +209,7 @@ impl DynamicBodies {
     }
 
     /// Removes body `i`; returns the id of the body moved into `i`, if any.
-    pub fn swap_remove(&mut self, i: usize) -> Option<BodyId> {
+    pub(crate) fn swap_remove(&mut self, i: usize) -> Option<BodyId> {
         self.pos.swap_remove(i);
         self.vel.swap_remove(i);
         self.force.swap_remove(i);
@@ -221,16 +227,16 @@ impl DynamicBodies {
     }
 
     /// Wakes every body and forgets how long each rested.
-    pub fn wake_all(&mut self) {
+    pub(crate) fn wake_all(&mut self) {
         self.sleep.fill(SleepState::awake());
     }
 
     /// Whether every body is awake with no rest time.
-    pub fn all_fresh(&self) -> bool {
+    pub(crate) fn all_fresh(&self) -> bool {
         self.sleep.iter().all(|s| *s == SleepState::awake())
     }
 
-    pub fn view(&self, i: usize) -> Body {
+    pub(crate) fn view(&self, i: usize) -> Body {
         let m = &self.meta[i];
         Body {
             id: m.id,
@@ -263,24 +269,24 @@ pub(crate) struct StaticBodies {
 }
 
 impl StaticBodies {
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.pos.len()
     }
 
-    pub fn push(&mut self, def: &BodyDef, meta: BodyMeta) {
+    pub(crate) fn push(&mut self, def: &BodyDef, meta: BodyMeta) {
         self.pos.push(def.position);
         self.friction.push(def.friction);
         self.meta.push(meta);
     }
 
-    pub fn swap_remove(&mut self, i: usize) -> Option<BodyId> {
+    pub(crate) fn swap_remove(&mut self, i: usize) -> Option<BodyId> {
         self.pos.swap_remove(i);
         self.friction.swap_remove(i);
         self.meta.swap_remove(i);
         self.meta.get(i).map(|m| m.id)
     }
 
-    pub fn view(&self, i: usize) -> Body {
+    pub(crate) fn view(&self, i: usize) -> Body {
         let m = &self.meta[i];
         Body {
             id: m.id,
@@ -313,7 +319,7 @@ pub(crate) struct Colliders<'a> {
 impl<'a> Colliders<'a> {
     /// The body's cold data.
     #[inline(always)]
-    pub fn meta(&self, r: ColliderRef) -> &'a BodyMeta {
+    pub(crate) fn meta(&self, r: ColliderRef) -> &'a BodyMeta {
         match r.dynamic_index() {
             Some(i) => &self.dynamic.meta[i],
             None => &self.statics.meta[r.index()],
@@ -322,7 +328,7 @@ impl<'a> Colliders<'a> {
 
     /// The body's cold data, or `None` if the index is out of range (for
     /// checking snapshots).
-    pub fn get_meta(&self, r: ColliderRef) -> Option<&'a BodyMeta> {
+    pub(crate) fn get_meta(&self, r: ColliderRef) -> Option<&'a BodyMeta> {
         match r.dynamic_index() {
             Some(i) => self.dynamic.meta.get(i),
             None => self.statics.meta.get(r.index()),
@@ -331,7 +337,7 @@ impl<'a> Colliders<'a> {
 
     /// The body's position.
     #[inline(always)]
-    pub fn position(&self, r: ColliderRef) -> Vec2 {
+    pub(crate) fn position(&self, r: ColliderRef) -> Vec2 {
         match r.dynamic_index() {
             Some(i) => self.dynamic.pos[i],
             None => self.statics.pos[r.index()],
@@ -342,7 +348,7 @@ impl<'a> Colliders<'a> {
     ///
     /// # Panics
     /// If the body has no shape: only shaped bodies become colliders.
-    pub fn shape_at(&self, r: ColliderRef) -> (Shape, Vec2) {
+    pub(crate) fn shape_at(&self, r: ColliderRef) -> (Shape, Vec2) {
         let shape = self.meta(r).shape.expect("a collider has a shape");
         (shape, self.position(r))
     }
@@ -350,7 +356,7 @@ impl<'a> Colliders<'a> {
     /// The order key of a pair: the two slot indices, lower first, so the
     /// order depends on ids, not on storage.
     #[inline(always)]
-    pub fn pair_order(&self, a: ColliderRef, b: ColliderRef) -> u64 {
+    pub(crate) fn pair_order(&self, a: ColliderRef, b: ColliderRef) -> u64 {
         let (x, y) = (
             u64::from(self.meta(a).id.index),
             u64::from(self.meta(b).id.index),

@@ -19,7 +19,7 @@ use glam::Vec2;
 
 /// A proxy covering more than this many cells along an axis is handled
 /// apart, against every other proxy.
-pub const LARGE_PROXY_CELLS: i32 = 8;
+pub(crate) const LARGE_PROXY_CELLS: i32 = 8;
 
 #[derive(Clone, Copy, Debug)]
 struct Entry {
@@ -51,7 +51,7 @@ impl BroadPhase {
     /// With `parallel` (and the feature), a large grid's cells are searched
     /// on rayon's pool in contiguous runs whose results are concatenated in
     /// order: the output is the same, in the same order.
-    pub fn find_pairs(
+    pub(crate) fn find_pairs(
         &mut self,
         proxies: &[Aabb],
         asleep: &[bool],

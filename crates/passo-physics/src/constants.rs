@@ -91,9 +91,11 @@ pub const TIME_TO_SLEEP: f32 = 0.5;
 /// their per-body stages, broad-phase pair search and narrow phase on
 /// rayon's thread pool, with the `parallel` feature. Below it the cost of
 /// handing work to threads outweighs the gain. Results are the same bits
-/// either way.
+/// either way. (Public for tests that check thread counts.)
+#[doc(hidden)]
 pub const PARALLEL_MIN_ITEMS: usize = 4096;
 
 /// Bodies (or pairs) per parallel task: large enough that handing out a
 /// task costs little against the work in it.
+#[doc(hidden)]
 pub const PARALLEL_CHUNK: usize = 1024;

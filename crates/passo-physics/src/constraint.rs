@@ -63,12 +63,12 @@ pub(crate) fn key(a: BodyId, b: BodyId) -> (BodyId, BodyId) {
 
 impl ContactInfo {
     /// The pair's order key (see [`key`]).
-    pub fn key(&self) -> (BodyId, BodyId) {
+    pub(crate) fn key(&self) -> (BodyId, BodyId) {
         key(self.id_a, self.id_b)
     }
 
     /// Touching: the solver pushed the bodies apart this step, or they overlap.
-    pub fn is_touching(&self, c: &Constraint) -> bool {
+    pub(crate) fn is_touching(&self, c: &Constraint) -> bool {
         c.max_normal_impulse > 0.0 || self.separation < 0.0
     }
 }
@@ -76,7 +76,7 @@ impl ContactInfo {
 impl Constraint {
     /// The solver row and the rest of a new contact between dynamic body
     /// `a` and body `b`, from their manifold.
-    pub fn new(
+    pub(crate) fn new(
         m: &Manifold,
         a: u32,
         b: ColliderRef,
@@ -160,13 +160,13 @@ impl Constraint {
 
     /// Whether body B is static.
     #[inline(always)]
-    pub fn is_static(&self) -> bool {
+    pub(crate) fn is_static(&self) -> bool {
         self.b.is_static()
     }
 
     /// Whether every number is finite and every mass term >= 0 (for
     /// snapshots).
-    pub fn is_valid(&self) -> bool {
+    pub(crate) fn is_valid(&self) -> bool {
         let numbers = [
             self.base_separation,
             self.inv_mass_a,
@@ -195,32 +195,32 @@ pub(crate) struct ContactList {
 }
 
 impl ContactList {
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.rows.len()
     }
 
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.rows.is_empty()
     }
 
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.rows.clear();
         self.infos.clear();
     }
 
-    pub fn push(&mut self, row: Constraint, info: ContactInfo) {
+    pub(crate) fn push(&mut self, row: Constraint, info: ContactInfo) {
         self.rows.push(row);
         self.infos.push(info);
     }
 
     /// Each row with the rest of its contact.
-    pub fn iter(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> {
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> {
         self.rows.iter().zip(&self.infos)
     }
 
     /// Keeps the contacts for which `keep` holds, in order, and hands the
     /// others to `removed`, in order.
-    pub fn retain(
+    pub(crate) fn retain(
         &mut self,
         mut keep: impl FnMut(&Constraint) -> bool,
         mut removed: impl FnMut(Constraint, ContactInfo),
@@ -251,7 +251,7 @@ pub(crate) struct Merge<'a> {
 }
 
 impl<'a> Merge<'a> {
-    pub fn new(list: &'a mut ContactList, scratch: &'a mut ContactList) -> Self {
+    pub(crate) fn new(list: &'a mut ContactList, scratch: &'a mut ContactList) -> Self {
         scratch.clear();
         scratch.rows.append(&mut list.rows);
         scratch.infos.append(&mut list.infos);
@@ -262,7 +262,7 @@ impl<'a> Merge<'a> {
         }
     }
 
-    pub fn push(&mut self, row: Constraint, info: ContactInfo) {
+    pub(crate) fn push(&mut self, row: Constraint, info: ContactInfo) {
         let old = self.old;
         while self.next < old.len() && old.infos[self.next].key() < info.key() {
             self.list.push(old.rows[self.next], old.infos[self.next]);
@@ -271,7 +271,7 @@ impl<'a> Merge<'a> {
         self.list.push(row, info);
     }
 
-    pub fn finish(self) {
+    pub(crate) fn finish(self) {
         self.list
             .rows
             .extend_from_slice(&self.old.rows[self.next..]);

@@ -27,7 +27,7 @@ pub(crate) struct ContactState {
 
 impl ContactState {
     /// The sleeping contacts as a list.
-    pub fn sleeping(&self) -> ContactList {
+    pub(crate) fn sleeping(&self) -> ContactList {
         ContactList {
             rows: self.asleep.clone(),
             infos: self.asleep_infos.clone(),
@@ -38,7 +38,11 @@ impl ContactState {
     /// a sleeping shaped dynamic body and a sleeping or static shaped one
     /// that exist, in key order, with finite values; the carried impulses
     /// are finite, the normal ones never negative.
-    pub fn validate(&self, dynamic: &DynamicBodies, statics: &StaticBodies) -> Result<(), String> {
+    pub(crate) fn validate(
+        &self,
+        dynamic: &DynamicBodies,
+        statics: &StaticBodies,
+    ) -> Result<(), String> {
         if self.asleep.len() != self.asleep_infos.len() {
             return Err("sleeping contact lists of different lengths".into());
         }

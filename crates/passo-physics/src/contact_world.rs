@@ -46,7 +46,7 @@ pub(crate) struct ContactWorld {
 }
 
 impl ContactWorld {
-    pub fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Self {
             proxies: Proxies::new(),
             ..Self::default()
@@ -54,13 +54,13 @@ impl ContactWorld {
     }
 
     /// Static bodies changed: rebuild the static tree at the next step.
-    pub fn statics_changed(&mut self) {
+    pub(crate) fn statics_changed(&mut self) {
         self.proxies.statics_changed();
     }
 
     /// Finds the step's contacts: proxies, pairs, the narrow phase, waking
     /// the sleeping islands an awake body reaches, warm starting.
-    pub fn begin_step(
+    pub(crate) fn begin_step(
         &mut self,
         dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
@@ -215,7 +215,7 @@ impl ContactWorld {
     /// does the sleeping bookkeeping (with `sleep_dt`, the step's length,
     /// when sleeping is on), caches impulses for warm starting and works
     /// out which pairs began and ended touching.
-    pub fn end_step(
+    pub(crate) fn end_step(
         &mut self,
         dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
@@ -233,7 +233,7 @@ impl ContactWorld {
     /// A step in which the contact stage has nothing to do (its colliders
     /// were removed, or contacts were turned off): every contact and
     /// overlap ends, and every body wakes.
-    pub fn idle_step(&mut self, dynamic: &mut DynamicBodies, statics: &StaticBodies) {
+    pub(crate) fn idle_step(&mut self, dynamic: &mut DynamicBodies, statics: &StaticBodies) {
         self.solved.clear();
         self.narrow.sensor_candidates.clear();
         self.wake_all(dynamic);
@@ -241,40 +241,40 @@ impl ContactWorld {
     }
 
     /// Wakes dynamic body `i` and its island now.
-    pub fn wake_body(&mut self, dynamic: &mut DynamicBodies, i: usize) {
+    pub(crate) fn wake_body(&mut self, dynamic: &mut DynamicBodies, i: usize) {
         self.sleeping.wake_body(dynamic, i);
     }
 
     /// Wakes every body (nothing to do when every body is awake).
-    pub fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
+    pub(crate) fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
         self.sleeping.wake_all(dynamic);
     }
 
     /// Dynamic body `from` now sits at index `to` (a removal moved it).
-    pub fn body_moved(&mut self, from: u32, to: u32) {
+    pub(crate) fn body_moved(&mut self, from: u32, to: u32) {
         self.sleeping.body_moved(from, to);
     }
 
     /// Every contact after the last step: the solved ones, then those
     /// between sleeping bodies.
-    pub fn all_contacts(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> {
+    pub(crate) fn all_contacts(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> {
         self.solved.iter().chain(self.sleeping.list.iter())
     }
 
     /// Sensor overlaps after the last step.
-    pub fn sensor_overlaps(&self) -> &[SensorPair] {
+    pub(crate) fn sensor_overlaps(&self) -> &[SensorPair] {
         &self.events.sensors_prev
     }
 
     /// Contact and sensor events of the last step.
-    pub fn events(&self) -> &ContactEvents {
+    pub(crate) fn events(&self) -> &ContactEvents {
         &self.events.events
     }
 
     /// What the next step needs from the last one: warm-start impulses,
     /// who touched whom (for begin and end events) and the stored contacts
     /// of sleeping islands.
-    pub fn carried_state(&self) -> ContactState {
+    pub(crate) fn carried_state(&self) -> ContactState {
         ContactState {
             cache: self.events.cache.clone(),
             touching: self.events.touching_prev.clone(),
@@ -285,7 +285,7 @@ impl ContactWorld {
     }
 
     /// A contact stage resuming from a carried state.
-    pub fn resume(state: ContactState) -> Self {
+    pub(crate) fn resume(state: ContactState) -> Self {
         let mut world = Self::new();
         world.sleeping = SleepingContacts::resume(state.sleeping());
         world.events.cache = state.cache;

@@ -20,14 +20,14 @@ pub(crate) struct Cached {
 impl Cached {
     /// Whether the impulses are ones a step can produce (for snapshots):
     /// finite, and the normal impulse never negative.
-    pub fn is_valid(&self) -> bool {
+    pub(crate) fn is_valid(&self) -> bool {
         self.normal_impulse.is_finite()
             && self.normal_impulse >= 0.0
             && self.tangent_impulse.is_finite()
     }
 
     /// The pair's order key.
-    pub fn key(&self) -> (BodyId, BodyId) {
+    pub(crate) fn key(&self) -> (BodyId, BodyId) {
         self.key
     }
 }
@@ -51,7 +51,7 @@ pub(crate) struct EventTracker {
 impl EventTracker {
     /// Gives each contact the impulses its pair had after the last step;
     /// the cache and the contacts are both sorted by key.
-    pub fn warm_start(&self, contacts: &mut ContactList) {
+    pub(crate) fn warm_start(&self, contacts: &mut ContactList) {
         debug_assert!(contacts.infos.is_sorted_by_key(ContactInfo::key));
         let cache = &self.cache;
         let mut j = 0;
@@ -69,7 +69,7 @@ impl EventTracker {
 
     /// Finds which candidates end the step inside their sensor. Bodies in
     /// a sensor stay awake, so it keeps seeing them.
-    pub fn find_sensor_overlaps(
+    pub(crate) fn find_sensor_overlaps(
         &mut self,
         candidates: &[SensorCandidate],
         dynamic: &mut DynamicBodies,
@@ -95,7 +95,7 @@ impl EventTracker {
     /// starting, and works out which pairs began and ended touching and
     /// which bodies entered and left sensors. `solved` and `asleep` are
     /// each sorted by key.
-    pub fn record(&mut self, solved: &ContactList, asleep: &ContactList) {
+    pub(crate) fn record(&mut self, solved: &ContactList, asleep: &ContactList) {
         self.cache.clear();
         self.touching.clear();
         for (c, info) in merged(solved, asleep) {

@@ -239,7 +239,7 @@ pub(crate) struct Drive<'a> {
 }
 
 impl<'a> Drive<'a> {
-    pub fn new(models: &ForceModels, custom: &'a [Arc<dyn ForceModel>]) -> Self {
+    pub(crate) fn new(models: &ForceModels, custom: &'a [Arc<dyn ForceModel>]) -> Self {
         Self {
             gravity: models.gravity.unwrap_or(Vec2::ZERO),
             field: models.force_field.unwrap_or(Vec2::ZERO),
@@ -252,7 +252,7 @@ impl<'a> Drive<'a> {
     /// Acceleration, metres per second², from gravity, the force field, the
     /// game's forces, springs, central gravity and custom models.
     #[inline(always)]
-    pub fn accel(&self, p: Vec2, v: Vec2, b: &BodyParams) -> Vec2 {
+    pub(crate) fn accel(&self, p: Vec2, v: Vec2, b: &BodyParams) -> Vec2 {
         let mut a = self.gravity + (b.force + self.field) * b.inv_mass;
         if let Some(s) = &self.spring {
             a -= (p - s.anchor) * (s.stiffness * b.inv_mass);
@@ -297,7 +297,7 @@ pub(crate) struct Dissipation {
 }
 
 impl Dissipation {
-    pub fn new(models: &ForceModels, game_friction: bool) -> Self {
+    pub(crate) fn new(models: &ForceModels, game_friction: bool) -> Self {
         Self {
             half_rho: models.quadratic_drag.map(|d| 0.5 * d.density),
             linear: models.linear_drag.map(|d| d.coefficient),
@@ -308,7 +308,7 @@ impl Dissipation {
     }
 
     /// Whether any drag or friction acts at all.
-    pub fn is_active(&self) -> bool {
+    pub(crate) fn is_active(&self) -> bool {
         self.half_rho.is_some()
             || self.linear.is_some()
             || self.surface_g.is_some()
@@ -324,7 +324,7 @@ impl Dissipation {
 
     /// The plain explicit acceleration of drag and friction at velocity `v`.
     #[inline(always)]
-    pub fn accel(&self, v: Vec2, b: &BodyParams) -> Vec2 {
+    pub(crate) fn accel(&self, v: Vec2, b: &BodyParams) -> Vec2 {
         let mut a = Vec2::ZERO;
         let rel = v - self.air;
         if let Some(half_rho) = self.half_rho {
@@ -357,7 +357,7 @@ impl Dissipation {
     /// Drag acts on the velocity relative to the air, friction on the
     /// velocity relative to the ground.
     #[inline(always)]
-    pub fn apply_stable(&self, mut v: Vec2, b: &BodyParams, dt: f32) -> Vec2 {
+    pub(crate) fn apply_stable(&self, mut v: Vec2, b: &BodyParams, dt: f32) -> Vec2 {
         if let Some(half_rho) = self.half_rho {
             v = stable_quadratic_drag(v, self.air, half_rho * b.drag_area * b.inv_mass, dt);
         }

@@ -71,7 +71,7 @@ pub(crate) struct Forces<'a> {
 }
 
 impl<'a> Forces<'a> {
-    pub fn new(
+    pub(crate) fn new(
         drive: Drive<'a>,
         dissipation: Dissipation,
         form: ForceForm,

@@ -41,7 +41,7 @@ impl Islands {
 
     /// Marks the island of sleeping body `i` (and the body itself, at once)
     /// to be woken.
-    pub fn wake_body(&mut self, bodies: &mut DynamicBodies, i: usize) {
+    pub(crate) fn wake_body(&mut self, bodies: &mut DynamicBodies, i: usize) {
         let s = &mut bodies.sleep[i];
         if let Some(island) = s.island() {
             self.to_wake.push(island);
@@ -53,7 +53,7 @@ impl Islands {
     /// over the bodies, only when some island was marked.
     ///
     /// [`wake_body`]: Self::wake_body
-    pub fn wake_marked(&mut self, bodies: &mut DynamicBodies) {
+    pub(crate) fn wake_marked(&mut self, bodies: &mut DynamicBodies) {
         if self.to_wake.is_empty() {
             return;
         }
@@ -74,7 +74,7 @@ impl Islands {
     /// speed allows (so a body still being pushed out of an overlap, with
     /// zero velocity, is not resting), and resets the others. `moved` is
     /// each body's displacement over the step.
-    pub fn rest(&mut self, bodies: &mut DynamicBodies, moved: &[glam::Vec2], dt: f32) {
+    pub(crate) fn rest(&mut self, bodies: &mut DynamicBodies, moved: &[glam::Vec2], dt: f32) {
         let sleep_sq = SLEEP_SPEED * SLEEP_SPEED;
         let travel_sq = sleep_sq * dt * dt;
         let states = bodies.sleep.iter_mut().zip(&bodies.vel).zip(moved);
@@ -90,7 +90,7 @@ impl Islands {
     /// island whose bodies have all rested for [`TIME_TO_SLEEP`] (their
     /// velocities become exactly zero). Returns whether any island fell
     /// asleep.
-    pub fn fall_asleep(
+    pub(crate) fn fall_asleep(
         &mut self,
         bodies: &mut DynamicBodies,
         constraints: &[Constraint],

@@ -28,7 +28,7 @@ impl PointMassKernel {
     /// The kernel for these settings, or `None` if some stage needs the
     /// general path (another integrator, springs, friction, custom models,
     /// per-body speed limits, plain explicit drag).
-    pub fn new(
+    pub(crate) fn new(
         models: &ForceModels,
         integrator: Integrator,
         form: ForceForm,
@@ -60,7 +60,7 @@ impl PointMassKernel {
 
     /// One step of every dynamic body; returns how many were reset for a
     /// non-finite velocity.
-    pub fn run(&self, b: &mut DynamicBodies, dt: f32, parallel: bool) -> u64 {
+    pub(crate) fn run(&self, b: &mut DynamicBodies, dt: f32, parallel: bool) -> u64 {
         let step: fn(&Self, Slices<'_>, f32) -> u64 =
             match (self.drag.is_some(), self.limits.is_some()) {
                 (false, false) => Self::run_with::<false, false>,
@@ -73,7 +73,7 @@ impl PointMassKernel {
 
     /// New velocities only (the contact solver runs before positions move);
     /// returns the number of non-finite resets.
-    pub fn velocities(&self, b: &mut DynamicBodies, dt: f32, parallel: bool) -> u64 {
+    pub(crate) fn velocities(&self, b: &mut DynamicBodies, dt: f32, parallel: bool) -> u64 {
         let step: fn(&Self, Slices<'_>, f32) -> u64 = if self.drag.is_some() {
             Self::velocities_with::<true>
         } else {

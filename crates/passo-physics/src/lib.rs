@@ -29,7 +29,7 @@
 //! let s = -world.body(id).unwrap().velocity.y;
 //! assert!((s * (s + 9.81 / 60.0) - vt * vt).abs() < 1e-3);
 //! ```
-#![warn(missing_docs)]
+#![warn(missing_docs, unreachable_pub)]
 #![forbid(unsafe_code)]
 
 // The modules in the order data flows through them: each imports only

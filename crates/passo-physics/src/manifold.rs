@@ -67,7 +67,7 @@ pub fn collide(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Optio
 }
 
 /// Two circles: along the line of centres.
-pub fn circle_circle(pa: Vec2, ra: f32, pb: Vec2, rb: f32) -> Manifold {
+pub(crate) fn circle_circle(pa: Vec2, ra: f32, pb: Vec2, rb: f32) -> Manifold {
     let d = pb - pa;
     let dist = d.length();
     let normal = if dist > 0.0 { d / dist } else { Vec2::Y };
@@ -79,7 +79,7 @@ pub fn circle_circle(pa: Vec2, ra: f32, pb: Vec2, rb: f32) -> Manifold {
 
 /// Two axis-aligned boxes: along the axis of least overlap (most
 /// separation); on a tie, the y axis. Two points span the shared face.
-pub fn box_box(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2) -> Manifold {
+pub(crate) fn box_box(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2) -> Manifold {
     let d = pb - pa;
     let overlap = ha + hb - d.abs();
     // Axis 0 = x, 1 = y; ties go to y so stacks get vertical normals.
@@ -118,7 +118,7 @@ pub fn box_box(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2) -> Manifold {
 
 /// A box (A) and a circle (B): from the closest point of the box to the
 /// circle's centre; a centre inside the box leaves through the nearest face.
-pub fn box_circle(pa: Vec2, ha: Vec2, pb: Vec2, rb: f32) -> Manifold {
+pub(crate) fn box_circle(pa: Vec2, ha: Vec2, pb: Vec2, rb: f32) -> Manifold {
     let local = pb - pa;
     let closest = local.clamp(-ha, ha);
     let d = local - closest;
@@ -145,7 +145,7 @@ pub fn box_circle(pa: Vec2, ha: Vec2, pb: Vec2, rb: f32) -> Manifold {
 }
 
 /// Whether a point is inside (or on) a shape at `p`.
-pub fn shape_contains(shape: &Shape, p: Vec2, point: Vec2) -> bool {
+pub(crate) fn shape_contains(shape: &Shape, p: Vec2, point: Vec2) -> bool {
     match *shape {
         Shape::Circle { radius } => (point - p).length_squared() <= radius * radius,
         Shape::Box { half_extents } => (point - p).abs().cmple(half_extents).all(),
@@ -155,7 +155,7 @@ pub fn shape_contains(shape: &Shape, p: Vec2, point: Vec2) -> bool {
 /// The first hit of the ray `origin + t dir` (`dir` a unit vector, `t` in
 /// `[0, max_t]`) with a shape at `p`: `(t, outward normal)`. A ray starting
 /// inside a shape hits it at `t = 0` with the normal opposing `dir`.
-pub fn ray_shape(
+pub(crate) fn ray_shape(
     shape: &Shape,
     p: Vec2,
     origin: Vec2,

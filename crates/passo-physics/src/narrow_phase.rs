@@ -69,7 +69,7 @@ impl Narrow<'_> {
     }
 
     /// The body behind a pair end (a proxy or a static body).
-    pub fn body_of(&self, end: ColliderRef) -> ColliderRef {
+    pub(crate) fn body_of(&self, end: ColliderRef) -> ColliderRef {
         match end.dynamic_index() {
             Some(p) => ColliderRef::dynamic(self.proxies.body[p]),
             None => end,
@@ -77,13 +77,13 @@ impl Narrow<'_> {
     }
 
     /// The order key of a candidate pair.
-    pub fn key(&self, pa: u32, pb: ColliderRef) -> KeyedPair {
+    pub(crate) fn key(&self, pa: u32, pb: ColliderRef) -> KeyedPair {
         let a = ColliderRef::dynamic(self.proxies.body[pa as usize]);
         (self.bodies.pair_order(a, self.body_of(pb)), pa, pb)
     }
 
     /// The contact (or sensor candidate) of proxy `pa` with `pb`.
-    pub fn pair(&self, pa: u32, pb: ColliderRef) -> Outcome {
+    pub(crate) fn pair(&self, pa: u32, pb: ColliderRef) -> Outcome {
         let margins = &self.proxies.margins;
         let a_body = ColliderRef::dynamic(self.proxies.body[pa as usize]);
         let margin = margins[pa as usize]
@@ -144,7 +144,7 @@ impl NarrowPhase {
     /// pairs (not the contacts) keeps this cheap, and the contacts come out
     /// sorted for the warm-start merge. Each pair's outcome depends on that
     /// pair alone, so the pairs can be split across threads.
-    pub fn run(&mut self, narrow: &Narrow<'_>, parallel: bool, contacts: &mut ContactList) {
+    pub(crate) fn run(&mut self, narrow: &Narrow<'_>, parallel: bool, contacts: &mut ContactList) {
         let proxies = narrow.proxies;
         self.keyed.clear();
         for &(pa, pb) in &proxies.pairs {

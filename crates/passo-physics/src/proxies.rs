@@ -25,7 +25,7 @@ pub(crate) struct ProxyMargin {
 
 impl ProxyMargin {
     /// The margin of a body moving at `velocity`, metres.
-    pub fn of(&self, velocity: Vec2) -> f32 {
+    pub(crate) fn of(&self, velocity: Vec2) -> f32 {
         let travel = if self.continuous {
             (velocity.length() + self.fall) * self.dt
         } else {
@@ -35,7 +35,7 @@ impl ProxyMargin {
     }
 
     /// The margin a static body adds to a pair.
-    pub const STATIC: f32 = 0.5 * SPECULATIVE_DISTANCE;
+    pub(crate) const STATIC: f32 = 0.5 * SPECULATIVE_DISTANCE;
 }
 
 /// The proxies of one step and the pairs found among them, with the static
@@ -67,7 +67,7 @@ pub(crate) struct Proxies {
 }
 
 impl Proxies {
-    pub fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Self {
             tree_dirty: true,
             ..Self::default()
@@ -75,13 +75,13 @@ impl Proxies {
     }
 
     /// Static bodies changed: rebuild the tree at the next step.
-    pub fn statics_changed(&mut self) {
+    pub(crate) fn statics_changed(&mut self) {
         self.tree_dirty = true;
     }
 
     /// Starts a step: rebuilds the static tree if static bodies changed and
     /// forgets the last step's proxies.
-    pub fn begin(&mut self, statics: &StaticBodies, bodies: usize, margin: ProxyMargin) {
+    pub(crate) fn begin(&mut self, statics: &StaticBodies, bodies: usize, margin: ProxyMargin) {
         if self.tree_dirty {
             self.rebuild_tree(statics);
         }
@@ -109,7 +109,7 @@ impl Proxies {
 
     /// Adds a proxy for dynamic body `i` (which has a shape); `track_sleep`
     /// records whether it sleeps.
-    pub fn add(&mut self, dynamic: &DynamicBodies, i: usize, track_sleep: bool) -> u32 {
+    pub(crate) fn add(&mut self, dynamic: &DynamicBodies, i: usize, track_sleep: bool) -> u32 {
         let shape = dynamic.meta[i].shape.expect("a proxy's body has a shape");
         let margin = self.margin.of(dynamic.vel[i]);
         let p = self.boxes.len() as u32;
@@ -125,7 +125,7 @@ impl Proxies {
     }
 
     /// The proxy of dynamic body `i`, made now if it has none.
-    pub fn of(&mut self, dynamic: &DynamicBodies, i: usize) -> u32 {
+    pub(crate) fn of(&mut self, dynamic: &DynamicBodies, i: usize) -> u32 {
         match self.of_body[i] {
             NO_PROXY => self.add(dynamic, i, true),
             p => p,
@@ -133,13 +133,13 @@ impl Proxies {
     }
 
     /// Whether proxy `p`'s body sleeps.
-    pub fn is_asleep(&self, p: usize) -> bool {
+    pub(crate) fn is_asleep(&self, p: usize) -> bool {
         self.asleep.get(p) == Some(&true)
     }
 
     /// Finds the pairs among the proxies (except pairs of two sleeping
     /// ones) and the static bodies each awake proxy overlaps.
-    pub fn find_pairs(&mut self, parallel: bool) {
+    pub(crate) fn find_pairs(&mut self, parallel: bool) {
         self.pairs.clear();
         self.grid
             .find_pairs(&self.boxes, &self.asleep, parallel, &mut self.pairs);

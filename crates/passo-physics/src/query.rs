@@ -92,7 +92,8 @@ impl World {
 
     /// Whether the contact stage has allocated its buffers (broad phase,
     /// contacts, warm-start cache). It does so the first time it runs, so a
-    /// world without colliders never holds any.
+    /// world without colliders never holds any. (For tests of that.)
+    #[doc(hidden)]
     pub fn has_contact_state(&self) -> bool {
         self.contacts.is_some()
     }

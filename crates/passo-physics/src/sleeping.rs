@@ -60,7 +60,7 @@ pub(crate) struct SleepingContacts {
 
 impl SleepingContacts {
     /// Sleeping contacts resumed from a snapshot.
-    pub fn resume(list: ContactList) -> Self {
+    pub(crate) fn resume(list: ContactList) -> Self {
         Self {
             list,
             ..Self::default()
@@ -68,19 +68,24 @@ impl SleepingContacts {
     }
 
     /// Whether any body sleeps or any contact is stored.
-    pub fn any(&self, dynamic: &DynamicBodies) -> bool {
+    pub(crate) fn any(&self, dynamic: &DynamicBodies) -> bool {
         !self.list.is_empty() || dynamic.sleep.iter().any(|s| s.is_asleep())
     }
 
     /// Whether dynamic body `i` sleeps in the tree (it then needs no proxy
     /// unless an awake one reaches it).
-    pub fn in_tree(&self, i: usize) -> bool {
+    pub(crate) fn in_tree(&self, i: usize) -> bool {
         self.tree_member[i]
     }
 
     /// Starts a step: sizes the per-body flags, and (with sleeping bodies)
     /// rebuilds the tree when enough changed.
-    pub fn begin(&mut self, dynamic: &DynamicBodies, any_asleep: bool, margin: &ProxyMargin) {
+    pub(crate) fn begin(
+        &mut self,
+        dynamic: &DynamicBodies,
+        any_asleep: bool,
+        margin: &ProxyMargin,
+    ) {
         self.tree_member.resize(dynamic.len(), false);
         if any_asleep {
             self.update_tree(dynamic, margin);
@@ -132,7 +137,7 @@ impl SleepingContacts {
     }
 
     /// The sleeping bodies of the tree whose boxes overlap `aabb`.
-    pub fn reached(&mut self, aabb: &Aabb, dynamic: &DynamicBodies) -> &[u32] {
+    pub(crate) fn reached(&mut self, aabb: &Aabb, dynamic: &DynamicBodies) -> &[u32] {
         self.hits.clear();
         let (hits, bodies) = (&mut self.hits, &self.tree_bodies);
         self.tree.query(aabb, |item| {
@@ -149,7 +154,7 @@ impl SleepingContacts {
     /// bodies), and putting islands that rested long enough to sleep, with
     /// their contacts moved from `solved` to the stored list. `moved` is
     /// each body's displacement over the step.
-    pub fn after_step(
+    pub(crate) fn after_step(
         &mut self,
         solved: &mut ContactList,
         dynamic: &mut DynamicBodies,
@@ -194,31 +199,31 @@ impl SleepingContacts {
 
     /// Forgets the stored contacts of bodies that woke: the next step finds
     /// them afresh.
-    pub fn drop_awake(&mut self, dynamic: &DynamicBodies) {
+    pub(crate) fn drop_awake(&mut self, dynamic: &DynamicBodies) {
         self.list.retain(|c| !has_awake_body(dynamic, c), |_, _| {});
     }
 
     /// Marks the island of dynamic body `i` to be woken (the body itself
     /// wakes at once); [`wake_marked`](Self::wake_marked) wakes the rest.
-    pub fn mark(&mut self, dynamic: &mut DynamicBodies, i: usize) {
+    pub(crate) fn mark(&mut self, dynamic: &mut DynamicBodies, i: usize) {
         self.islands.wake_body(dynamic, i);
     }
 
     /// Wakes the marked islands, keeping their stored contacts for now
     /// (see [`drop_awake`](Self::drop_awake)).
-    pub fn wake_marked_islands(&mut self, dynamic: &mut DynamicBodies) {
+    pub(crate) fn wake_marked_islands(&mut self, dynamic: &mut DynamicBodies) {
         self.islands.wake_marked(dynamic);
         self.changed = true;
     }
 
     /// Wakes the marked islands and forgets their stored contacts.
-    pub fn wake_marked(&mut self, dynamic: &mut DynamicBodies) {
+    pub(crate) fn wake_marked(&mut self, dynamic: &mut DynamicBodies) {
         self.wake_marked_islands(dynamic);
         self.drop_awake(dynamic);
     }
 
     /// Wakes dynamic body `i` and its island now.
-    pub fn wake_body(&mut self, dynamic: &mut DynamicBodies, i: usize) {
+    pub(crate) fn wake_body(&mut self, dynamic: &mut DynamicBodies, i: usize) {
         let was_asleep = dynamic.sleep[i].is_asleep();
         self.islands.wake_body(dynamic, i);
         if was_asleep {
@@ -229,7 +234,7 @@ impl SleepingContacts {
     /// Wakes every body. Nothing happens when every body is already awake
     /// with no rest time and nothing is stored: the step calls this while
     /// sleeping is off and while the stage is idle.
-    pub fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
+    pub(crate) fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
         if self.list.is_empty() && self.tree.len() == 0 && dynamic.all_fresh() {
             return;
         }
@@ -243,7 +248,7 @@ impl SleepingContacts {
 
     /// Dynamic body `from` (the last one) now sits at index `to`: a removal
     /// moved it.
-    pub fn body_moved(&mut self, from: u32, to: u32) {
+    pub(crate) fn body_moved(&mut self, from: u32, to: u32) {
         for body in &mut self.tree_bodies {
             if *body == to {
                 *body = NO_PROXY; // removed

@@ -226,7 +226,7 @@ pub(crate) struct Motion {
 
 impl Motion {
     /// Starts a step at positions `pos`.
-    pub fn begin(&mut self, pos: &[Vec2]) {
+    pub(crate) fn begin(&mut self, pos: &[Vec2]) {
         self.start.clear();
         self.start.extend_from_slice(pos);
         self.delta.clear();
@@ -236,7 +236,7 @@ impl Motion {
     }
 
     /// The solver's view of the bodies with velocities `vel`.
-    pub fn bodies<'a>(&'a mut self, vel: &'a mut [Vec2]) -> SolverBodies<'a> {
+    pub(crate) fn bodies<'a>(&'a mut self, vel: &'a mut [Vec2]) -> SolverBodies<'a> {
         SolverBodies {
             vel,
             push: &mut self.push,

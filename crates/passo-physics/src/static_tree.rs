@@ -24,7 +24,7 @@ pub(crate) struct StaticTree {
 
 impl StaticTree {
     /// Builds the tree over `boxes` (the item number is the index).
-    pub fn build(boxes: Vec<Aabb>) -> Self {
+    pub(crate) fn build(boxes: Vec<Aabb>) -> Self {
         let mut tree = Self::default();
         tree.rebuild(boxes);
         tree
@@ -32,7 +32,7 @@ impl StaticTree {
 
     /// Builds the tree again over `boxes`, reusing its buffers (no
     /// allocation once they have grown).
-    pub fn rebuild(&mut self, boxes: impl IntoIterator<Item = Aabb>) {
+    pub(crate) fn rebuild(&mut self, boxes: impl IntoIterator<Item = Aabb>) {
         self.boxes.clear();
         self.boxes.extend(boxes);
         self.items.clear();
@@ -50,7 +50,7 @@ impl StaticTree {
 
     /// Makes room for a tree of `n` items, so rebuilding one no larger
     /// allocates nothing.
-    pub fn reserve(&mut self, n: usize) {
+    pub(crate) fn reserve(&mut self, n: usize) {
         let more = |len: usize, want: usize| want.saturating_sub(len);
         self.boxes.reserve(more(self.boxes.len(), n));
         self.items.reserve(more(self.items.len(), n));
@@ -59,7 +59,7 @@ impl StaticTree {
     }
 
     /// Number of items.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.items.len()
     }
 
@@ -99,7 +99,7 @@ impl StaticTree {
     }
 
     /// Calls `f` with every item whose box overlaps `aabb`, in tree order.
-    pub fn query(&self, aabb: &Aabb, mut f: impl FnMut(u32)) {
+    pub(crate) fn query(&self, aabb: &Aabb, mut f: impl FnMut(u32)) {
         if self.nodes.is_empty() {
             return;
         }
