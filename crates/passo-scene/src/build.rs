@@ -6,9 +6,6 @@ use crate::generate::generate;
 use passo_physics::glam::Vec2;
 use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, ForceModels, World, WorldSettings};
 
-/// Most bodies a scene may make (explicit and generated together).
-pub const MAX_BODIES: usize = 1_000_000;
-
 /// Dynamic bodies without a colour cycle through these (sRGB).
 const PALETTE: [[u8; 4]; 6] = [
     [0xe4, 0x6c, 0x3a, 0xff],

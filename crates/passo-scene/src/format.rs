@@ -13,6 +13,9 @@ use passo_physics::{
 use ron::extensions::Extensions;
 use serde::{Deserialize, Serialize};
 
+/// Most bodies a scene may make (explicit and generated together).
+pub const MAX_BODIES: usize = 1_000_000;
+
 /// A whole scene file. Only `name` is required.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -492,13 +495,10 @@ impl SceneFile {
             g.validate(&c, &path)?;
             total = total.saturating_add(g.count());
         }
-        if total > crate::MAX_BODIES as u64 {
+        if total > MAX_BODIES as u64 {
             return Err(c.fail(
                 "generators",
-                format!(
-                    "make {total} bodies; at most {} are allowed",
-                    crate::MAX_BODIES
-                ),
+                format!("make {total} bodies; at most {} are allowed", MAX_BODIES),
             ));
         }
         Ok(())

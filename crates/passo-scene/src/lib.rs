@@ -27,9 +27,9 @@ mod format;
 mod generate;
 mod save;
 
-pub use build::{BuiltScene, MAX_BODIES, SceneBody};
+pub use build::{BuiltScene, SceneBody};
 pub use error::SceneError;
-pub use format::{BodySpec, Camera, Colour, Forces, Generator, Material, SceneFile};
+pub use format::{BodySpec, Camera, Colour, Forces, Generator, MAX_BODIES, Material, SceneFile};
 pub use save::scene_from_world;
 
 use std::path::Path;
