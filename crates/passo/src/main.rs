@@ -67,7 +67,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Some(Command::Demo(args)) => demo::run(args),
         Some(Command::Replay { file }) => {
-            let replay = demo::replay::Replay::load(&file)?;
+            let replay = demo::Replay::load(&file)?;
             let hash = demo::run_replay(&replay)?;
             println!("{hash:016x}");
             if hash != replay.final_hash {

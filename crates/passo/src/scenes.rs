@@ -5,42 +5,79 @@ use anyhow::{Context, Result, bail};
 use passo_scene::Scene;
 use std::path::{Path, PathBuf};
 
+/// What the demo plots while a scene runs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Plot {
+    /// Total energy of each world.
+    #[default]
+    Energy,
+    /// Speed of each dynamic body, with its terminal speed
+    /// `sqrt(2 m g / (rho Cd A))` as a line.
+    TerminalSpeed,
+}
+
+/// A scene compiled into the binary.
+#[derive(Clone, Copy, Debug)]
+pub struct BuiltIn {
+    /// The name the commands and the demo take.
+    pub name: &'static str,
+    /// The scene file's RON text.
+    pub text: &'static str,
+    /// What the demo plots. Default [`Plot::Energy`].
+    pub plot: Plot,
+}
+
+impl BuiltIn {
+    const fn new(name: &'static str, text: &'static str) -> Self {
+        Self {
+            name,
+            text,
+            plot: Plot::Energy,
+        }
+    }
+
+    const fn plotting(self, plot: Plot) -> Self {
+        Self { plot, ..self }
+    }
+}
+
 /// The scenes in `assets/scenes/`, compiled into the binary so it runs from
-/// anywhere. A test checks that every file there is listed.
-pub const BUILTIN: &[(&str, &str)] = &[
-    (
+/// anywhere, in menu order. A test checks that every file there is listed.
+pub const BUILTIN: &[BuiltIn] = &[
+    BuiltIn::new(
         "playground",
         include_str!("../../../assets/scenes/playground.ron"),
     ),
-    ("rain", include_str!("../../../assets/scenes/rain.ron")),
-    ("stack", include_str!("../../../assets/scenes/stack.ron")),
-    (
+    BuiltIn::new("rain", include_str!("../../../assets/scenes/rain.ron")),
+    BuiltIn::new("stack", include_str!("../../../assets/scenes/stack.ron")),
+    BuiltIn::new(
         "pyramid",
         include_str!("../../../assets/scenes/pyramid.ron"),
     ),
-    (
+    BuiltIn::new(
         "drag_race",
         include_str!("../../../assets/scenes/drag_race.ron"),
-    ),
-    (
+    )
+    .plotting(Plot::TerminalSpeed),
+    BuiltIn::new(
         "tunnelling",
         include_str!("../../../assets/scenes/tunnelling.ron"),
     ),
-    (
+    BuiltIn::new(
         "projectile",
         include_str!("../../../assets/scenes/projectile.ron"),
     ),
-    (
+    BuiltIn::new(
         "drag_fall",
         include_str!("../../../assets/scenes/drag_fall.ron"),
     ),
-    (
+    BuiltIn::new(
         "friction_slide",
         include_str!("../../../assets/scenes/friction_slide.ron"),
     ),
-    ("spring", include_str!("../../../assets/scenes/spring.ron")),
-    ("orbit", include_str!("../../../assets/scenes/orbit.ron")),
-    (
+    BuiltIn::new("spring", include_str!("../../../assets/scenes/spring.ron")),
+    BuiltIn::new("orbit", include_str!("../../../assets/scenes/orbit.ron")),
+    BuiltIn::new(
         "confined",
         include_str!("../../../assets/scenes/confined.ron"),
     ),
@@ -58,7 +95,7 @@ pub fn assets_dir() -> Option<PathBuf> {
 /// rebuild.
 pub fn load(name_or_path: &str) -> Result<Scene> {
     let path = Path::new(name_or_path);
-    if path.extension().is_some_and(|e| e == "ron") || path.components().count() > 1 {
+    if is_path(path) {
         return Scene::load(path).with_context(|| format!("loading scene {}", path.display()));
     }
     if let Some(dir) = assets_dir() {
@@ -67,8 +104,8 @@ pub fn load(name_or_path: &str) -> Result<Scene> {
             return Scene::load(&file).with_context(|| format!("loading scene {}", file.display()));
         }
     }
-    match BUILTIN.iter().find(|(n, _)| *n == name_or_path) {
-        Some((name, text)) => Ok(Scene::parse(text, &format!("{name}.ron (built in)"))?),
+    match BUILTIN.iter().find(|b| b.name == name_or_path) {
+        Some(b) => Ok(Scene::parse(b.text, &format!("{}.ron (built in)", b.name))?),
         None => bail!(
             "no scene named `{name_or_path}`: give a path to a .ron file or one of: {}",
             names().join(", ")
@@ -76,9 +113,32 @@ pub fn load(name_or_path: &str) -> Result<Scene> {
     }
 }
 
+/// Whether [`load`] reads its argument as a path rather than a name.
+fn is_path(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e == "ron") || path.components().count() > 1
+}
+
 /// Names of the built-in scenes, in menu order.
 pub fn names() -> Vec<&'static str> {
-    BUILTIN.iter().map(|(n, _)| *n).collect()
+    BUILTIN.iter().map(|b| b.name).collect()
+}
+
+/// What the demo plots for a scene given as [`load`] takes it: the table's
+/// choice for the built-in scene of that name (a path by its file name,
+/// so `assets/scenes/drag_race.ron` plots as `drag_race`), else
+/// [`Plot::Energy`].
+pub fn plot(name_or_path: &str) -> Plot {
+    let path = Path::new(name_or_path);
+    let name = if is_path(path) {
+        path.file_stem()
+            .map_or(name_or_path.into(), |s| s.to_string_lossy())
+    } else {
+        name_or_path.into()
+    };
+    BUILTIN
+        .iter()
+        .find(|b| b.name == name)
+        .map_or(Plot::Energy, |b| b.plot)
 }
 
 #[cfg(test)]
@@ -100,9 +160,17 @@ mod tests {
         let mut built_in: Vec<String> = names().iter().map(|s| s.to_string()).collect();
         built_in.sort();
         assert_eq!(files, built_in);
-        for (name, text) in BUILTIN {
-            Scene::parse(text, name).unwrap();
+        for b in BUILTIN {
+            Scene::parse(b.text, b.name).unwrap();
         }
+    }
+
+    #[test]
+    fn the_drag_race_plots_terminal_speeds_by_name_or_path() {
+        assert_eq!(plot("drag_race"), Plot::TerminalSpeed);
+        assert_eq!(plot("assets/scenes/drag_race.ron"), Plot::TerminalSpeed);
+        assert_eq!(plot("rain"), Plot::Energy);
+        assert_eq!(plot("elsewhere/custom.ron"), Plot::Energy);
     }
 
     #[test]

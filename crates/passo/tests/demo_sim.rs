@@ -1,8 +1,7 @@
 //! The demo's movements, driven without a window: walk, run, jump only
 //! when standing, slide on ice, glide, wind.
 
-use passo::demo::sim::{Input, Sim};
-use passo::demo::{Entry, load};
+use passo::demo::{Command, Entry, Input, Sim, catalogue, load};
 use passo_physics::glam::Vec2;
 use std::time::Duration;
 
@@ -14,7 +13,7 @@ fn playground() -> Sim {
 
 fn run(sim: &mut Sim, frames: usize, input: Input) {
     for _ in 0..frames {
-        sim.set_input(input);
+        sim.scene.set_input(input);
         sim.frame(FRAME);
     }
 }
@@ -22,13 +21,16 @@ fn run(sim: &mut Sim, frames: usize, input: Input) {
 /// The playground with its player moved to `at`.
 fn playground_with_player_at(at: Vec2) -> Sim {
     let mut sim = playground();
-    let id = sim.player.unwrap();
-    sim.lanes[0].world.set_position(id, at).unwrap();
+    let id = sim.scene.player.unwrap();
+    sim.scene.lanes[0].world.set_position(id, at).unwrap();
     sim
 }
 
 fn player(sim: &Sim) -> passo_physics::Body {
-    sim.lanes[0].world.body(sim.player.unwrap()).unwrap()
+    sim.scene.lanes[0]
+        .world
+        .body(sim.scene.player.unwrap())
+        .unwrap()
 }
 
 #[test]
@@ -112,9 +114,9 @@ fn jumping_works_only_when_standing() {
 fn the_ice_patch_lets_the_player_slide_much_further() {
     let stop_distance = |x: f32| {
         let mut sim = playground_with_player_at(Vec2::new(x, 0.81));
-        let id = sim.player.unwrap();
+        let id = sim.scene.player.unwrap();
         run(&mut sim, 10, Input::default());
-        sim.lanes[0]
+        sim.scene.lanes[0]
             .world
             .set_velocity(id, Vec2::new(5.0, 0.0))
             .unwrap();
@@ -155,8 +157,8 @@ fn gliding_opens_a_large_drag_area_and_falls_slowly() {
 #[test]
 fn wind_pushes_through_drag() {
     let mut sim = playground_with_player_at(Vec2::new(-12.0, 12.0));
-    sim.knobs.wind = true;
-    sim.knobs.wind_speed = 20.0;
+    sim.session.knobs.wind = true;
+    sim.session.knobs.wind_speed = 20.0;
     sim.apply_knobs();
     run(
         &mut sim,
@@ -171,14 +173,20 @@ fn wind_pushes_through_drag() {
 
 #[test]
 fn every_listed_scene_loads_and_the_integrators_differ_as_theory_says() {
-    for (name, entry) in passo::demo::catalogue() {
+    for (name, entry) in catalogue() {
         let mut sim = load(&entry).unwrap_or_else(|e| panic!("{name}: {e}"));
         run(&mut sim, 5, Input::default());
     }
     let mut sim = load(&Entry::Integrators).unwrap();
-    let e0: Vec<f64> = sim.lanes.iter().map(|l| l.world.total_energy()).collect();
+    let e0: Vec<f64> = sim
+        .scene
+        .lanes
+        .iter()
+        .map(|l| l.world.total_energy())
+        .collect();
     run(&mut sim, 300, Input::default());
     let drift: Vec<f64> = sim
+        .scene
         .lanes
         .iter()
         .zip(&e0)
@@ -191,50 +199,50 @@ fn every_listed_scene_loads_and_the_integrators_differ_as_theory_says() {
         "semi-implicit Euler stays bounded: {drift:?}"
     );
     assert!(drift[2].abs() < 0.01 && drift[3].abs() < 0.001, "{drift:?}");
-    assert_eq!(sim.history.series.len(), 4);
-    assert_eq!(sim.history.time.len(), 300);
+    assert_eq!(sim.scene.history.series.len(), 4);
+    assert_eq!(sim.scene.history.time.len(), 300);
 }
 
 #[test]
 fn spawning_and_flinging_bodies() {
     let mut sim = playground();
-    let n = sim.body_count();
+    let n = sim.scene.body_count();
     let id = sim.spawn(Vec2::new(0.0, 10.0), true).unwrap();
-    assert_eq!(sim.body_count(), n + 1);
-    assert_eq!(sim.pick(Vec2::new(0.1, 10.0)), Some(id));
-    assert_eq!(sim.pick(Vec2::new(0.0, 13.0)), None);
-    sim.fling(id, Vec2::new(3.0, 4.0));
+    assert_eq!(sim.scene.body_count(), n + 1);
+    assert_eq!(sim.scene.pick(Vec2::new(0.1, 10.0)), Some(id));
+    assert_eq!(sim.scene.pick(Vec2::new(0.0, 13.0)), None);
+    sim.scene.fling(id, Vec2::new(3.0, 4.0));
     assert_eq!(
-        sim.lanes[0].world.body(id).unwrap().velocity,
+        sim.scene.lanes[0].world.body(id).unwrap().velocity,
         Vec2::new(3.0, 4.0)
     );
     // Scene bodies stay sorted by id for colour lookups.
-    let ids: Vec<_> = sim.lanes[0].bodies.iter().map(|b| b.id).collect();
+    let ids: Vec<_> = sim.scene.lanes[0].bodies.iter().map(|b| b.id).collect();
     assert!(ids.windows(2).all(|w| w[0] < w[1]));
 }
 
 #[test]
 fn the_rain_count_slider_rebuilds_the_scene() {
     let mut sim = load(&Entry::File("rain".into())).unwrap();
-    assert_eq!(sim.rain_count(), Some(2000));
+    assert_eq!(sim.scene.rain_count(), Some(2000));
     sim.set_rain_count(300).unwrap();
-    assert_eq!(sim.rain_count(), Some(300));
-    assert_eq!(sim.lanes[0].world.dynamic_len(), 300);
+    assert_eq!(sim.scene.rain_count(), Some(300));
+    assert_eq!(sim.scene.lanes[0].world.dynamic_len(), 300);
 }
 
 #[test]
 fn a_settled_scene_sleeps_in_the_demo_and_a_slider_wakes_it() {
     let mut sim = load(&Entry::File("stack".into())).unwrap();
     run(&mut sim, 180, Input::default());
-    let (sleeping, solved, contacts) = sim.sleep_counts();
-    let bodies = sim.lanes[0].world.dynamic_len();
+    let (sleeping, solved, contacts) = sim.scene.sleep_counts();
+    let bodies = sim.scene.lanes[0].world.dynamic_len();
     assert_eq!(sleeping, bodies, "every box of the stack sleeps");
     assert_eq!(solved, 0);
     assert!(contacts >= bodies);
     // A slider (new settings) wakes them all.
-    let mut knobs = sim.knobs;
+    let mut knobs = sim.session.knobs;
     knobs.gravity = -5.0;
-    sim.command(passo::demo::replay::Command::Knobs {
+    sim.command(Command::Knobs {
         knobs,
         friction: false,
         restitution: false,
@@ -242,5 +250,51 @@ fn a_settled_scene_sleeps_in_the_demo_and_a_slider_wakes_it() {
     })
     .unwrap();
     run(&mut sim, 1, Input::default());
-    assert_eq!(sim.sleep_counts().0, 0);
+    assert_eq!(sim.scene.sleep_counts().0, 0);
+}
+
+#[test]
+fn a_reset_rebuilds_the_scene_and_keeps_the_session() {
+    for entry in [Entry::File("playground".into()), Entry::Integrators] {
+        let fresh = load(&entry).unwrap();
+        let mut sim = load(&entry).unwrap();
+        let mut knobs = sim.session.knobs;
+        knobs.gravity = -5.0;
+        sim.command(Command::Knobs {
+            knobs,
+            friction: false,
+            restitution: false,
+            drag: false,
+        })
+        .unwrap();
+        sim.command(Command::Spawn {
+            at: [1.0, 4.0],
+            round: true,
+        })
+        .unwrap();
+        sim.scene.set_interpolation(false);
+        run(&mut sim, 30, Input::default());
+        let tick = sim.session.timestep.tick();
+        sim.command(Command::Reset).unwrap();
+        assert_eq!(
+            (sim.scene.body_count(), sim.scene.state_hash()),
+            (fresh.scene.body_count(), fresh.scene.state_hash()),
+            "{entry:?}: bodies back at the start"
+        );
+        assert!(
+            sim.scene.history.time.is_empty(),
+            "{entry:?}: plot restarted"
+        );
+        assert_eq!(sim.session.timestep.tick(), tick, "{entry:?}: loop kept");
+        assert_eq!(sim.session.knobs, knobs, "{entry:?}: sliders kept");
+        for lane in &sim.scene.lanes {
+            let gravity = lane.world.settings().forces.gravity;
+            assert_eq!(
+                gravity,
+                Some(Vec2::new(0.0, -5.0)),
+                "{entry:?}: sliders applied"
+            );
+        }
+        assert!(!sim.scene.interpolation(), "{entry:?}: switch kept");
+    }
 }

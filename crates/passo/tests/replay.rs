@@ -1,9 +1,7 @@
 //! Replays: a run recorded with input by tick plays back to the same final
 //! state, headless or in a window, whatever the frame rate of either.
 
-use passo::demo::replay::{Command, Replay};
-use passo::demo::sim::{Input, Sim};
-use passo::demo::{Entry, load, run_replay};
+use passo::demo::{Command, Entry, Input, Replay, Sim, load, run_replay};
 use std::process::Command as Process;
 use std::time::Duration;
 
@@ -20,17 +18,17 @@ fn script(sim: &mut Sim, frame: Duration) {
         ..Default::default()
     };
     for _ in 0..40 {
-        sim.set_input(walk);
+        sim.scene.set_input(walk);
         sim.frame(next());
     }
-    sim.set_input(Input {
+    sim.scene.set_input(Input {
         right: true,
         jump: true,
         ..Default::default()
     });
     sim.frame(next());
     for _ in 0..30 {
-        sim.set_input(Input {
+        sim.scene.set_input(Input {
             glide: true,
             run: true,
             right: true,
@@ -38,7 +36,7 @@ fn script(sim: &mut Sim, frame: Duration) {
         });
         sim.frame(next());
     }
-    let mut knobs = sim.knobs;
+    let mut knobs = sim.session.knobs;
     knobs.wind = true;
     knobs.wind_speed = -12.0;
     sim.command(Command::Knobs {
@@ -54,10 +52,10 @@ fn script(sim: &mut Sim, frame: Duration) {
     })
     .unwrap();
     for _ in 0..20 {
-        sim.set_input(Input::default());
+        sim.scene.set_input(Input::default());
         sim.frame(next());
     }
-    let ball = sim.lanes[0].world.bodies().last().unwrap().id;
+    let ball = sim.scene.lanes[0].world.bodies().last().unwrap().id;
     sim.command(Command::Fling {
         index: ball.index(),
         generation: ball.generation(),
@@ -66,7 +64,7 @@ fn script(sim: &mut Sim, frame: Duration) {
     .unwrap();
     sim.command(Command::Rate(120.0)).unwrap();
     for _ in 0..30 {
-        sim.set_input(Input {
+        sim.scene.set_input(Input {
             left: true,
             ..Default::default()
         });
@@ -98,13 +96,13 @@ fn a_recorded_run_replays_to_the_same_final_state() {
     for _ in 0..200 {
         sim.frame(Duration::from_micros(33_333));
         // Live input is ignored during playback.
-        sim.set_input(Input {
+        sim.scene.set_input(Input {
             left: true,
             jump: true,
             ..Default::default()
         });
     }
-    let (played, total, result, recorded) = sim.playback_status().unwrap();
+    let (played, total, result, recorded) = sim.session.playback_status().unwrap();
     assert_eq!(
         (played, total),
         (replay.ticks, replay.ticks),

@@ -1,17 +1,20 @@
-//! The window: winit events, the wgpu surface, egui, and the frame loop.
+//! The window: `passo demo`'s options, winit events, the wgpu surface,
+//! egui, and the frame loop.
 
+use super::catalogue::{Entry, catalogue};
+use super::controls::Input;
 use super::replay::{Command, Replay};
-use super::sim::{Input, Sim};
+use super::sim::{Sim, load};
 use super::ui::{self, Actions, ViewOptions};
-use super::{DemoArgs, Entry};
 use crate::draw::{BACKGROUND, DrawOptions, add_world};
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Context, Result, anyhow, bail};
 use glam::Vec2;
 use passo_loop::RealClock;
 use passo_physics::BodyId;
 use passo_render::{
     AdapterChoice, Camera2D, DrawList, Gpu, Renderer, RgbaImage, WindowSurface, read_texture,
 };
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Duration;
 use winit::application::ApplicationHandler;
@@ -20,6 +23,67 @@ use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
+
+/// Options of `passo demo` (and of `passo` with no command).
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct DemoArgs {
+    /// Scene to open first (see `passo scenes`; `integrators` too).
+    #[arg(long)]
+    pub scene: Option<String>,
+    /// Run this many frames, then exit (for tests and recordings).
+    #[arg(long)]
+    pub frames: Option<u64>,
+    /// With --frames: save the last presented frame as a PNG.
+    #[arg(long, requires = "frames")]
+    pub screenshot: Option<PathBuf>,
+    /// Window size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1280x800", value_parser = crate::render_cmd::parse_size)]
+    pub size: (u32, u32),
+    /// Render on the software adapter (Mesa lavapipe).
+    #[arg(long)]
+    pub software: bool,
+    /// Record the player's input and commands from the start, and save the
+    /// replay to this file on exit.
+    #[arg(long, conflicts_with = "replay")]
+    pub record: Option<PathBuf>,
+    /// Play this replay file in the window; with --frames, exit when it ends.
+    #[arg(long)]
+    pub replay: Option<PathBuf>,
+    /// With --frames: resize the window, minimise it (0×0), restore it and
+    /// inject a 400 ms frame along the way (for the window test).
+    #[arg(long, hide = true, requires = "frames")]
+    pub stress: bool,
+}
+
+/// Opens the demo window and runs until it is closed (or `--frames` ran).
+pub fn run(args: DemoArgs) -> Result<()> {
+    let first = Entry::named(args.scene.as_deref().unwrap_or("playground"));
+    // Load the scene before opening a window, so a bad name fails fast.
+    let sim = load(&first)?;
+    let no_display =
+        std::env::var_os("DISPLAY").is_none() && std::env::var_os("WAYLAND_DISPLAY").is_none();
+    let event_loop = match winit::event_loop::EventLoop::new() {
+        Ok(event_loop) => event_loop,
+        Err(e) => bail!(no_display_message(&e.to_string(), no_display)),
+    };
+    let mut app = App::new(args, sim, first);
+    event_loop.run_app(&mut app)?;
+    app.finish()
+}
+
+/// What to say when there is no display to open a window on.
+pub fn no_display_message(detail: &str, no_display: bool) -> String {
+    let why = if no_display {
+        "no display: neither DISPLAY nor WAYLAND_DISPLAY is set".to_owned()
+    } else {
+        format!("cannot open a window ({detail})")
+    };
+    format!(
+        "{why}. The demo needs a window; without one use the headless commands: \
+         `passo simulate SCENE --ticks N`, `passo render SCENE --out FILE.png`, `passo bench`. \
+         To run the demo on a machine without a screen, use a virtual one: `xvfb-run -a passo`."
+    )
+}
 
 /// Keys the game reads every tick.
 #[derive(Clone, Copy, Debug, Default)]
@@ -100,7 +164,7 @@ struct Running {
 }
 
 /// The winit application.
-pub struct App {
+struct App {
     args: DemoArgs,
     pending: Option<(Sim, Entry)>,
     running: Option<Running>,
@@ -113,7 +177,7 @@ pub struct App {
 }
 
 impl App {
-    pub fn new(args: DemoArgs, sim: Sim, entry: Entry) -> Self {
+    fn new(args: DemoArgs, sim: Sim, entry: Entry) -> Self {
         Self {
             args,
             pending: Some((sim, entry)),
@@ -129,7 +193,7 @@ impl App {
 
     /// After the event loop: report an error, write the screenshot, print
     /// the summary.
-    pub fn finish(mut self) -> Result<()> {
+    fn finish(mut self) -> Result<()> {
         if let Some(e) = self.error.take() {
             return Err(e);
         }
@@ -168,12 +232,12 @@ impl App {
         let (sim, entry) = self.pending.take().expect("started once");
         let (w, h) = self.args.size;
         let attributes = Window::default_attributes()
-            .with_title(format!("Passo: {}", sim.name))
+            .with_title(format!("Passo: {}", sim.scene.name))
             .with_inner_size(PhysicalSize::new(w, h));
         let window = Arc::new(
             event_loop
                 .create_window(attributes)
-                .map_err(|e| anyhow!(super::no_display_message(&e.to_string(), false)))?,
+                .map_err(|e| anyhow!(no_display_message(&e.to_string(), false)))?,
         );
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
@@ -224,7 +288,7 @@ impl App {
             },
             sim,
             entry,
-            catalogue: super::catalogue(),
+            catalogue: catalogue(),
             camera: Camera2D::default(),
             camera_moved: false,
             list: DrawList::new(BACKGROUND),
@@ -242,8 +306,8 @@ impl App {
         let r = self.running.as_mut().expect("just made");
         if let Some(path) = &self.args.replay {
             let replay = Replay::load(path)?;
-            r.sim = super::load(&super::entry_named(&replay.scene))?;
-            r.entry = super::entry_named(&replay.scene);
+            r.entry = Entry::named(&replay.scene);
+            r.sim = load(&r.entry)?;
             r.sim.start_playback(replay)?;
         } else if r.record_to.is_some() {
             r.sim.start_recording()?;
@@ -292,6 +356,7 @@ impl ApplicationHandler for App {
                 }
                 let replay_done = self.args.replay.is_some()
                     && r.sim
+                        .session
                         .playback_status()
                         .is_some_and(|(_, _, result, _)| result.is_some());
                 if let Some(n) = self.args.frames {
@@ -374,7 +439,7 @@ impl Running {
             KeyCode::KeyG => self.keys.glide = down,
             KeyCode::Space if down && !repeat => self.keys.jump = true,
             KeyCode::KeyW if down && !repeat => {
-                let mut knobs = self.sim.knobs;
+                let mut knobs = self.sim.session.knobs;
                 knobs.wind = !knobs.wind;
                 let command = Command::Knobs {
                     knobs,
@@ -388,13 +453,13 @@ impl Running {
                 });
             }
             KeyCode::KeyP if down && !repeat => {
-                if self.sim.timestep.is_paused() {
-                    self.sim.timestep.resume();
+                if self.sim.session.timestep.is_paused() {
+                    self.sim.session.timestep.resume();
                 } else {
-                    self.sim.timestep.pause();
+                    self.sim.session.timestep.pause();
                 }
             }
-            KeyCode::KeyN if down => self.sim.timestep.step_once(),
+            KeyCode::KeyN if down => self.sim.session.timestep.step_once(),
             KeyCode::KeyR if down && !repeat => self.act(Actions {
                 commands: vec![Command::Reset],
                 ..Default::default()
@@ -410,7 +475,7 @@ impl Running {
             .camera
             .pixel_to_world(self.mouse.at, self.surface.size());
         match (button, down) {
-            (MouseButton::Left, true) => match self.sim.pick(world_at) {
+            (MouseButton::Left, true) => match self.sim.scene.pick(world_at) {
                 Some(id) => self.mouse.fling = Some((id, world_at)),
                 None => {
                     let command = Command::Spawn {
@@ -446,11 +511,12 @@ impl Running {
     fn act(&mut self, actions: Actions) {
         let mut result = Ok(());
         if let Some(entry) = actions.switch_to {
-            result = super::load(&entry).map(|sim| {
+            result = load(&entry).map(|sim| {
                 self.sim = sim;
                 self.entry = entry;
                 self.camera_moved = false;
-                self.window.set_title(&format!("Passo: {}", self.sim.name));
+                self.window
+                    .set_title(&format!("Passo: {}", self.sim.scene.name));
             });
         }
         for command in actions.commands {
@@ -488,7 +554,7 @@ impl Running {
     fn fit_camera(&mut self) {
         let (w, h) = self.surface.size();
         let free = ((w as f32 - self.panel_px).max(1.0) as u32, h);
-        let b = self.sim.bounds;
+        let b = self.sim.scene.bounds;
         let mut camera = Camera2D::fit(b.min, b.max, free);
         camera.centre.x -= 0.5 * self.panel_px * camera.pixel_size((w, h));
         self.camera = camera;
@@ -500,7 +566,7 @@ impl Running {
     fn redraw(&mut self, capture: bool) -> Result<Option<Option<RgbaImage>>> {
         let frame_time = self.clock.frame_time();
         let frame_time = self.hitch.take().unwrap_or(frame_time);
-        self.sim.set_input(Input {
+        self.sim.scene.set_input(Input {
             left: self.keys.left,
             right: self.keys.right,
             run: self.keys.run,
@@ -554,9 +620,9 @@ impl Running {
                     .texture
                     .create_view(&wgpu::TextureViewDescriptor::default());
                 self.list.clear(BACKGROUND);
-                for lane in &self.sim.lanes {
+                for lane in &self.sim.scene.lanes {
                     let options = DrawOptions {
-                        alpha: self.sim.stats.alpha,
+                        alpha: self.sim.session.stats.alpha,
                         velocity_vectors: self.view.velocities,
                         force_vectors: self.view.forces,
                         contact_normals: self.view.contacts,
@@ -617,7 +683,7 @@ impl Running {
     /// hash and how a replay ended.
     fn summary(&self, presented: u64, skipped: u64) -> String {
         let (w, h) = self.surface.size();
-        let replay = match self.sim.playback_status() {
+        let replay = match self.sim.session.playback_status() {
             Some((_, _, Some(hash), recorded)) if hash == recorded => "; replay matched",
             Some((_, _, Some(_), _)) => "; replay differed",
             Some((_, _, None, _)) => "; replay unfinished",
@@ -626,12 +692,12 @@ impl Running {
         format!(
             "presented {presented} frames; skipped {skipped}; ticks {}; dropped {:.3} s; window {w}x{h}; \
              camera centre ({}, {}) height {}; hash {:016x}{replay}",
-            self.sim.timestep.tick(),
-            self.sim.timestep.dropped_total().as_secs_f64(),
+            self.sim.session.timestep.tick(),
+            self.sim.session.timestep.dropped_total().as_secs_f64(),
             self.camera.centre.x,
             self.camera.centre.y,
             self.camera.height,
-            self.sim.state_hash()
+            self.sim.scene.state_hash()
         )
     }
 }

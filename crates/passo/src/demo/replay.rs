@@ -1,7 +1,7 @@
 //! Replays: the player's input and the panel's commands by tick, so a run
 //! can be played again, in the window or headless, to the same bits.
 
-use super::sim::{Input, Knobs};
+use super::controls::{Input, Knobs};
 use passo_physics::Integrator;
 use serde::{Deserialize, Serialize};
 
@@ -86,24 +86,4 @@ impl Replay {
         use anyhow::Context;
         std::fs::write(path, self.to_ron()).with_context(|| format!("writing {}", path.display()))
     }
-}
-
-/// A recording in progress.
-#[derive(Clone, Debug)]
-pub(crate) struct Recorder {
-    pub start: u64,
-    pub inputs: Vec<(u64, Input)>,
-    pub commands: Vec<(u64, Command)>,
-}
-
-/// A replay being played.
-#[derive(Clone, Debug)]
-pub(crate) struct Playback {
-    pub replay: Replay,
-    pub start: u64,
-    pub next_input: usize,
-    pub next_command: usize,
-    pub input: Input,
-    /// The hash after the last tick, once played.
-    pub result: Option<u64>,
 }

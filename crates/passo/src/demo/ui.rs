@@ -1,7 +1,8 @@
 //! The demo's panel (egui): scenes, loop controls, force sliders, stats,
 //! a live plot and the controls' help.
 
-use super::Entry;
+use super::catalogue::Entry;
+use super::controls::Knobs;
 use super::replay::Command;
 use super::sim::Sim;
 use egui::{Color32, Slider, Stroke};
@@ -102,8 +103,8 @@ fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actio
                 }
             }
         });
-    ui.label(egui::RichText::new(&sim.description).italics());
-    if let Some(count) = sim.rain_count() {
+    ui.label(egui::RichText::new(&sim.scene.description).italics());
+    if let Some(count) = sim.scene.rain_count() {
         let mut n = count;
         let response = ui.add(
             Slider::new(&mut n, 100..=20_000)
@@ -115,7 +116,7 @@ fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actio
         }
     }
     ui.horizontal(|ui| {
-        if sim.is_recording() {
+        if sim.session.is_recording() {
             ui.colored_label(Color32::from_rgb(240, 90, 90), "● recording");
             actions.stop_recording |= ui.button("stop and save").clicked();
         } else {
@@ -125,7 +126,7 @@ fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actio
                 .clicked();
         }
     });
-    if let Some((played, total, result, recorded)) = sim.playback_status() {
+    if let Some((played, total, result, recorded)) = sim.session.playback_status() {
         let text = match result {
             None => format!("replaying: tick {played} of {total}"),
             Some(h) if h == recorded => {
@@ -145,22 +146,22 @@ fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actio
 fn loop_section(ui: &mut egui::Ui, sim: &mut Sim, actions: &mut Actions) {
     ui.label(egui::RichText::new("Loop").strong());
     ui.horizontal(|ui| {
-        let paused = sim.timestep.is_paused();
+        let paused = sim.session.timestep.is_paused();
         if ui.button(if paused { "resume" } else { "pause" }).clicked() {
             if paused {
-                sim.timestep.resume();
+                sim.session.timestep.resume();
             } else {
-                sim.timestep.pause();
+                sim.session.timestep.pause();
             }
         }
         if ui.add_enabled(paused, egui::Button::new("step")).clicked() {
-            sim.timestep.step_once();
+            sim.session.timestep.step_once();
         }
         if ui.button("reset").clicked() {
             actions.commands.push(Command::Reset);
         }
     });
-    let mut scale = sim.timestep.time_scale();
+    let mut scale = sim.session.timestep.time_scale();
     if ui
         .add(
             Slider::new(&mut scale, 0.05..=4.0)
@@ -169,9 +170,9 @@ fn loop_section(ui: &mut egui::Ui, sim: &mut Sim, actions: &mut Actions) {
         )
         .changed()
     {
-        let _ = sim.timestep.set_time_scale(scale);
+        let _ = sim.session.timestep.set_time_scale(scale);
     }
-    let mut hz = sim.timestep.hz();
+    let mut hz = sim.session.timestep.hz();
     egui::ComboBox::from_label("fixed rate")
         .selected_text(format!("{hz:.0} Hz"))
         .show_ui(ui, |ui| {
@@ -179,18 +180,18 @@ fn loop_section(ui: &mut egui::Ui, sim: &mut Sim, actions: &mut Actions) {
                 ui.selectable_value(&mut hz, rate, format!("{rate:.0} Hz"));
             }
         });
-    if (hz - sim.timestep.hz()).abs() > 1e-6 {
+    if (hz - sim.session.timestep.hz()).abs() > 1e-6 {
         actions.commands.push(Command::Rate(hz));
     }
-    let mut interpolation = sim.interpolation();
+    let mut interpolation = sim.scene.interpolation();
     if ui
         .checkbox(&mut interpolation, "interpolate drawing")
         .changed()
     {
-        sim.set_interpolation(interpolation);
+        sim.scene.set_interpolation(interpolation);
     }
-    if !sim.fixed_integrators {
-        let mut integrator = sim.integrator();
+    if !sim.scene.fixed_integrators {
+        let mut integrator = sim.scene.integrator();
         egui::ComboBox::from_label("integrator")
             .selected_text(integrator.name())
             .show_ui(ui, |ui| {
@@ -198,7 +199,7 @@ fn loop_section(ui: &mut egui::Ui, sim: &mut Sim, actions: &mut Actions) {
                     ui.selectable_value(&mut integrator, i, i.name());
                 }
             });
-        if integrator != sim.integrator() {
+        if integrator != sim.scene.integrator() {
             actions.commands.push(Command::Integrator(integrator));
         }
     }
@@ -206,7 +207,7 @@ fn loop_section(ui: &mut egui::Ui, sim: &mut Sim, actions: &mut Actions) {
 
 fn forces_section(ui: &mut egui::Ui, sim: &Sim, actions: &mut Actions) {
     ui.label(egui::RichText::new("Forces").strong());
-    let mut k = sim.knobs;
+    let mut k = sim.session.knobs;
     let mut changed = false;
     changed |= ui
         .add(Slider::new(&mut k.gravity, -30.0..=0.0).text("gravity (m/s²)"))
@@ -225,7 +226,7 @@ fn forces_section(ui: &mut egui::Ui, sim: &Sim, actions: &mut Actions) {
         .changed();
     changed |= ui
         .add(
-            Slider::new(&mut k.max_speed, 1.0..=1000.0)
+            Slider::new(&mut k.max_speed, Knobs::MAX_SPEED_RANGE)
                 .logarithmic(true)
                 .text("max speed (m/s)"),
         )
@@ -243,7 +244,7 @@ fn forces_section(ui: &mut egui::Ui, sim: &Sim, actions: &mut Actions) {
     let restitution = ui
         .add(Slider::new(&mut k.restitution, 0.0..=1.0).text("restitution"))
         .changed();
-    if sim.has_contacts() {
+    if sim.scene.has_contacts() {
         changed |= ui
             .checkbox(&mut k.continuous, "continuous collision")
             .changed();
@@ -266,7 +267,7 @@ fn forces_section(ui: &mut egui::Ui, sim: &Sim, actions: &mut Actions) {
 
 fn stats_section(ui: &mut egui::Ui, sim: &Sim, fps: f64) {
     ui.label(egui::RichText::new("Stats").strong());
-    let s = sim.stats;
+    let s = sim.session.stats;
     egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
         let mut row = |name: &str, value: String| {
             ui.label(name);
@@ -278,15 +279,15 @@ fn stats_section(ui: &mut egui::Ui, sim: &Sim, fps: f64) {
         row("dropped time", format_duration(s.dropped));
         row(
             "dropped in all",
-            format_duration(sim.timestep.dropped_total()),
+            format_duration(sim.session.timestep.dropped_total()),
         );
         row("step time", format!("{:.2} ms", s.step_ms));
-        row("bodies", sim.body_count().to_string());
-        let (sleeping, solved, contacts) = sim.sleep_counts();
+        row("bodies", sim.scene.body_count().to_string());
+        let (sleeping, solved, contacts) = sim.scene.sleep_counts();
         row("sleeping bodies", sleeping.to_string());
         row("contacts solved", format!("{solved} of {contacts}"));
-        row("total energy", format!("{:.2} J", sim.energy()));
-        row("tick", sim.timestep.tick().to_string());
+        row("total energy", format!("{:.2} J", sim.scene.energy()));
+        row("tick", sim.session.timestep.tick().to_string());
     });
 }
 
@@ -306,7 +307,7 @@ const SERIES: [Color32; 6] = [
 
 /// A line chart of the history, drawn with egui's painter.
 fn plot(ui: &mut egui::Ui, sim: &Sim) {
-    let h = &sim.history;
+    let h = &sim.scene.history;
     ui.label(&h.title);
     let (rect, _) = ui.allocate_exact_size(
         egui::vec2(ui.available_width(), 130.0),
@@ -406,14 +407,14 @@ pub fn lane_labels(
     size: (u32, u32),
     pixels_per_point: f32,
 ) {
-    if sim.lanes.len() < 2 {
+    if sim.scene.lanes.len() < 2 {
         return;
     }
     let painter = ui.ctx().layer_painter(egui::LayerId::new(
         egui::Order::Foreground,
         egui::Id::unique("lane labels"),
     ));
-    for (i, lane) in sim.lanes.iter().enumerate() {
+    for (i, lane) in sim.scene.lanes.iter().enumerate() {
         let below = lane.offset + glam::Vec2::new(0.0, -2.2);
         let px = camera.world_to_pixel(below, size) / pixels_per_point;
         painter.text(

@@ -1,0 +1,164 @@
+//! What the player and the panel control: the keys held this tick
+//! ([`Input`]), the panel's sliders ([`Knobs`]), and the controller that
+//! turns the keys into forces on the player's body.
+
+use glam::Vec2;
+use passo_physics::constants::DEFAULT_MAX_SPEED;
+use passo_physics::{BodyDef, BodyId, BodyKind, QuadraticDrag, World, WorldSettings};
+use serde::{Deserialize, Serialize};
+use std::ops::RangeInclusive;
+
+/// The keys held or pressed this frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Input {
+    /// Walk left (A or Left).
+    pub left: bool,
+    /// Walk right (D or Right).
+    pub right: bool,
+    /// Run instead of walking (Shift).
+    pub run: bool,
+    /// Glide: open a large drag area (hold G).
+    pub glide: bool,
+    /// Jump (Space) was pressed since the last tick.
+    pub jump: bool,
+}
+
+/// Values of the panel's sliders, applied to every lane when changed.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Knobs {
+    /// Vertical gravity, m/s² (0 turns gravity off).
+    pub gravity: f32,
+    /// Friction coefficient of every dynamic body.
+    pub friction: f32,
+    /// Air density, kg/m³ (0 turns quadratic drag off).
+    pub density: f32,
+    /// Multiplier of every body's drag area.
+    pub drag_scale: f32,
+    /// Restitution of every dynamic body.
+    pub restitution: f32,
+    /// Minimum speed, m/s.
+    pub min_speed: f32,
+    /// Maximum speed, m/s.
+    pub max_speed: f32,
+    /// Wind on.
+    pub wind: bool,
+    /// Wind speed along +x, m/s.
+    pub wind_speed: f32,
+    /// Continuous collision on.
+    pub continuous: bool,
+    /// Sleeping on (resting islands are not solved until woken).
+    #[serde(default = "yes")]
+    pub sleeping: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// The wind slider's speed in a scene without wind, m/s along +x.
+const CALM_WIND_SPEED: f32 = 8.0;
+
+impl Knobs {
+    /// The max-speed slider's range, m/s: it tops out at the library's
+    /// default cap, and a scene without a cap shows that.
+    pub const MAX_SPEED_RANGE: RangeInclusive<f32> = 1.0..=DEFAULT_MAX_SPEED;
+
+    /// The sliders as `world` is set up: its force models and speed limits,
+    /// and the friction and restitution of its first dynamic body (the
+    /// library's [`BodyDef`] defaults without one).
+    pub fn of(world: &World) -> Self {
+        let s = world.settings();
+        let f = &s.forces;
+        let def = BodyDef::default();
+        let first = world.bodies().find(|b| b.kind == BodyKind::Dynamic);
+        Self {
+            gravity: f.gravity.map_or(0.0, |g| g.y),
+            friction: first.map_or(def.friction, |b| b.friction),
+            density: f.quadratic_drag.map_or(0.0, |d| d.density),
+            drag_scale: 1.0,
+            restitution: first.map_or(def.restitution, |b| b.restitution),
+            min_speed: s.min_speed,
+            max_speed: s.max_speed.min(*Self::MAX_SPEED_RANGE.end()),
+            wind: f.air_velocity != Vec2::ZERO,
+            wind_speed: if f.air_velocity.x != 0.0 {
+                f.air_velocity.x
+            } else {
+                CALM_WIND_SPEED
+            },
+            continuous: s.contacts.is_none_or(|c| c.continuous),
+            sleeping: s.contacts.is_none_or(|c| c.sleeping),
+        }
+    }
+
+    /// `settings` with the sliders' force models, speed limits and contact
+    /// switches.
+    pub fn applied_to(&self, settings: WorldSettings) -> WorldSettings {
+        let mut s = settings;
+        s.forces.gravity = (self.gravity != 0.0).then_some(Vec2::new(0.0, self.gravity));
+        s.forces.quadratic_drag = (self.density > 0.0).then_some(QuadraticDrag {
+            density: self.density,
+        });
+        s.forces.air_velocity = if self.wind {
+            Vec2::new(self.wind_speed, 0.0)
+        } else {
+            Vec2::ZERO
+        };
+        s.min_speed = self.min_speed;
+        s.max_speed = self.max_speed;
+        if let Some(c) = &mut s.contacts {
+            c.continuous = self.continuous;
+            c.sleeping = self.sleeping;
+        }
+        s
+    }
+}
+
+/// Target walking speed, m/s.
+const WALK_SPEED: f32 = 4.5;
+/// Target running speed, m/s.
+const RUN_SPEED: f32 = 9.0;
+/// Acceleration beyond what kinetic friction takes, m/s².
+const WALK_ACCELERATION: f32 = 8.0;
+/// Time to close the gap to the target speed, s (before the force cap).
+const WALK_RESPONSE: f32 = 0.15;
+/// Upward speed a jump gives, m/s.
+const JUMP_SPEED: f32 = 6.5;
+/// How much of the contact normal must point up to count as standing.
+const STANDING_NORMAL_Y: f32 = 0.8;
+/// Drag-area multiplier while gliding.
+const GLIDE_DRAG: f32 = 40.0;
+
+/// Moves the player: walk and run by pushing against friction, jump only
+/// when standing, glide with a large drag area (`base_drag`, the body's
+/// scene drag area, scaled by the drag slider). Consumes a pending jump.
+pub fn drive_player(
+    world: &mut World,
+    player: BodyId,
+    input: &mut Input,
+    knobs: &Knobs,
+    base_drag: Option<f32>,
+) {
+    let jump = std::mem::replace(&mut input.jump, false);
+    let Some(body) = world.body(player) else {
+        return;
+    };
+    let m = body.mass;
+    let standing = world.is_standing(player, STANDING_NORMAL_Y);
+    let dir = f32::from(u8::from(input.right)) - f32::from(u8::from(input.left));
+    if dir != 0.0 {
+        let target = dir * if input.run { RUN_SPEED } else { WALK_SPEED };
+        // Enough to overcome kinetic friction and accelerate.
+        let g = knobs.gravity.abs();
+        let max = m * (body.friction * g + WALK_ACCELERATION);
+        let push = (m * (target - body.velocity.x) / WALK_RESPONSE).clamp(-max, max);
+        let _ = world.apply_force(player, Vec2::new(push, 0.0));
+    }
+    if jump && standing {
+        let _ = world.apply_impulse(player, Vec2::new(0.0, m * JUMP_SPEED));
+    }
+    if let Some(base) = base_drag {
+        let open = input.glide && !standing;
+        let area = base * knobs.drag_scale * if open { GLIDE_DRAG } else { 1.0 };
+        let _ = world.set_drag_area(player, area);
+    }
+}

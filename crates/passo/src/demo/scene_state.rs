@@ -1,0 +1,297 @@
+//! The state of the scene a demo runs: its lanes, the player and the
+//! input for the next tick, the plot. A reset or a new rain count builds a
+//! fresh one from the scene's source; what outlives that is in the
+//! [`Session`](super::session::Session).
+
+use super::controls::{self, Input, Knobs};
+use super::history::History;
+use super::lanes::{Lane, integrator_lanes};
+use crate::scenes::Plot;
+use anyhow::Result;
+use glam::Vec2;
+use passo_physics::{Aabb, BodyId, BodyKind, Integrator};
+use passo_scene::{Generator, Scene, SceneFile};
+
+/// FNV-1a's 64-bit offset basis, the start of [`SceneState::state_hash`]
+/// (the constants `World::state_hash` uses).
+const FNV_OFFSET_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
+/// FNV-1a's 64-bit prime.
+const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
+
+/// A scene being run: everything a reset rebuilds.
+#[derive(Debug)]
+pub struct SceneState {
+    /// Scene name.
+    pub name: String,
+    /// One-line description.
+    pub description: String,
+    /// The worlds (several only for side-by-side comparisons).
+    pub lanes: Vec<Lane>,
+    /// The region to show at first.
+    pub bounds: Aabb,
+    /// The body the keyboard moves, in lane 0.
+    pub player: Option<BodyId>,
+    /// Whether each lane has its own integrator (the integrator picker is off).
+    pub fixed_integrators: bool,
+    /// The plot.
+    pub history: History,
+    /// The scene file, to rebuild (reset, body count) from; `None` for the
+    /// integrator comparison.
+    pub file: Option<SceneFile>,
+    /// Game input for the next tick (jump is consumed by it).
+    input: Input,
+}
+
+impl SceneState {
+    /// The state of a scene file, with interpolated drawing on and the
+    /// plot the scene table chose.
+    pub fn from_scene(scene: &Scene, plot: Plot) -> Result<Self> {
+        let built = scene.build()?;
+        let file = scene.file.clone();
+        let player = built.body_named("player");
+        let lanes = vec![Lane::new(
+            String::new(),
+            built.world,
+            built.bodies,
+            Vec2::ZERO,
+        )];
+        let mut state = Self {
+            name: file.name.clone(),
+            description: file.description.clone(),
+            history: History::new(plot, &lanes),
+            lanes,
+            bounds: built.camera,
+            player,
+            fixed_integrators: false,
+            file: Some(file),
+            input: Input::default(),
+        };
+        state.set_interpolation(true);
+        Ok(state)
+    }
+
+    /// The same spring under each integrator side by side.
+    pub fn integrators() -> Self {
+        let lanes = integrator_lanes();
+        Self {
+            name: "Integrators".into(),
+            description:
+                "One spring (period 1 s) under each integrator: explicit Euler gains energy, \
+                          semi-implicit Euler keeps it bounded, Verlet and RK4 follow the cosine."
+                    .into(),
+            history: History::new(Plot::Energy, &lanes),
+            lanes,
+            bounds: Aabb {
+                min: Vec2::new(-6.5, -3.0),
+                max: Vec2::new(6.5, 3.0),
+            },
+            player: None,
+            fixed_integrators: true,
+            file: None,
+            input: Input::default(),
+        }
+    }
+
+    /// A fresh state from the same source (`file` replacing the scene file,
+    /// if given), with the sliders applied and this state's integrator and
+    /// interpolation switch kept.
+    pub(crate) fn rebuilt(&self, file: Option<SceneFile>, knobs: &Knobs) -> Result<Self> {
+        let mut fresh = match file.or_else(|| self.file.clone()) {
+            Some(file) => {
+                let scene = Scene {
+                    file,
+                    source: self.name.clone(),
+                };
+                scene.file.validate(&scene.source)?;
+                Self::from_scene(&scene, self.history.plot())?
+            }
+            None => Self::integrators(),
+        };
+        fresh.apply_knobs(knobs);
+        fresh.set_integrator(self.integrator());
+        fresh.set_interpolation(self.interpolation());
+        Ok(fresh)
+    }
+
+    /// The game input for the coming ticks; a jump stays pending until a
+    /// tick takes it.
+    pub fn set_input(&mut self, input: Input) {
+        let jump = self.input.jump || input.jump;
+        self.input = Input { jump, ..input };
+    }
+
+    /// The input the next tick uses.
+    pub(crate) fn input(&self) -> Input {
+        self.input
+    }
+
+    /// Replaces the input outright (a replayed one).
+    pub(crate) fn replace_input(&mut self, input: Input) {
+        self.input = input;
+    }
+
+    /// Steps every lane by `dt` seconds after the player's controls, then
+    /// samples the plot at simulated time `t`.
+    pub(crate) fn step(&mut self, dt: f32, t: f32, knobs: &Knobs) {
+        if let Some(player) = self.player {
+            let lane = &mut self.lanes[0];
+            let base_drag = lane.base_drag(player);
+            controls::drive_player(&mut lane.world, player, &mut self.input, knobs, base_drag);
+        }
+        for lane in &mut self.lanes {
+            lane.world.step(dt);
+        }
+        self.history.sample(t, &self.lanes);
+    }
+
+    /// Applies the sliders' settings to every lane.
+    pub(crate) fn apply_knobs(&mut self, knobs: &Knobs) {
+        for lane in &mut self.lanes {
+            lane.apply_knobs(knobs);
+        }
+        self.update_reference_lines(knobs);
+    }
+
+    /// Recomputes the plot's reference lines for the sliders' gravity and
+    /// air density.
+    pub(crate) fn update_reference_lines(&mut self, knobs: &Knobs) {
+        self.history
+            .update_lines(&self.lanes, knobs.gravity, knobs.density);
+    }
+
+    /// Sets the friction of every dynamic body.
+    pub(crate) fn apply_friction(&mut self, mu: f32) {
+        for lane in &mut self.lanes {
+            lane.for_each_dynamic(|w, id| w.set_friction(id, mu));
+        }
+    }
+
+    /// Sets the restitution of every dynamic body.
+    pub(crate) fn apply_restitution(&mut self, e: f32) {
+        for lane in &mut self.lanes {
+            lane.for_each_dynamic(|w, id| w.set_restitution(id, e));
+        }
+    }
+
+    /// Scales every dynamic body's scene drag area.
+    pub(crate) fn apply_drag_scale(&mut self, knobs: &Knobs) {
+        for lane in &mut self.lanes {
+            lane.scale_drag(knobs.drag_scale);
+        }
+        self.update_reference_lines(knobs);
+    }
+
+    /// The integrator of every lane (unless each lane has its own).
+    pub fn set_integrator(&mut self, integrator: Integrator) {
+        if self.fixed_integrators {
+            return;
+        }
+        for lane in &mut self.lanes {
+            lane.update_settings(|s| s.integrator = integrator);
+        }
+    }
+
+    /// The integrator of lane 0.
+    pub fn integrator(&self) -> Integrator {
+        self.lanes[0].world.settings().integrator
+    }
+
+    /// Whether the worlds keep previous positions for interpolated drawing.
+    pub fn interpolation(&self) -> bool {
+        self.lanes[0].world.settings().interpolation
+    }
+
+    /// Turns interpolated drawing on or off.
+    pub fn set_interpolation(&mut self, on: bool) {
+        for lane in &mut self.lanes {
+            lane.update_settings(|s| s.interpolation = on);
+        }
+    }
+
+    /// Whether the scene solves contacts (the continuous-collision switch applies).
+    pub fn has_contacts(&self) -> bool {
+        self.lanes
+            .iter()
+            .any(|l| l.world.settings().contacts.is_some())
+    }
+
+    /// Bodies in every lane.
+    pub fn body_count(&self) -> usize {
+        self.lanes.iter().map(|l| l.world.len()).sum()
+    }
+
+    /// Sleeping bodies, contacts solved in the last step, and all contacts,
+    /// over every lane.
+    pub fn sleep_counts(&self) -> (usize, usize, usize) {
+        self.lanes.iter().fold((0, 0, 0), |(s, v, c), l| {
+            let w = &l.world;
+            (
+                s + w.sleeping_len(),
+                v + w.solved_contacts(),
+                c + w.contacts().count(),
+            )
+        })
+    }
+
+    /// Total energy of every lane, joules.
+    pub fn energy(&self) -> f64 {
+        self.lanes.iter().map(|l| l.world.total_energy()).sum()
+    }
+
+    /// A 64-bit hash of every lane's state: FNV-1a over the lanes'
+    /// `World::state_hash` words.
+    pub fn state_hash(&self) -> u64 {
+        self.lanes.iter().fold(FNV_OFFSET_BASIS, |h, l| {
+            (h ^ l.world.state_hash()).wrapping_mul(FNV_PRIME)
+        })
+    }
+
+    /// The dynamic body under a world point (lane 0), if any.
+    pub fn pick(&self, at: Vec2) -> Option<BodyId> {
+        let lane = &self.lanes[0];
+        lane.world
+            .query_point(at - lane.offset)
+            .into_iter()
+            .find(|&id| {
+                lane.world
+                    .body(id)
+                    .is_some_and(|b| b.kind == BodyKind::Dynamic)
+            })
+    }
+
+    /// The body of lane 0 with this slot index and generation, if it lives.
+    pub(crate) fn body_with(&self, index: u32, generation: u32) -> Option<BodyId> {
+        self.lanes[0]
+            .world
+            .bodies()
+            .map(|b| b.id)
+            .find(|id| id.index() == index && id.generation() == generation)
+    }
+
+    /// Sets a body's velocity (a fling).
+    pub fn fling(&mut self, id: BodyId, velocity: Vec2) {
+        if let Err(e) = self.lanes[0].world.set_velocity(id, velocity) {
+            log::warn!("fling refused: {e}");
+        }
+    }
+
+    /// Number of bodies of the scene's rain generator, if it has one.
+    pub fn rain_count(&self) -> Option<u32> {
+        self.file.as_ref()?.generators.iter().find_map(|g| match g {
+            Generator::Rain { count, .. } => Some(*count),
+            _ => None,
+        })
+    }
+
+    /// The scene file with `n` bodies (at least 1) in its rain generators,
+    /// if the scene has a file.
+    pub(crate) fn file_with_rain(&self, n: u32) -> Option<SceneFile> {
+        let mut file = self.file.clone()?;
+        for g in &mut file.generators {
+            if let Generator::Rain { count, .. } = g {
+                *count = n.max(1);
+            }
+        }
+        Some(file)
+    }
+}
