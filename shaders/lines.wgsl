@@ -1,8 +1,9 @@
 // Instanced line segments (debug vectors, contact normals, arrow shafts
 // and heads): each is a quad around the segment whose fragment shader
 // evaluates the distance to the segment, for an anti-aliased line of a
-// width in pixels at any zoom. Mirrors `LineInstance` in
-// crates/passo-render/src/draw_list.rs field for field.
+// width in pixels at any zoom. Mirrors `Globals` (crates/passo-render/src/renderer.rs)
+// and `LineInstance` (crates/passo-render/src/draw_list.rs) field for field;
+// crates/passo-render/tests/shaders.rs compares the layouts.
 
 struct Globals {
     centre: vec2<f32>,

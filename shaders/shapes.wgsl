@@ -1,7 +1,8 @@
 // Instanced shapes: every circle and box is a quad whose fragment shader
 // evaluates the shape's signed distance, giving an anti-aliased edge and an
-// outline at any zoom. Mirrors `Globals` and `ShapeInstance` in
-// crates/passo-render/src/draw_list.rs field for field.
+// outline at any zoom. Mirrors `Globals` (crates/passo-render/src/renderer.rs)
+// and `ShapeInstance` (crates/passo-render/src/draw_list.rs) field for field;
+// crates/passo-render/tests/shaders.rs compares the layouts.
 
 struct Globals {
     // world -> clip: clip = (world - centre) * scale

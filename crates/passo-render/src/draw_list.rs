@@ -10,7 +10,7 @@ pub const SHAPE_CIRCLE: u32 = 0;
 pub const SHAPE_BOX: u32 = 1;
 
 /// One circle or box, as the GPU reads it. Mirrors `Instance` in
-/// `shaders/shapes.wgsl` field for field.
+/// `shaders/shapes.wgsl` field for field (`tests/shaders.rs` compares them).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct ShapeInstance {
@@ -29,9 +29,9 @@ pub struct ShapeInstance {
 }
 
 impl ShapeInstance {
-    /// The vertex layout of the instance buffer (offsets written out from
-    /// the struct, not packed by a macro).
-    pub(crate) const ATTRIBUTES: [wgpu::VertexAttribute; 5] = [
+    /// The vertex attributes of the instance buffer (offsets written out
+    /// from the struct, not packed by a macro).
+    const ATTRIBUTES: [wgpu::VertexAttribute; 5] = [
         attribute(0, offset_of!(Self, centre), wgpu::VertexFormat::Float32x2),
         attribute(
             1,
@@ -42,10 +42,15 @@ impl ShapeInstance {
         attribute(3, offset_of!(Self, outline), wgpu::VertexFormat::Float32x4),
         attribute(4, offset_of!(Self, kind), wgpu::VertexFormat::Uint32),
     ];
+
+    /// The layout of a buffer of instances, one per drawn quad, as the
+    /// shape pipeline reads it.
+    pub const LAYOUT: wgpu::VertexBufferLayout<'static> =
+        instance_layout::<Self>(&Self::ATTRIBUTES);
 }
 
 /// One line segment, as the GPU reads it. Mirrors `Instance` in
-/// `shaders/lines.wgsl` field for field.
+/// `shaders/lines.wgsl` field for field (`tests/shaders.rs` compares them).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct LineInstance {
@@ -62,12 +67,29 @@ pub struct LineInstance {
 }
 
 impl LineInstance {
-    pub(crate) const ATTRIBUTES: [wgpu::VertexAttribute; 4] = [
+    /// The vertex attributes of the instance buffer.
+    const ATTRIBUTES: [wgpu::VertexAttribute; 4] = [
         attribute(0, offset_of!(Self, start), wgpu::VertexFormat::Float32x2),
         attribute(1, offset_of!(Self, end), wgpu::VertexFormat::Float32x2),
         attribute(2, offset_of!(Self, colour), wgpu::VertexFormat::Float32x4),
         attribute(3, offset_of!(Self, width), wgpu::VertexFormat::Float32),
     ];
+
+    /// The layout of a buffer of instances, one per drawn quad, as the line
+    /// pipeline reads it.
+    pub const LAYOUT: wgpu::VertexBufferLayout<'static> =
+        instance_layout::<Self>(&Self::ATTRIBUTES);
+}
+
+/// A buffer of `T`s read once per instance.
+const fn instance_layout<T>(
+    attributes: &'static [wgpu::VertexAttribute],
+) -> wgpu::VertexBufferLayout<'static> {
+    wgpu::VertexBufferLayout {
+        array_stride: size_of::<T>() as u64,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes,
+    }
 }
 
 const fn attribute(

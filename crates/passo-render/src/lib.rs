@@ -47,6 +47,8 @@ pub use draw_list::{
 pub use gpu::{AdapterChoice, Gpu, RenderError};
 pub use image::RgbaImage;
 pub use offscreen::{OffscreenTarget, read_texture};
+#[doc(hidden)]
+pub use renderer::Globals;
 pub use renderer::{LINES_WGSL, Renderer, SHAPES_WGSL};
 pub use surface::WindowSurface;
 pub use wgpu;

@@ -9,15 +9,23 @@ pub const SHAPES_WGSL: &str = include_str!("../../../shaders/shapes.wgsl");
 /// The line pipeline's WGSL (`shaders/lines.wgsl`), built in.
 pub const LINES_WGSL: &str = include_str!("../../../shaders/lines.wgsl");
 
-/// Per-frame constants. Mirrors `Globals` in the WGSL files.
+/// Per-frame constants, the uniform at `@group(0) @binding(0)`. Mirrors
+/// `Globals` in each WGSL file field for field; `tests/shaders.rs` compares
+/// the layouts. Public only for that test.
+#[doc(hidden)]
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
-struct Globals {
-    centre: [f32; 2],
-    scale: [f32; 2],
-    pixel_size: f32,
-    encode_srgb: u32,
-    _pad: [f32; 2],
+pub struct Globals {
+    /// World point at the centre of the target, metres.
+    pub centre: [f32; 2],
+    /// World to clip space: `clip = (world - centre) * scale`.
+    pub scale: [f32; 2],
+    /// Metres per pixel.
+    pub pixel_size: f32,
+    /// 1 when the shader encodes sRGB itself (a `*Unorm` target), else 0.
+    pub encode_srgb: u32,
+    /// Padding to a 16-byte multiple.
+    pub _pad: [f32; 2],
 }
 
 /// Draws [`DrawList`]s into texture views of one format.
@@ -79,54 +87,39 @@ impl Renderer {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline =
-            |label: &str, source: &str, stride: usize, attributes: &[wgpu::VertexAttribute]| {
-                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(label),
-                    source: wgpu::ShaderSource::Wgsl(source.into()),
-                });
-                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some(label),
-                    layout: Some(&pipeline_layout),
-                    vertex: wgpu::VertexState {
-                        module: &module,
-                        entry_point: Some("vs_main"),
-                        compilation_options: Default::default(),
-                        buffers: &[Some(wgpu::VertexBufferLayout {
-                            array_stride: stride as u64,
-                            step_mode: wgpu::VertexStepMode::Instance,
-                            attributes,
-                        })],
-                    },
-                    primitive: wgpu::PrimitiveState::default(),
-                    depth_stencil: None,
-                    multisample: wgpu::MultisampleState::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some("fs_main"),
-                        compilation_options: Default::default(),
-                        targets: &[Some(wgpu::ColorTargetState {
-                            format,
-                            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
-                            write_mask: wgpu::ColorWrites::ALL,
-                        })],
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                })
-            };
-        let shapes = pipeline(
-            "passo shapes",
-            SHAPES_WGSL,
-            std::mem::size_of::<ShapeInstance>(),
-            &ShapeInstance::ATTRIBUTES,
-        );
-        let lines = pipeline(
-            "passo lines",
-            LINES_WGSL,
-            std::mem::size_of::<LineInstance>(),
-            &LineInstance::ATTRIBUTES,
-        );
+        let pipeline = |label: &str, source: &str, instances: wgpu::VertexBufferLayout<'static>| {
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_main"),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(instances)],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: None,
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs_main"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format,
+                        blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let shapes = pipeline("passo shapes", SHAPES_WGSL, ShapeInstance::LAYOUT);
+        let lines = pipeline("passo lines", LINES_WGSL, LineInstance::LAYOUT);
         let shape_buffer = instance_buffer(device, "passo shape instances", 256 * 64);
         let line_buffer = instance_buffer(device, "passo line instances", 256 * 48);
         Self {
