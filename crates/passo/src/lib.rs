@@ -2,6 +2,8 @@
 //! share, and what the cross-crate tests check (drawing a world, finding
 //! scenes, headless rendering).
 
+#![warn(unreachable_pub)]
+
 pub mod bench;
 pub mod demo;
 pub mod draw;

@@ -131,7 +131,7 @@ const GLIDE_DRAG: f32 = 40.0;
 /// Moves the player: walk and run by pushing against friction, jump only
 /// when standing, glide with a large drag area (`base_drag`, the body's
 /// scene drag area, scaled by the drag slider). Consumes a pending jump.
-pub fn drive_player(
+pub(crate) fn drive_player(
     world: &mut World,
     player: BodyId,
     input: &mut Input,

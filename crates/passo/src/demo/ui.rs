@@ -12,7 +12,7 @@ use std::time::Duration;
 
 /// Debug drawing switches.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct ViewOptions {
+pub(crate) struct ViewOptions {
     /// Velocity arrows.
     pub velocities: bool,
     /// Force-model arrows.
@@ -25,7 +25,7 @@ pub struct ViewOptions {
 
 /// What the panel asked for this frame.
 #[derive(Clone, Debug, Default)]
-pub struct Actions {
+pub(crate) struct Actions {
     /// Open another scene.
     pub switch_to: Option<Entry>,
     /// Commands for the simulation (recorded in replays).
@@ -39,7 +39,7 @@ pub struct Actions {
 }
 
 /// What the panel shows but does not change.
-pub struct PanelInput<'a> {
+pub(crate) struct PanelInput<'a> {
     pub catalogue: &'a [(String, Entry)],
     pub current: &'a Entry,
     pub fps: f64,
@@ -51,7 +51,7 @@ pub struct PanelInput<'a> {
 const RATES: [f64; 5] = [30.0, 60.0, 64.0, 120.0, 240.0];
 
 /// The left panel. Returns its width in points.
-pub fn panel(
+pub(crate) fn panel(
     ui: &mut egui::Ui,
     sim: &mut Sim,
     view: &mut ViewOptions,
@@ -400,7 +400,7 @@ fn help(ui: &mut egui::Ui) {
 }
 
 /// Names of side-by-side lanes, under each lane.
-pub fn lane_labels(
+pub(crate) fn lane_labels(
     ui: &mut egui::Ui,
     sim: &Sim,
     camera: &Camera2D,

@@ -17,7 +17,7 @@ const COLOURS: [RGBColor; 6] = [
 ];
 
 /// Draws the panels into a PNG at `path`.
-pub fn work_precision(report: &Report, path: &Path) -> Result<()> {
+pub(crate) fn work_precision(report: &Report, path: &Path) -> Result<()> {
     plotters::style::register_font(
         "sans-serif",
         FontStyle::Normal,
