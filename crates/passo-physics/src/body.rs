@@ -2,7 +2,7 @@
 //! the world hands out, and the packed arrays the world steps.
 
 use crate::constants::{DEFAULT_DRAG_AREA, DEFAULT_FRICTION};
-use crate::error::{finite_vec, non_negative, positive};
+use crate::error::{finite_vec, non_negative, positive, unit_interval};
 use crate::filter::CollisionFilter;
 use crate::id::BodyId;
 use crate::{PhysicsError, Shape};
@@ -114,14 +114,7 @@ impl BodyDef {
         }
         non_negative("BodyDef::drag_area", self.drag_area)?;
         non_negative("BodyDef::friction", self.friction)?;
-        non_negative("BodyDef::restitution", self.restitution)?;
-        if self.restitution > 1.0 {
-            return Err(PhysicsError::OutOfRange {
-                what: "BodyDef::restitution",
-                value: self.restitution,
-                allowed: "in [0, 1]",
-            });
-        }
+        unit_interval("BodyDef::restitution", self.restitution)?;
         if let Some(min) = self.min_speed {
             non_negative("BodyDef::min_speed", min)?;
         }

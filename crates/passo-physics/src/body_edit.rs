@@ -2,7 +2,7 @@
 //! forces and impulses, material. Every value is checked where it enters,
 //! and a change wakes what it may have disturbed.
 
-use crate::error::{finite, finite_vec, non_negative};
+use crate::error::{finite, finite_vec, non_negative, unit_interval};
 use crate::world::{Location, World};
 use crate::{BodyId, PhysicsError};
 use glam::Vec2;
@@ -93,14 +93,7 @@ impl World {
 
     /// Sets a body's restitution, in `[0, 1]`.
     pub fn set_restitution(&mut self, id: BodyId, restitution: f32) -> Result<(), PhysicsError> {
-        non_negative("restitution", restitution)?;
-        if restitution > 1.0 {
-            return Err(PhysicsError::OutOfRange {
-                what: "restitution",
-                value: restitution,
-                allowed: "in [0, 1]",
-            });
-        }
+        unit_interval("restitution", restitution)?;
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         let meta = match location {
             Location::Dynamic(i) => &mut self.dynamic.meta[i as usize],

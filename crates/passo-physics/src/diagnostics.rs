@@ -78,19 +78,66 @@ impl World {
     /// id order. Equal states give equal hashes on every platform; use it to
     /// check determinism.
     pub fn state_hash(&self) -> u64 {
-        const PRIME: u64 = 0x0000_0100_0000_01b3;
-        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-        let mut eat = |word: u32| {
-            for byte in word.to_le_bytes() {
-                h = (h ^ u64::from(byte)).wrapping_mul(PRIME);
-            }
-        };
+        let mut h = StateHasher::new();
         for b in self.bodies() {
             for x in [b.position.x, b.position.y, b.velocity.x, b.velocity.y] {
-                eat(x.to_bits());
+                h.write_u32(x.to_bits());
             }
         }
-        h
+        h.finish()
+    }
+}
+
+/// 64-bit FNV-1a over little-endian bytes: the hash of
+/// [`World::state_hash`], for a game to fold its own state (or several
+/// worlds) into one checksum the same way on every platform.
+///
+/// ```
+/// use passo_physics::{StateHasher, World};
+///
+/// let mut h = StateHasher::new();
+/// h.write_u64(World::default().state_hash());
+/// h.write_u32(7); // the game's own state: a score, a tick
+/// let checksum = h.finish();
+/// # let _ = checksum;
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StateHasher(u64);
+
+impl StateHasher {
+    /// FNV-1a's 64-bit offset basis.
+    const OFFSET_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
+    /// FNV-1a's 64-bit prime.
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
+
+    /// A hasher that has eaten nothing.
+    pub const fn new() -> Self {
+        Self(Self::OFFSET_BASIS)
+    }
+
+    /// Eats the four bytes of `word`, least significant first.
+    pub fn write_u32(&mut self, word: u32) {
+        for byte in word.to_le_bytes() {
+            self.0 = (self.0 ^ u64::from(byte)).wrapping_mul(Self::PRIME);
+        }
+    }
+
+    /// Eats the eight bytes of `word`, least significant first.
+    pub fn write_u64(&mut self, word: u64) {
+        for byte in word.to_le_bytes() {
+            self.0 = (self.0 ^ u64::from(byte)).wrapping_mul(Self::PRIME);
+        }
+    }
+
+    /// The hash of what was eaten.
+    pub const fn finish(self) -> u64 {
+        self.0
+    }
+}
+
+impl Default for StateHasher {
+    fn default() -> Self {
+        Self::new()
     }
 }
 

@@ -68,7 +68,21 @@ pub(crate) fn finite_vec(
     }
 }
 
-/// Checks that a scalar is finite and `>= 0`.
+/// Checks that a scalar is finite and in `[0, 1]`.
+pub(crate) fn unit_interval(what: &'static str, value: f32) -> Result<f32, PhysicsError> {
+    non_negative(what, value)?;
+    if value <= 1.0 {
+        Ok(value)
+    } else {
+        Err(PhysicsError::OutOfRange {
+            what,
+            value,
+            allowed: "in [0, 1]",
+        })
+    }
+}
+
+/// Checks that a scalar is finite and >= 0.
 pub(crate) fn non_negative(what: &'static str, value: f32) -> Result<f32, PhysicsError> {
     finite(what, value)?;
     if value >= 0.0 {

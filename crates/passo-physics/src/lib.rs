@@ -105,6 +105,7 @@ pub use aabb::Aabb;
 pub use body::{Body, BodyDef, BodyKind};
 pub use contact::{Contact, ContactEvents, ContactPair, ContactSettings, SensorPair};
 pub use contact_step::ContactStage;
+pub use diagnostics::StateHasher;
 pub use error::PhysicsError;
 pub use filter::CollisionFilter;
 pub use forces::{

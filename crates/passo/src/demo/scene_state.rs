@@ -12,12 +12,6 @@ use glam::Vec2;
 use passo_physics::{Aabb, BodyId, BodyKind, Integrator};
 use passo_scene::{Generator, Scene, SceneFile};
 
-/// FNV-1a's 64-bit offset basis, the start of [`SceneState::state_hash`]
-/// (the constants `World::state_hash` uses).
-const FNV_OFFSET_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
-/// FNV-1a's 64-bit prime.
-const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
-
 /// A scene being run: everything a reset rebuilds.
 #[derive(Debug)]
 pub struct SceneState {
@@ -238,12 +232,14 @@ impl SceneState {
         self.lanes.iter().map(|l| l.world.total_energy()).sum()
     }
 
-    /// A 64-bit hash of every lane's state: FNV-1a over the lanes'
-    /// `World::state_hash` words.
+    /// A 64-bit hash of every lane's state: the lanes' `World::state_hash`
+    /// words folded with the same FNV-1a.
     pub fn state_hash(&self) -> u64 {
-        self.lanes.iter().fold(FNV_OFFSET_BASIS, |h, l| {
-            (h ^ l.world.state_hash()).wrapping_mul(FNV_PRIME)
-        })
+        let mut h = passo_physics::StateHasher::new();
+        for lane in &self.lanes {
+            h.write_u64(lane.world.state_hash());
+        }
+        h.finish()
     }
 
     /// The dynamic body under a world point (lane 0), if any.
