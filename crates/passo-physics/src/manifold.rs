@@ -66,6 +66,84 @@ pub fn collide(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Optio
     (m.separation <= margin).then_some(m)
 }
 
+/// The faces of a static box that another static box covers (bits of
+/// [`Faces::LEFT`], ...): a body meeting the box there is meeting the
+/// neighbour's surface, so a contact never takes its normal through a
+/// covered face. This is how flush boxes and tiles make seamless ground:
+/// the joint between two boxes with the same top is no edge to catch on.
+/// (Box2D solves the same "ghost collisions" on chain shapes with one-sided
+/// edges and their neighbouring vertices.)
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Faces(pub u8);
+
+impl Faces {
+    pub(crate) const LEFT: u8 = 1;
+    pub(crate) const RIGHT: u8 = 2;
+    pub(crate) const BOTTOM: u8 = 4;
+    pub(crate) const TOP: u8 = 8;
+
+    /// Whether the face whose outward normal is `sign` along `axis` (0 = x,
+    /// 1 = y) is covered.
+    #[inline(always)]
+    fn covered(self, axis: usize, sign: f32) -> bool {
+        let bit = match (axis, sign > 0.0) {
+            (0, false) => Self::LEFT,
+            (0, true) => Self::RIGHT,
+            (_, false) => Self::BOTTOM,
+            (_, true) => Self::TOP,
+        };
+        self.0 & bit != 0
+    }
+
+    /// The faces of box `a` that box `b` covers: `b` lies flush against (or
+    /// across) the face, within `tolerance` metres, along all of it.
+    pub(crate) fn covered_by(a: &crate::Aabb, b: &crate::Aabb, tolerance: f32) -> u8 {
+        let t = tolerance;
+        let spans_y = b.min.y <= a.min.y + t && b.max.y >= a.max.y - t;
+        let spans_x = b.min.x <= a.min.x + t && b.max.x >= a.max.x - t;
+        let mut faces = 0;
+        if spans_y && b.min.x <= a.max.x + t && b.max.x >= a.max.x + 2.0 * t {
+            faces |= Self::RIGHT;
+        }
+        if spans_y && b.max.x >= a.min.x - t && b.min.x <= a.min.x - 2.0 * t {
+            faces |= Self::LEFT;
+        }
+        if spans_x && b.min.y <= a.max.y + t && b.max.y >= a.max.y + 2.0 * t {
+            faces |= Self::TOP;
+        }
+        if spans_x && b.max.y >= a.min.y - t && b.min.y <= a.min.y - 2.0 * t {
+            faces |= Self::BOTTOM;
+        }
+        faces
+    }
+}
+
+/// [`collide`] with static shape B's covered faces: a normal that would
+/// leave B through a covered face leaves through the other axis's face
+/// instead. With no covered face this is exactly [`collide`].
+pub(crate) fn collide_seamless(
+    sa: &Shape,
+    pa: Vec2,
+    sb: &Shape,
+    pb: Vec2,
+    margin: f32,
+    faces_b: Faces,
+) -> Option<Manifold> {
+    if faces_b.0 == 0 {
+        return collide(sa, pa, sb, pb, margin);
+    }
+    let m = match (*sa, *sb) {
+        (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb }) => {
+            box_box_faces(pa, ha, pb, hb, faces_b)
+        }
+        (Shape::Circle { radius }, Shape::Box { half_extents }) => {
+            box_circle_faces(pb, half_extents, pa, radius, faces_b).flipped()
+        }
+        _ => return collide(sa, pa, sb, pb, margin),
+    };
+    (m.separation <= margin).then_some(m)
+}
+
 /// Two circles: along the line of centres.
 pub(crate) fn circle_circle(pa: Vec2, ra: f32, pb: Vec2, rb: f32) -> Manifold {
     let d = pb - pa;
@@ -80,15 +158,24 @@ pub(crate) fn circle_circle(pa: Vec2, ra: f32, pb: Vec2, rb: f32) -> Manifold {
 /// Two axis-aligned boxes: along the axis of least overlap (most
 /// separation); on a tie, the y axis. Two points span the shared face.
 pub(crate) fn box_box(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2) -> Manifold {
+    box_box_faces(pa, ha, pb, hb, Faces::default())
+}
+
+/// [`box_box`] where B's covered faces are not crossed.
+fn box_box_faces(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2, faces_b: Faces) -> Manifold {
     let d = pb - pa;
     let overlap = ha + hb - d.abs();
-    // Axis 0 = x, 1 = y; ties go to y so stacks get vertical normals.
-    let (axis, tangent_axis) = if overlap.x < overlap.y {
-        (0, 1)
-    } else {
-        (1, 0)
-    };
-    let sign = if d[axis] < 0.0 { -1.0 } else { 1.0 };
+    let sign_of = |axis: usize| if d[axis] < 0.0 { -1.0 } else { 1.0 };
+    // Axis 0 = x, 1 = y; ties go to y so stacks get vertical normals. The
+    // normal points from A to B, so it leaves B through B's face on the
+    // `-sign` side.
+    let mut axis = if overlap.x < overlap.y { 0 } else { 1 };
+    let other = 1 - axis;
+    if faces_b.covered(axis, -sign_of(axis)) && !faces_b.covered(other, -sign_of(other)) {
+        axis = other;
+    }
+    let tangent_axis = 1 - axis;
+    let sign = sign_of(axis);
     let mut normal = Vec2::ZERO;
     normal[axis] = sign;
     let separation = -overlap[axis];
@@ -119,10 +206,34 @@ pub(crate) fn box_box(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2) -> Manifold {
 /// A box (A) and a circle (B): from the closest point of the box to the
 /// circle's centre; a centre inside the box leaves through the nearest face.
 pub(crate) fn box_circle(pa: Vec2, ha: Vec2, pb: Vec2, rb: f32) -> Manifold {
+    box_circle_faces(pa, ha, pb, rb, Faces::default())
+}
+
+/// [`box_circle`] where A's covered faces are not crossed: a circle beyond
+/// a corner whose one face is covered meets the other face's plane, and a
+/// centre inside leaves through an uncovered face.
+fn box_circle_faces(pa: Vec2, ha: Vec2, pb: Vec2, rb: f32, faces_a: Faces) -> Manifold {
     let local = pb - pa;
     let closest = local.clamp(-ha, ha);
     let d = local - closest;
     let dist_sq = d.length_squared();
+    let sign_of = |axis: usize| if local[axis] < 0.0 { -1.0 } else { 1.0 };
+    if d.x != 0.0 && d.y != 0.0 {
+        // Beyond a corner: if exactly one of its faces is covered, the
+        // circle meets the other face's plane.
+        let covered = [
+            faces_a.covered(0, sign_of(0)),
+            faces_a.covered(1, sign_of(1)),
+        ];
+        if covered[0] != covered[1] {
+            let axis = if covered[0] { 1 } else { 0 };
+            let mut normal = Vec2::ZERO;
+            normal[axis] = sign_of(axis);
+            let mut point = closest;
+            point[axis] = sign_of(axis) * ha[axis];
+            return Manifold::one(normal, d[axis].abs() - rb, pa + point);
+        }
+    }
     if dist_sq > 0.0 {
         let dist = dist_sq.sqrt();
         let normal = d / dist;
@@ -131,13 +242,14 @@ pub(crate) fn box_circle(pa: Vec2, ha: Vec2, pb: Vec2, rb: f32) -> Manifold {
         // Centre inside (or on) the box: push out through the nearest face;
         // on a tie prefer y, then the positive side.
         let to_face = ha - local.abs();
-        let (axis, depth) = if to_face.x < to_face.y {
-            (0, to_face.x)
-        } else {
-            (1, to_face.y)
-        };
+        let mut axis = if to_face.x < to_face.y { 0 } else { 1 };
+        let other = 1 - axis;
+        if faces_a.covered(axis, sign_of(axis)) && !faces_a.covered(other, sign_of(other)) {
+            axis = other;
+        }
+        let depth = to_face[axis];
         let mut normal = Vec2::ZERO;
-        normal[axis] = if local[axis] < 0.0 { -1.0 } else { 1.0 };
+        normal[axis] = sign_of(axis);
         let mut point = local;
         point[axis] = normal[axis] * ha[axis];
         Manifold::one(normal, -depth - rb, pa + point)
@@ -366,5 +478,55 @@ mod tests {
         .unwrap();
         assert_eq!((t, n), (3.0, Vec2::Y));
         assert!(ray_shape(&wall, Vec2::new(3.0, 0.0), Vec2::ZERO, -Vec2::X, 10.0).is_none());
+    }
+
+    #[test]
+    fn flush_neighbours_cover_faces_and_a_wall_on_the_ground_covers_one() {
+        use crate::Aabb;
+        let a = Aabb::from_centre(Vec2::new(0.0, 0.0), Vec2::splat(0.5));
+        let right = Aabb::from_centre(Vec2::new(1.0, 0.0), Vec2::splat(0.5));
+        let lower = Aabb::from_centre(Vec2::new(1.0, -0.001), Vec2::splat(0.5));
+        let above = Aabb::from_centre(Vec2::new(0.0, 1.0), Vec2::splat(0.5));
+        let ground = Aabb::from_centre(Vec2::new(0.0, -1.0), Vec2::new(5.0, 0.5));
+        let t = crate::constants::LINEAR_SLOP;
+        assert_eq!(Faces::covered_by(&a, &right, t), Faces::RIGHT);
+        assert_eq!(Faces::covered_by(&right, &a, t), Faces::LEFT);
+        assert_eq!(
+            Faces::covered_by(&a, &lower, t),
+            Faces::RIGHT,
+            "1 mm is within the slop"
+        );
+        assert_eq!(Faces::covered_by(&a, &above, t), Faces::TOP);
+        // A box on the ground: its bottom is covered, the ground's top is not
+        // (the box covers only part of it).
+        assert_eq!(Faces::covered_by(&a, &ground, t), Faces::BOTTOM);
+        assert_eq!(Faces::covered_by(&ground, &a, t), 0);
+        // A gap wider than the slop covers nothing.
+        let apart = Aabb::from_centre(Vec2::new(1.02, 0.0), Vec2::splat(0.5));
+        assert_eq!(Faces::covered_by(&a, &apart, t), 0);
+    }
+
+    #[test]
+    fn a_covered_face_turns_the_normal_to_the_open_face() {
+        // A box sunk 4 cm into the tile left of tile B crosses 2 cm past
+        // B's left face, which that tile covers.
+        let faces = Faces(Faces::LEFT);
+        let (pa, ha) = (Vec2::new(-0.78, 0.26), Vec2::splat(0.3));
+        let (pb, hb) = (Vec2::new(0.0, -0.5), Vec2::splat(0.5));
+        // Uncovered, the least overlap (2 cm along x) would push A back
+        // out through the side; covered, the normal is the top's.
+        assert_eq!(box_box(pa, ha, pb, hb).normal, Vec2::X);
+        let m = box_box_faces(pa, ha, pb, hb, faces);
+        assert_eq!(m.normal, Vec2::new(0.0, -1.0));
+        assert!((m.separation + 0.04).abs() < 1e-6);
+        // A circle beyond B's top-left corner meets B's top plane.
+        let m = box_circle_faces(pb, hb, Vec2::new(-0.55, 0.3), 0.3, faces);
+        assert_eq!(m.normal, Vec2::Y);
+        assert!((m.separation - (0.3 - 0.3)).abs() < 1e-6);
+        // Nothing covered: exactly the plain functions.
+        assert_eq!(
+            box_box_faces(pa, ha, pb, hb, Faces::default()),
+            box_box(pa, ha, pb, hb)
+        );
     }
 }

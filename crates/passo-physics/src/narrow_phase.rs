@@ -6,7 +6,7 @@ use crate::bodies::Colliders;
 use crate::collider::ColliderRef;
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::filter::CollisionFilter;
-use crate::manifold::collide;
+use crate::manifold::{Faces, collide_seamless};
 use crate::parallel::for_chunks;
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::{BodyId, SensorPair, Shape};
@@ -114,7 +114,18 @@ impl Narrow<'_> {
             (cb, ca)
         };
         let position = |c: &Collider| self.bodies.position(c.body);
-        match collide(&ca.shape, position(&ca), &cb.shape, position(&cb), margin) {
+        let faces = match cb.body.dynamic_index() {
+            Some(_) => Faces::default(),
+            None => self.proxies.static_faces[cb.body.index()],
+        };
+        match collide_seamless(
+            &ca.shape,
+            position(&ca),
+            &cb.shape,
+            position(&cb),
+            margin,
+            faces,
+        ) {
             Some(m) => {
                 let a = ca.body.index() as u32;
                 let (row, info) =

@@ -3,11 +3,12 @@
 //! the grid ([`BroadPhase`]) and the static bodies of the static tree whose
 //! boxes it overlaps.
 
-use crate::Aabb;
 use crate::bodies::{DynamicBodies, StaticBodies};
 use crate::broad_phase::BroadPhase;
-use crate::constants::SPECULATIVE_DISTANCE;
+use crate::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE};
+use crate::manifold::Faces;
 use crate::static_tree::StaticTree;
+use crate::{Aabb, Shape};
 use glam::Vec2;
 
 /// No proxy (or no body) here.
@@ -47,6 +48,9 @@ pub(crate) struct Proxies {
     tree: StaticTree,
     /// Static index per tree item.
     tree_items: Vec<u32>,
+    /// Per static body: the faces other static boxes cover (seamless
+    /// ground; see [`Faces`]).
+    pub static_faces: Vec<Faces>,
     tree_dirty: bool,
     /// Proxy -> dynamic index.
     pub body: Vec<u32>,
@@ -104,7 +108,33 @@ impl Proxies {
             }
         }
         self.tree = StaticTree::build(boxes);
+        self.find_covered_faces(statics);
         self.tree_dirty = false;
+    }
+
+    /// Which faces of each static box other static boxes cover, found with
+    /// the static tree: `O(n log n)` for `n` static bodies, once per change.
+    fn find_covered_faces(&mut self, statics: &StaticBodies) {
+        let aabb = |i: usize| match statics.meta[i].shape {
+            Some(Shape::Box { half_extents }) => {
+                Some(Aabb::from_centre(statics.pos[i], half_extents))
+            }
+            _ => None,
+        };
+        self.static_faces.clear();
+        self.static_faces.resize(statics.len(), Faces::default());
+        for i in 0..statics.len() {
+            let Some(a) = aabb(i) else { continue };
+            let mut faces = 0;
+            let items = &self.tree_items;
+            self.tree.query(&a.grown(2.0 * LINEAR_SLOP), |item| {
+                let j = items[item as usize] as usize;
+                if let (true, Some(b)) = (j != i, aabb(j)) {
+                    faces |= Faces::covered_by(&a, &b, LINEAR_SLOP);
+                }
+            });
+            self.static_faces[i] = Faces(faces);
+        }
     }
 
     /// Adds a proxy for dynamic body `i` (which has a shape); `track_sleep`

@@ -1,0 +1,176 @@
+//! Seamless ground: bodies slide across the joints of flush static boxes as
+//! they slide along one long box. A box sliding across the joint of two
+//! boxes with the same top used to stop dead at the joint (a contact with
+//! the second box's side, normal (1, 0)), and the same with the second box
+//! 1 mm lower (a speculative contact with its side).
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, BodyId, Shape, World};
+
+const DT: f32 = 1.0 / 60.0;
+
+/// A world whose ground is the given static boxes `(centre, size)`, with
+/// one dynamic body of `shape` resting on top at `x`.
+fn world_with(ground: &[(Vec2, Vec2)], shape: Shape, x: f32) -> (World, BodyId) {
+    let mut world = World::default();
+    for &(centre, size) in ground {
+        world
+            .add_body(BodyDef::fixed(centre, Shape::rect(size.x, size.y)))
+            .unwrap();
+    }
+    let body = world
+        .add_body(BodyDef {
+            position: Vec2::new(x, shape.half_extents().y),
+            shape: Some(shape),
+            ..Default::default()
+        })
+        .unwrap();
+    (world, body)
+}
+
+/// `n` unit boxes edge to edge, tops at y = 0, the first centred on x = 0.
+fn tiles(n: usize) -> Vec<(Vec2, Vec2)> {
+    (0..n)
+        .map(|i| (Vec2::new(i as f32, -0.5), Vec2::ONE))
+        .collect()
+}
+
+/// One box as long as `n` tiles.
+fn long_box(n: usize) -> Vec<(Vec2, Vec2)> {
+    vec![(
+        Vec2::new(0.5 * (n as f32 - 1.0), -0.5),
+        Vec2::new(n as f32, 1.0),
+    )]
+}
+
+/// Pushes the body along +x at `speed` every tick (the game sets its
+/// horizontal velocity) for `ticks` ticks; returns the velocity after each
+/// step.
+fn push(world: &mut World, body: BodyId, speed: f32, ticks: usize) -> Vec<Vec2> {
+    (0..ticks)
+        .map(|_| {
+            let v = world.body(body).unwrap().velocity;
+            world.set_velocity(body, Vec2::new(speed, v.y)).unwrap();
+            world.step(DT);
+            world.body(body).unwrap().velocity
+        })
+        .collect()
+}
+
+#[test]
+fn a_box_crosses_the_joint_of_two_flush_boxes_without_stopping() {
+    for drop in [0.0, 0.001] {
+        let ground = [
+            (Vec2::new(-5.0, -0.5), Vec2::new(10.0, 1.0)),
+            (Vec2::new(5.0, -0.5 - drop), Vec2::new(10.0, 1.0)),
+        ];
+        let one = [(Vec2::new(0.0, -0.5), Vec2::new(20.0, 1.0))];
+        let slide = |ground: &[(Vec2, Vec2)]| {
+            let (mut world, body) = world_with(ground, Shape::rect(0.6, 1.0), -0.5);
+            world.set_velocity(body, Vec2::new(3.25, 0.0)).unwrap();
+            (0..60)
+                .map(|_| {
+                    world.step(DT);
+                    world.body(body).unwrap()
+                })
+                .collect::<Vec<_>>()
+        };
+        let (joint, reference) = (slide(&ground), slide(&one));
+        // Friction alone (mu 0.6, g 9.81) stops it after 3.25² / (2 mu g)
+        // = 0.897 m: past the joint at x = 0.
+        let end = joint.last().unwrap().position.x;
+        assert!(
+            end > 0.35,
+            "drop {drop}: crossed the joint, stopped at {end}"
+        );
+        // Flush, it slides exactly as on one box. A millimetre lower, it
+        // falls that millimetre past the joint, and while it falls nothing
+        // rubs: never slower than on one box.
+        for (tick, (j, r)) in joint.iter().zip(&reference).enumerate() {
+            let lost = r.velocity.x - j.velocity.x;
+            assert!(
+                if drop == 0.0 {
+                    lost.abs() < 1e-5
+                } else {
+                    lost < 1e-5
+                },
+                "drop {drop}, tick {tick}: {} m/s across the joint, {} on one box",
+                j.velocity.x,
+                r.velocity.x
+            );
+        }
+    }
+}
+
+#[test]
+fn a_box_and_a_circle_pushed_across_200_tiles_move_as_on_one_long_box() {
+    let n = 204;
+    // About 5.94 m/s for 2 040 ticks (34 s): 202 m, past 201 joints and
+    // short of the end of the tiles (203.5 m).
+    let ticks = 2_040;
+    for shape in [Shape::rect(0.6, 1.0), Shape::circle(0.4)] {
+        let (mut on_tiles, a) = world_with(&tiles(n), shape, 0.0);
+        let (mut on_one, b) = world_with(&long_box(n), shape, 0.0);
+        let tiled = push(&mut on_tiles, a, 6.0, ticks);
+        let reference = push(&mut on_one, b, 6.0, ticks);
+        let end = on_tiles.body(a).unwrap().position.x;
+        assert!(end > 201.0, "{shape:?} crossed 200 joints: at {end}");
+        for (tick, (t, r)) in tiled.iter().zip(&reference).enumerate() {
+            assert!(
+                t.y.abs() < 1e-4,
+                "{shape:?}, tick {tick}: vertical speed {} on the tiles",
+                t.y
+            );
+            assert!(
+                (t.x - r.x).abs() < 1e-5,
+                "{shape:?}, tick {tick}: {} m/s on the tiles, {} on one box",
+                t.x,
+                r.x
+            );
+        }
+        // Friction is the only loss: 6 - mu g dt after each pushed step.
+        let loss = 6.0 - reference[ticks / 2].x;
+        assert!(
+            (loss - 0.6 * 9.81 * DT).abs() < 1e-4,
+            "friction loss {loss}"
+        );
+    }
+}
+
+#[test]
+fn a_box_slides_down_a_wall_of_stacked_tiles_without_catching() {
+    // A column of 50 unit tiles; a box pressed against its right side
+    // slides down along it (no friction, so it falls freely).
+    let mut world = World::default();
+    for i in 0..50 {
+        let def = BodyDef {
+            friction: 0.0,
+            ..BodyDef::fixed(Vec2::new(0.0, i as f32), Shape::rect(1.0, 1.0))
+        };
+        world.add_body(def).unwrap();
+    }
+    let body = world
+        .add_body(BodyDef {
+            position: Vec2::new(0.8, 45.0),
+            shape: Some(Shape::rect(0.6, 0.6)),
+            friction: 0.0,
+            ..Default::default()
+        })
+        .unwrap();
+    let mut t = 0.0f32;
+    for _ in 0..120 {
+        // Pressed against the wall.
+        world.apply_force(body, Vec2::new(-5.0, 0.0)).unwrap();
+        world.step(DT);
+        t += DT;
+        let b = world.body(body).unwrap();
+        // Free fall within the solver's tolerance: no joint holds it up.
+        let free = -9.81 * t;
+        assert!(
+            (b.velocity.y - free).abs() < 0.02,
+            "at {t:.3} s: {} m/s, free fall {free}",
+            b.velocity.y
+        );
+        assert!(b.position.x > 0.79, "it stays against the wall");
+    }
+}
