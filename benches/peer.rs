@@ -32,6 +32,8 @@ fn rapier_copy(passo: &World, sleep: bool) -> Rapier {
     for b in passo.bodies() {
         let rb = match b.kind {
             BodyKind::Static => RigidBodyBuilder::fixed(),
+            BodyKind::Kinematic => RigidBodyBuilder::kinematic_velocity_based()
+                .linvel(Vector::new(b.velocity.x, b.velocity.y)),
             BodyKind::Dynamic => RigidBodyBuilder::dynamic()
                 .lock_rotations()
                 .can_sleep(sleep),

@@ -61,6 +61,10 @@ impl SleepState {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct BodyMeta {
     pub id: BodyId,
+    /// A kinematic body in the dynamic arrays (inverse mass 0, moved by
+    /// its velocity alone).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub kinematic: bool,
     pub mass: f32,
     pub shape: Option<Shape>,
     pub drag_area: f32,
@@ -138,6 +142,10 @@ pub(crate) struct DynamicBodies {
     /// Rest time and island of each body (see `sleep`).
     pub sleep: Vec<SleepState>,
     pub meta: Vec<BodyMeta>,
+    /// Indices of the kinematic bodies among these (derived from `meta`:
+    /// not saved, rebuilt on restore).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pub kinematic: Vec<u32>,
 }
 
 /// The arrays a body's forces are computed from, borrowed apart from the
@@ -196,7 +204,11 @@ impl DynamicBodies {
         self.pos.push(def.position);
         self.vel.push(def.velocity);
         self.force.push(Vec2::ZERO);
-        self.inv_mass.push(1.0 / def.mass);
+        if meta.kinematic {
+            self.kinematic.push(self.pos.len() as u32 - 1);
+        }
+        self.inv_mass
+            .push(if meta.kinematic { 0.0 } else { 1.0 / def.mass });
         self.drag_area.push(def.drag_area);
         self.friction.push(def.friction);
         self.friction_force.push(0.0);
@@ -210,6 +222,15 @@ impl DynamicBodies {
 
     /// Removes body `i`; returns the id of the body moved into `i`, if any.
     pub(crate) fn swap_remove(&mut self, i: usize) -> Option<BodyId> {
+        if !self.kinematic.is_empty() {
+            let last = self.pos.len() as u32 - 1;
+            self.kinematic.retain(|&k| k != i as u32);
+            for k in &mut self.kinematic {
+                if *k == last {
+                    *k = i as u32;
+                }
+            }
+        }
         self.pos.swap_remove(i);
         self.vel.swap_remove(i);
         self.force.swap_remove(i);
@@ -226,6 +247,13 @@ impl DynamicBodies {
         self.meta.get(i).map(|m| m.id)
     }
 
+    /// Rebuilds the list of kinematic bodies from their metadata.
+    pub(crate) fn find_kinematic(&mut self) {
+        self.kinematic.clear();
+        let kinematic = self.meta.iter().enumerate().filter(|(_, m)| m.kinematic);
+        self.kinematic.extend(kinematic.map(|(i, _)| i as u32));
+    }
+
     /// Wakes every body and forgets how long each rested.
     pub(crate) fn wake_all(&mut self) {
         self.sleep.fill(SleepState::awake());
@@ -240,7 +268,11 @@ impl DynamicBodies {
         let m = &self.meta[i];
         Body {
             id: m.id,
-            kind: BodyKind::Dynamic,
+            kind: if m.kinematic {
+                BodyKind::Kinematic
+            } else {
+                BodyKind::Dynamic
+            },
             position: self.pos[i],
             velocity: self.vel[i],
             force: self.force[i],

@@ -16,8 +16,21 @@ pub enum BodyKind {
     #[default]
     Dynamic,
     /// Never moves (ground, walls): infinite mass, zero velocity. Forces and
-    /// impulses on it are ignored; its position can still be set by hand.
+    /// impulses on it are ignored; its position can still be set by hand
+    /// (a teleport: riders are not carried and drawing is not
+    /// interpolated; move a [`Kinematic`](Self::Kinematic) body instead).
     Static,
+    /// Moved by its velocity alone (moving platforms, doors, lifts):
+    /// infinite mass, so forces, impulses and contacts do not change it;
+    /// game code sets its velocity ([`World::set_velocity`], or
+    /// [`World::set_kinematic_target`] to reach a position by the next
+    /// step). It pushes and carries dynamic bodies (through contact
+    /// friction) and is interpolated like them; it does not collide with
+    /// static or other kinematic bodies.
+    ///
+    /// [`World::set_velocity`]: crate::World::set_velocity
+    /// [`World::set_kinematic_target`]: crate::World::set_kinematic_target
+    Kinematic,
 }
 
 /// Everything needed to create a body. Start from [`Default`] and set what
@@ -25,7 +38,7 @@ pub enum BodyKind {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BodyDef {
-    /// Dynamic or static. Default [`BodyKind::Dynamic`].
+    /// Dynamic, static or kinematic. Default [`BodyKind::Dynamic`].
     pub kind: BodyKind,
     /// Position of the centre, metres. Default `(0, 0)`.
     pub position: Vec2,
@@ -33,7 +46,7 @@ pub struct BodyDef {
     /// static bodies.
     pub velocity: Vec2,
     /// Mass, kilograms, finite and > 0 for a dynamic body. Default 1.
-    /// Ignored for static bodies (their mass is infinite).
+    /// Ignored for static and kinematic bodies (their mass is infinite).
     pub mass: f32,
     /// Collision shape; `None` (the default) makes a point mass that takes
     /// part in no contact.
@@ -92,6 +105,18 @@ impl BodyDef {
         }
     }
 
+    /// A kinematic body (a moving platform) at `position` with the given
+    /// shape, moving at `velocity`.
+    pub fn kinematic(position: Vec2, shape: Shape, velocity: Vec2) -> Self {
+        Self {
+            kind: BodyKind::Kinematic,
+            position,
+            velocity,
+            shape: Some(shape),
+            ..Self::default()
+        }
+    }
+
     /// A static body at `position` with the given shape.
     pub fn fixed(position: Vec2, shape: Shape) -> Self {
         Self {
@@ -146,11 +171,12 @@ pub struct Body {
     pub kind: BodyKind,
     /// Position of the centre, metres.
     pub position: Vec2,
-    /// Velocity, metres per second (always zero for static bodies).
+    /// Velocity, metres per second (always zero for static bodies; as set
+    /// by game code for kinematic ones).
     pub velocity: Vec2,
     /// Force accumulated since the last step, newtons.
     pub force: Vec2,
-    /// Mass, kilograms (`f32::INFINITY` for static bodies).
+    /// Mass, kilograms (`f32::INFINITY` for static and kinematic bodies).
     pub mass: f32,
     /// Collision shape, if any.
     pub shape: Option<Shape>,

@@ -2,7 +2,7 @@
 //! forces and impulses, material. Every value is checked where it enters,
 //! and a change wakes what it may have disturbed.
 
-use crate::error::{finite, finite_vec, non_negative, unit_interval};
+use crate::error::{finite, finite_vec, non_negative, positive, unit_interval};
 use crate::world::{Location, World};
 use crate::{BodyId, PhysicsError};
 use glam::Vec2;
@@ -29,7 +29,9 @@ impl World {
         Ok(())
     }
 
-    /// Sets a body's velocity, metres per second. Ignored for static bodies.
+    /// Sets a body's velocity, metres per second: a dynamic body's current
+    /// velocity, or the velocity a kinematic body moves at until it is set
+    /// again. Ignored for static bodies.
     pub fn set_velocity(&mut self, id: BodyId, velocity: Vec2) -> Result<(), PhysicsError> {
         finite_vec("velocity", velocity)?;
         if let Some(i) = self.dynamic_index(id)? {
@@ -39,12 +41,39 @@ impl World {
         Ok(())
     }
 
+    /// Sets a kinematic body's velocity so that it reaches `target` at the
+    /// end of the next step of `dt` seconds: `(target - position) / dt`.
+    /// Call it every tick to move a platform along a path. Ignored for
+    /// dynamic and static bodies.
+    ///
+    /// # Errors
+    /// A stale id, a non-finite target, or a `dt` that is not finite and
+    /// > 0.
+    pub fn set_kinematic_target(
+        &mut self,
+        id: BodyId,
+        target: Vec2,
+        dt: f32,
+    ) -> Result<(), PhysicsError> {
+        finite_vec("target", target)?;
+        positive("dt", dt)?;
+        if let Some(i) = self.dynamic_index(id)?
+            && self.dynamic.meta[i].kinematic
+        {
+            let velocity = (target - self.dynamic.pos[i]) / dt;
+            finite_vec("velocity to the target", velocity)?;
+            self.dynamic.vel[i] = velocity;
+            self.wake_index(i);
+        }
+        Ok(())
+    }
+
     /// Adds a force, newtons, to the body's accumulator for the next step
     /// (acceleration = F / m). Forces are cleared after each step. Ignored
-    /// for static bodies.
+    /// for static and kinematic bodies.
     pub fn apply_force(&mut self, id: BodyId, force: Vec2) -> Result<(), PhysicsError> {
         finite_vec("force", force)?;
-        if let Some(i) = self.dynamic_index(id)? {
+        if let Some(i) = self.movable_index(id)? {
             self.dynamic.force[i] += force;
             self.wake_index(i);
         }
@@ -52,10 +81,10 @@ impl World {
     }
 
     /// Changes the body's velocity now by `impulse / m` (impulse in newton
-    /// seconds): a jump, a hit. Ignored for static bodies.
+    /// seconds): a jump, a hit. Ignored for static and kinematic bodies.
     pub fn apply_impulse(&mut self, id: BodyId, impulse: Vec2) -> Result<(), PhysicsError> {
         finite_vec("impulse", impulse)?;
-        if let Some(i) = self.dynamic_index(id)? {
+        if let Some(i) = self.movable_index(id)? {
             self.dynamic.vel[i] += impulse * self.dynamic.inv_mass[i];
             self.wake_index(i);
         }
@@ -66,11 +95,12 @@ impl World {
     /// normal force magnitude `normal` in newtons (the seed's
     /// `ApplyFriction(mu, N)`). With [`ForceForm::Stable`](crate::ForceForm::Stable) it slows the body
     /// by at most its speed: it stops, never reverses. Accumulates like a
-    /// force and is cleared after each step. Ignored for static bodies.
+    /// force and is cleared after each step. Ignored for static and
+    /// kinematic bodies.
     pub fn apply_friction(&mut self, id: BodyId, mu: f32, normal: f32) -> Result<(), PhysicsError> {
         non_negative("mu", mu)?;
         finite("normal", normal)?;
-        if let Some(i) = self.dynamic_index(id)? {
+        if let Some(i) = self.movable_index(id)? {
             self.dynamic.friction_force[i] += mu * normal.abs();
             self.wake_index(i);
             self.game_friction = true;

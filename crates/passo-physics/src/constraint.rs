@@ -88,8 +88,10 @@ impl Constraint {
         let ai = a as usize;
         // A sleeping body holds like a static one: it is not solved this
         // step (an awake body touching it wakes its island for the next).
-        let asleep = |i: usize| dynamic.sleep[i].is_asleep();
-        let (a_holds, b_holds) = (asleep(ai), b.dynamic_index().is_none_or(asleep));
+        // A kinematic body (inverse mass zero) holds too: contacts do not
+        // move it, and gravity does not pull it.
+        let holds = |i: usize| dynamic.sleep[i].is_asleep() || dynamic.inv_mass[i] == 0.0;
+        let (a_holds, b_holds) = (holds(ai), b.dynamic_index().is_none_or(holds));
         let (inv_mass_b, friction_b, restitution_b, vel_b) = match b.dynamic_index() {
             None => {
                 let s = b.index();

@@ -23,6 +23,8 @@ pub enum ContactStage {
     IntegrateVelocities,
     /// Sleeping bodies keep zero velocity (only while some body sleeps).
     HoldSleepers,
+    /// Kinematic bodies keep their own velocity (only with some).
+    HoldKinematic,
     /// The last substep's impulses applied again (warm starting).
     WarmStart,
     /// Gauss-Seidel passes over the contacts: friction, normal, push.
@@ -48,6 +50,8 @@ struct SubstepPlan {
     kernel: Option<PointMassKernel>,
     /// Some body sleeps: sleeping bodies are held still.
     hold_sleepers: bool,
+    /// Some body is kinematic: it keeps its own velocity.
+    hold_kinematic: bool,
     /// The integrator makes position corrections (all but semi-implicit
     /// Euler), kept per body between the velocity and position stages.
     corrects: bool,
@@ -64,6 +68,7 @@ impl SubstepPlan {
             substeps: if all_asleep { 0 } else { settings.substeps },
             kernel: world.kernel(None),
             hold_sleepers: any_asleep,
+            hold_kinematic: !world.dynamic.kinematic.is_empty(),
             corrects: world.settings().integrator != Integrator::SemiImplicitEuler,
             limits: world.speed_limits(),
             solver: SolverParams {
@@ -86,6 +91,7 @@ impl SubstepPlan {
         let steps = [
             (self.substeps > 0, IntegrateVelocities),
             (self.substeps > 0 && self.hold_sleepers, HoldSleepers),
+            (self.substeps > 0 && self.hold_kinematic, HoldKinematic),
             (self.substeps > 0 && s.warm_starting, WarmStart),
             (self.substeps > 0, Solve),
             (self.substeps > 0, IntegratePositions),
@@ -138,6 +144,9 @@ impl World {
         };
         cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
         let plan = SubstepPlan::new(self, settings, dt, cw.sleeping.any(&self.dynamic));
+        if plan.hold_kinematic {
+            self.hold_kinematic();
+        }
         let mut correction = std::mem::take(&mut self.correction);
         if plan.corrects {
             correction.clear();
@@ -148,6 +157,9 @@ impl World {
             resets += self.integrate_velocities(&plan, &mut correction);
             if plan.hold_sleepers {
                 self.hold_sleepers(&mut correction, plan.corrects);
+            }
+            if plan.hold_kinematic {
+                self.keep_kinematic_velocity(&mut correction, plan.corrects);
             }
             self.solve(&mut cw, &plan);
             self.integrate_positions(&mut cw.motion, &plan, &correction);
@@ -206,6 +218,24 @@ impl World {
                 if corrects {
                     correction[i] = Vec2::ZERO;
                 }
+            }
+        }
+    }
+
+    /// Substep stage: kinematic bodies keep the velocity they had when
+    /// the step began (no forces, no correction; contacts cannot change
+    /// it either, their inverse mass being zero).
+    fn keep_kinematic_velocity(&mut self, correction: &mut [Vec2], corrects: bool) {
+        let b = &mut self.dynamic;
+        for (&i, &(_, v)) in b.kinematic.iter().zip(&self.held) {
+            let i = i as usize;
+            b.vel[i] = if b.sleep[i].is_asleep() {
+                Vec2::ZERO
+            } else {
+                v
+            };
+            if corrects {
+                correction[i] = Vec2::ZERO;
             }
         }
     }

@@ -12,10 +12,10 @@ impl World {
     /// The force the world's force models exert on a body in its current
     /// state, newtons: weight, drag, friction, fields, springs, custom
     /// models, in their plain form (not the forces game code applied). For
-    /// drawing force vectors; zero for a static body.
+    /// drawing force vectors; zero for a static or kinematic body.
     pub fn model_force(&self, id: BodyId) -> Option<Vec2> {
         let i = match self.locate(id)? {
-            Location::Dynamic(i) => i as usize,
+            Location::Dynamic(i) if !self.dynamic.meta[i as usize].kinematic => i as usize,
             _ => return Some(Vec2::ZERO),
         };
         let b = &self.dynamic;
@@ -32,9 +32,16 @@ impl World {
         Some(a * b.meta[i].mass)
     }
 
-    /// Kinetic energy `sum 1/2 m |v|^2`, joules (summed in f64, in storage order).
+    /// The dynamic bodies that have a mass (not the kinematic ones), in
+    /// storage order: what the energies and the momentum sum over.
+    fn movable(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.dynamic.len()).filter(|&i| !self.dynamic.meta[i].kinematic)
+    }
+
+    /// Kinetic energy `sum 1/2 m |v|^2` of the dynamic bodies (kinematic
+    /// ones have no finite mass), joules (summed in f64, in storage order).
     pub fn kinetic_energy(&self) -> f64 {
-        (0..self.dynamic.len())
+        self.movable()
             .map(|i| {
                 0.5 * f64::from(self.dynamic.meta[i].mass)
                     * f64::from(self.dynamic.vel[i].length_squared())
@@ -46,7 +53,7 @@ impl World {
     /// (`-m g . p`, zero at the origin), the force field, the spring,
     /// central gravity and custom models.
     pub fn potential_energy(&self) -> f64 {
-        (0..self.dynamic.len())
+        self.movable()
             .map(|i| {
                 potential_energy(
                     &self.settings().forces,
@@ -66,7 +73,7 @@ impl World {
     /// Linear momentum `sum m v`, kilogram metres per second (f64).
     pub fn momentum(&self) -> [f64; 2] {
         let mut p = [0.0f64; 2];
-        for i in 0..self.dynamic.len() {
+        for i in self.movable() {
             let m = f64::from(self.dynamic.meta[i].mass);
             p[0] += m * f64::from(self.dynamic.vel[i].x);
             p[1] += m * f64::from(self.dynamic.vel[i].y);

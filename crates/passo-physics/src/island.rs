@@ -5,6 +5,7 @@
 use crate::bodies::{DynamicBodies, SleepState};
 use crate::constants::{SLEEP_SPEED, TIME_TO_SLEEP};
 use crate::constraint::{Constraint, ContactInfo};
+use glam::Vec2;
 
 /// Scratch space of the island pass, kept between steps so it allocates
 /// nothing once warm.
@@ -74,13 +75,19 @@ impl Islands {
     /// speed allows (so a body still being pushed out of an overlap, with
     /// zero velocity, is not resting), and resets the others. `moved` is
     /// each body's displacement over the step.
-    pub(crate) fn rest(&mut self, bodies: &mut DynamicBodies, moved: &[glam::Vec2], dt: f32) {
+    pub(crate) fn rest(&mut self, bodies: &mut DynamicBodies, moved: &[Vec2], dt: f32) {
         let sleep_sq = SLEEP_SPEED * SLEEP_SPEED;
         let travel_sq = sleep_sq * dt * dt;
         let states = bodies.sleep.iter_mut().zip(&bodies.vel).zip(moved);
-        for ((s, v), d) in states {
+        for (((s, v), d), &im) in states.zip(&bodies.inv_mass) {
             if !s.is_asleep() {
-                let resting = v.length_squared() < sleep_sq && d.length_squared() < travel_sq;
+                // A kinematic body (inverse mass zero) rests only when game
+                // code stopped it: sleeping would stop a slow platform.
+                let resting = if im == 0.0 {
+                    *v == Vec2::ZERO
+                } else {
+                    v.length_squared() < sleep_sq && d.length_squared() < travel_sq
+                };
                 s.rest_time = if resting { s.rest_time + dt } else { 0.0 };
             }
         }
@@ -128,7 +135,7 @@ impl Islands {
             let root = self.find(i as u32) as usize;
             if self.least_rest[root] >= TIME_TO_SLEEP {
                 bodies.sleep[i].sleep_in(bodies.meta[root].id.index);
-                bodies.vel[i] = glam::Vec2::ZERO;
+                bodies.vel[i] = Vec2::ZERO;
                 fell = true;
             }
         }

@@ -44,6 +44,8 @@ struct Collider {
     id: BodyId,
     sensor: bool,
     filter: CollisionFilter,
+    /// Static or kinematic: contacts and forces do not move it.
+    immovable: bool,
 }
 
 /// What the narrow phase reads (shared by the threads that run it).
@@ -65,6 +67,7 @@ impl Narrow<'_> {
             id: meta.id,
             sensor: meta.sensor,
             filter: meta.filter,
+            immovable: body.is_static() || meta.kinematic,
         }
     }
 
@@ -93,6 +96,10 @@ impl Narrow<'_> {
             };
         let (ca, cb) = (self.collider(a_body), self.collider(self.body_of(pb)));
         if !ca.filter.allows(&cb.filter) || (ca.sensor && cb.sensor) {
+            return Outcome::Skip;
+        }
+        // Kinematic bodies meet only dynamic ones (sensors see them all).
+        if ca.immovable && cb.immovable && !(ca.sensor || cb.sensor) {
             return Outcome::Skip;
         }
         if ca.sensor || cb.sensor {

@@ -134,7 +134,7 @@ impl World {
         let mut deepest = 0.0f32;
         for (i, j) in pairs {
             let (a, b) = (&bodies[i as usize], &bodies[j as usize]);
-            if (a.kind == BodyKind::Static && b.kind == BodyKind::Static)
+            if (a.kind != BodyKind::Dynamic && b.kind != BodyKind::Dynamic)
                 || !a.filter.allows(&b.filter)
             {
                 continue;

@@ -90,13 +90,19 @@ impl WorldSnapshot {
                 && d.vel[i].is_finite()
                 && d.force[i].is_finite()
                 && d.prev_pos.get(i).is_none_or(|p| p.is_finite());
-            let ranges = d.inv_mass[i].is_finite()
-                && d.inv_mass[i] > 0.0
+            // A kinematic body has inverse mass zero and infinite mass.
+            let mass_ok = if d.meta[i].kinematic {
+                d.inv_mass[i] == 0.0 && d.meta[i].mass == f32::INFINITY
+            } else {
+                d.inv_mass[i].is_finite()
+                    && d.inv_mass[i] > 0.0
+                    && (d.meta[i].mass * d.inv_mass[i] - 1.0).abs() < 1e-3
+            };
+            let ranges = mass_ok
                 && d.drag_area[i] >= 0.0
                 && d.friction[i] >= 0.0
                 && d.friction_force[i] >= 0.0
-                && d.sleep[i].is_valid()
-                && (d.meta[i].mass * d.inv_mass[i] - 1.0).abs() < 1e-3;
+                && d.sleep[i].is_valid();
             if !(finite && ranges) {
                 return bad(format!(
                     "dynamic body {i} has a non-finite or out-of-range value"
@@ -128,7 +134,7 @@ impl WorldSnapshot {
         let overrides = d
             .meta
             .iter()
-            .filter(|m| m.min_speed.is_some() || m.max_speed.is_some())
+            .filter(|m| !m.kinematic && (m.min_speed.is_some() || m.max_speed.is_some()))
             .count();
         let shaped_dynamic = d.meta.iter().filter(|m| m.shape.is_some()).count();
         let shaped_static = s.meta.iter().filter(|m| m.shape.is_some()).count();
@@ -194,6 +200,7 @@ impl World {
         world.slots = snapshot.slots;
         world.free = snapshot.free;
         world.dynamic = snapshot.dynamic;
+        world.dynamic.find_kinematic();
         world.statics = snapshot.statics;
         world.speed_overrides = snapshot.speed_overrides;
         world.game_friction = snapshot.game_friction;

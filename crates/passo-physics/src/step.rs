@@ -48,6 +48,8 @@ pub enum Stage {
     SurfaceFriction,
     /// Integration of velocities and positions with the given method.
     Integrate(Integrator),
+    /// Kinematic bodies move by their own velocity.
+    Kinematic,
     /// Broad phase, narrow phase and the contact solver (its own stages:
     /// [`World::contact_stages`]).
     Contacts,
@@ -84,6 +86,9 @@ impl StepPlan {
         ];
         stages.extend(models.iter().filter(|(on, _)| *on).map(|(_, s)| *s));
         stages.push(Stage::Integrate(world.settings().integrator));
+        if !world.dynamic.kinematic.is_empty() {
+            stages.push(Stage::Kinematic);
+        }
         if self.contacts.is_some() {
             stages.push(Stage::Contacts);
         }
@@ -144,7 +149,9 @@ impl World {
                 if let Some(cw) = &mut self.contacts {
                     cw.idle_step(&mut self.dynamic, &self.statics);
                 }
+                self.hold_kinematic();
                 self.step_bodies(dt, plan.limits);
+                self.move_kinematic(dt);
             }
         }
         self.clear_forces();
@@ -177,6 +184,28 @@ impl World {
             resets
         });
         self.stats.non_finite_resets += resets;
+    }
+
+    /// Notes where each kinematic body is and how fast it goes, before
+    /// integration treats it as any body.
+    pub(crate) fn hold_kinematic(&mut self) {
+        self.held.clear();
+        let b = &self.dynamic;
+        let held = b
+            .kinematic
+            .iter()
+            .map(|&i| (b.pos[i as usize], b.vel[i as usize]));
+        self.held.extend(held);
+    }
+
+    /// Stage (without contacts): kinematic bodies move by their own
+    /// velocity alone, `p <- p + v dt`, whatever integration did to them.
+    fn move_kinematic(&mut self, dt: f32) {
+        let b = &mut self.dynamic;
+        for (&i, &(p, v)) in b.kinematic.iter().zip(&self.held) {
+            b.pos[i as usize] = p + v * dt;
+            b.vel[i as usize] = v;
+        }
     }
 
     fn clear_forces(&mut self) {

@@ -81,6 +81,10 @@ pub struct World {
     pub(crate) bouncy: usize,
     /// Position corrections of the multi-stage integrators, with contacts.
     pub(crate) correction: Vec<Vec2>,
+    /// Position and velocity of each kinematic body when the step began
+    /// (scratch: integration treats them as any body, then they are put
+    /// back on their own course).
+    pub(crate) held: Vec<(Vec2, Vec2)>,
     /// Large worlds may run stages on rayon's pool (`parallel` feature).
     pub(crate) parallel: bool,
     pub(crate) stats: StepStats,
@@ -123,6 +127,7 @@ impl World {
             bouncy: 0,
             contacts: None,
             correction: Vec::new(),
+            held: Vec::new(),
             parallel: true,
             stats: StepStats::default(),
         })
@@ -263,6 +268,7 @@ impl World {
         };
         let meta = BodyMeta {
             id,
+            kinematic: def.kind == BodyKind::Kinematic,
             mass: if def.kind == BodyKind::Dynamic {
                 def.mass
             } else {
@@ -278,10 +284,10 @@ impl World {
             user_data: def.user_data,
         };
         match def.kind {
-            BodyKind::Dynamic => {
+            BodyKind::Dynamic | BodyKind::Kinematic => {
                 slot.location = Some(Location::Dynamic(self.dynamic.len() as u32));
                 let limits = self.resolve_limits(&meta);
-                if def.min_speed.is_some() || def.max_speed.is_some() {
+                if has_overrides(&meta) {
                     self.speed_overrides += 1;
                 }
                 self.dynamic
@@ -308,7 +314,7 @@ impl World {
         let moved = match location {
             Location::Dynamic(i) => {
                 let meta = &self.dynamic.meta[i as usize];
-                if meta.min_speed.is_some() || meta.max_speed.is_some() {
+                if has_overrides(meta) {
                     self.speed_overrides -= 1;
                 }
                 // What rested on it must fall.
@@ -395,8 +401,9 @@ impl World {
 
     pub(crate) fn count_shape(&mut self, kind: BodyKind, shaped: bool, delta: isize) {
         if shaped {
+            // Kinematic bodies live in the dynamic arrays.
             let count = match kind {
-                BodyKind::Dynamic => &mut self.shaped_dynamic,
+                BodyKind::Dynamic | BodyKind::Kinematic => &mut self.shaped_dynamic,
                 BodyKind::Static => &mut self.shaped_static,
             };
             *count = count
@@ -410,6 +417,10 @@ impl World {
     }
 
     pub(crate) fn resolve_limits(&self, meta: &BodyMeta) -> SpeedLimits {
+        if meta.kinematic {
+            // Game code sets a kinematic body's speed: no limit applies.
+            return SpeedLimits::new(0.0, f32::INFINITY);
+        }
         SpeedLimits::new(
             meta.min_speed.unwrap_or(self.settings.min_speed),
             meta.max_speed.unwrap_or(self.settings.max_speed),
@@ -417,10 +428,12 @@ impl World {
     }
 
     /// `Some` when speed limits apply: `Some(uniform)` with the world's
-    /// limits for every body, `None` when some body has its own.
+    /// limits for every body, `None` when some body has its own (kinematic
+    /// bodies have none).
     pub(crate) fn speed_limits(&self) -> Option<Option<SpeedLimits>> {
+        let uniform = self.speed_overrides == 0 && self.dynamic.kinematic.is_empty();
         self.has_speed_limits()
-            .then(|| (self.speed_overrides == 0).then(|| self.world_limits()))
+            .then(|| uniform.then(|| self.world_limits()))
     }
 
     fn has_speed_limits(&self) -> bool {
@@ -434,7 +447,16 @@ impl World {
         slot.location.filter(|_| slot.generation == id.generation)
     }
 
-    /// The array index of a dynamic body, `None` for a static one.
+    /// The array index of a dynamic body that forces move, `None` for a
+    /// static or kinematic one.
+    pub(crate) fn movable_index(&self, id: BodyId) -> Result<Option<usize>, PhysicsError> {
+        Ok(self
+            .dynamic_index(id)?
+            .filter(|&i| !self.dynamic.meta[i].kinematic))
+    }
+
+    /// The array index of a dynamic or kinematic body, `None` for a static
+    /// one.
     pub(crate) fn dynamic_index(&self, id: BodyId) -> Result<Option<usize>, PhysicsError> {
         match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
             Location::Dynamic(i) => Ok(Some(i as usize)),
@@ -456,6 +478,12 @@ impl World {
             None => current,
         }
     }
+}
+
+/// Whether a dynamic body has speed limits of its own (a kinematic body's
+/// are ignored).
+fn has_overrides(meta: &BodyMeta) -> bool {
+    !meta.kinematic && (meta.min_speed.is_some() || meta.max_speed.is_some())
 }
 
 /// The forces of a step, constants hoisted out of the body loop.

@@ -19,6 +19,10 @@ const PALETTE: [[u8; 4]; 6] = [
 /// Static bodies without a colour.
 const STATIC_COLOUR: Colour = Colour([0x6b, 0x70, 0x7a, 0xff]);
 
+/// Kinematic bodies (moving platforms) without a colour (sRGB): teal, apart
+/// from the palette of dynamic bodies and the grey of static ones.
+pub const KINEMATIC_COLOUR: Colour = Colour([0x3a, 0xa6, 0x9b, 0xff]);
+
 /// What the renderer and the game need to know about a scene body.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneBody {
@@ -123,6 +127,7 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         bounds = Some(bounds.map_or(aabb, |b| b.union(&aabb)));
         let colour = spec.colour.unwrap_or(match spec.kind {
             BodyKind::Static => STATIC_COLOUR,
+            BodyKind::Kinematic => KINEMATIC_COLOUR,
             BodyKind::Dynamic => Colour(PALETTE[bodies.len() % PALETTE.len()]),
         });
         bodies.push(SceneBody {

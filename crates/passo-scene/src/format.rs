@@ -182,7 +182,8 @@ pub struct BodySpec {
     /// A name for the demo and for game code. Default none.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
-    /// `Dynamic` (default) or `Static`.
+    /// `Dynamic` (default), `Static` or `Kinematic` (moved by its
+    /// `velocity` alone: a moving platform).
     pub kind: BodyKind,
     /// `Circle(radius: r)` or `Box(half_extents: (hx, hy))`, metres. Default
     /// none: a point mass that touches nothing.

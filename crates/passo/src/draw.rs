@@ -1,7 +1,7 @@
 //! Turning a physics world into a draw list.
 
 use glam::Vec2;
-use passo_physics::{Shape, World};
+use passo_physics::{BodyKind, Shape, World};
 use passo_render::DrawList;
 use passo_scene::SceneBody;
 
@@ -67,10 +67,14 @@ pub fn draw_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], opti
 /// Adds the world's bodies (with their scene colours) and the chosen debug
 /// vectors to `list`.
 pub fn add_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], options: &DrawOptions) {
-    let colour_of = |id| {
+    let colour_of = |body: &passo_physics::Body| {
+        let fallback = match body.kind {
+            BodyKind::Kinematic => passo_scene::KINEMATIC_COLOUR.0,
+            _ => DEFAULT_COLOUR,
+        };
         bodies
-            .binary_search_by_key(&id, |b: &SceneBody| b.id)
-            .map_or(DEFAULT_COLOUR, |i| bodies[i].colour.0)
+            .binary_search_by_key(&body.id, |b: &SceneBody| b.id)
+            .map_or(fallback, |i| bodies[i].colour.0)
     };
     // Static bodies first, so moving ones are drawn over them.
     for pass in [true, false] {
@@ -82,7 +86,7 @@ pub fn add_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], optio
                 .interpolated_position(body.id, options.alpha)
                 .unwrap_or(body.position)
                 + options.offset;
-            let mut colour = colour_of(body.id);
+            let mut colour = colour_of(&body);
             if options.dim_sleeping && body.asleep {
                 for c in &mut colour[..3] {
                     *c = (f32::from(*c) * 0.55).round() as u8;

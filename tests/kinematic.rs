@@ -1,0 +1,295 @@
+//! Kinematic bodies: moved by their velocity alone, they carry, lift and
+//! push dynamic bodies and are not moved by anything.
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, BodyId, BodyKind, ContactStage, Shape, Stage, World, WorldSettings};
+use passo_tests::max_penetration;
+
+const DT: f32 = 1.0 / 60.0;
+
+fn platform(world: &mut World, position: Vec2, velocity: Vec2) -> BodyId {
+    world
+        .add_body(BodyDef::kinematic(
+            position,
+            Shape::rect(4.0, 0.5),
+            velocity,
+        ))
+        .unwrap()
+}
+
+/// A 1 m box resting on the platform's top (the platform is 0.5 m thick).
+fn rider(world: &mut World, on: Vec2, velocity: Vec2) -> BodyId {
+    world
+        .add_body(BodyDef {
+            position: on + Vec2::new(0.0, 0.25 + 0.5),
+            velocity,
+            shape: Some(Shape::rect(1.0, 1.0)),
+            ..Default::default()
+        })
+        .unwrap()
+}
+
+fn pos(world: &World, id: BodyId) -> Vec2 {
+    world.body(id).unwrap().position
+}
+
+#[test]
+fn a_kinematic_body_moves_by_its_velocity_alone() {
+    for shaped in [false, true] {
+        let mut world = World::default();
+        let def = BodyDef {
+            kind: BodyKind::Kinematic,
+            velocity: Vec2::new(2.0, -1.0),
+            shape: shaped.then_some(Shape::circle(0.5)),
+            ..Default::default()
+        };
+        let k = world.add_body(def).unwrap();
+        // Something to collide with, so the contact stage runs too.
+        world
+            .add_body(BodyDef::fixed(Vec2::new(0.0, -3.0), Shape::rect(50.0, 1.0)))
+            .unwrap();
+        world.apply_force(k, Vec2::new(1e4, 1e4)).unwrap();
+        world.apply_impulse(k, Vec2::new(1e4, 1e4)).unwrap();
+        for _ in 0..120 {
+            world.step(DT);
+        }
+        let b = world.body(k).unwrap();
+        assert_eq!(b.kind, BodyKind::Kinematic);
+        assert_eq!(
+            b.velocity,
+            Vec2::new(2.0, -1.0),
+            "no gravity, force or impulse"
+        );
+        // 2 s at (2, -1) m/s; it passes through the static ground.
+        assert!(
+            (b.position - Vec2::new(4.0, -2.0)).length() < 1e-4,
+            "{shaped}: {}",
+            b.position
+        );
+        assert_eq!(b.mass, f32::INFINITY);
+        assert!(world.active_stages().contains(&Stage::Kinematic));
+        if shaped {
+            assert!(
+                world
+                    .contact_stages()
+                    .contains(&ContactStage::HoldKinematic)
+            );
+        }
+    }
+}
+
+#[test]
+fn set_kinematic_target_reaches_the_target_in_one_step() {
+    let mut world = World::default();
+    let k = platform(&mut world, Vec2::ZERO, Vec2::ZERO);
+    for target in [Vec2::new(0.5, 0.25), Vec2::new(-1.0, 3.0)] {
+        world.set_kinematic_target(k, target, DT).unwrap();
+        world.step(DT);
+        assert!((pos(&world, k) - target).length() < 1e-5);
+    }
+    assert!(world.set_kinematic_target(k, Vec2::NAN, DT).is_err());
+    assert!(world.set_kinematic_target(k, Vec2::ONE, 0.0).is_err());
+    // A dynamic body is not moved by it.
+    let d = world.add_body(BodyDef::dynamic(Vec2::ZERO)).unwrap();
+    world
+        .set_kinematic_target(d, Vec2::new(9.0, 9.0), DT)
+        .unwrap();
+    assert_eq!(world.body(d).unwrap().velocity, Vec2::ZERO);
+}
+
+#[test]
+fn a_rider_is_carried_sideways_by_friction_with_under_a_centimetre_of_slip() {
+    let mut world = World::default();
+    let v = Vec2::new(2.0, 0.0);
+    let k = platform(&mut world, Vec2::ZERO, v);
+    let r = rider(&mut world, Vec2::ZERO, v);
+    let start = pos(&world, r) - pos(&world, k);
+    for _ in 0..300 {
+        world.step(DT);
+    }
+    let slip = (pos(&world, r) - pos(&world, k) - start).length();
+    assert!(slip < 0.01, "slip over 5 s: {slip} m");
+    assert!((world.body(r).unwrap().velocity - v).length() < 1e-3);
+    assert!(world.is_standing(r, 0.8));
+    assert_eq!(world.standing_on(r, 0.8), Some(k));
+}
+
+#[test]
+fn a_rider_at_rest_is_brought_up_to_the_platforms_speed_by_friction() {
+    // mu g = 0.6 * 9.81 = 5.886 m/s²: 2 m/s is reached in 0.34 s.
+    let mut world = World::default();
+    let k = platform(&mut world, Vec2::ZERO, Vec2::new(2.0, 0.0));
+    let r = rider(&mut world, Vec2::ZERO, Vec2::ZERO);
+    for _ in 0..15 {
+        world.step(DT);
+    }
+    let vx = world.body(r).unwrap().velocity.x;
+    assert!((vx - 5.886 * 0.25).abs() < 0.05, "after 0.25 s: {vx} m/s");
+    for _ in 0..45 {
+        world.step(DT);
+    }
+    assert!((world.body(r).unwrap().velocity.x - 2.0).abs() < 1e-3);
+    let _ = k;
+}
+
+#[test]
+fn a_platform_moving_up_lifts_its_rider_and_one_moving_down_keeps_it() {
+    for vy in [2.0, -3.0] {
+        let mut world = World::default();
+        let v = Vec2::new(0.0, vy);
+        let k = platform(&mut world, Vec2::ZERO, v);
+        let r = rider(&mut world, Vec2::ZERO, v);
+        let mut worst_gap = 0.0f32;
+        let mut worst_sink = 0.0f32;
+        for _ in 0..300 {
+            world.step(DT);
+            // Rider bottom minus platform top.
+            let gap = (pos(&world, r).y - 0.5) - (pos(&world, k).y + 0.25);
+            worst_gap = worst_gap.max(gap);
+            worst_sink = worst_sink.max(-gap);
+        }
+        assert!(worst_gap < 0.01, "{vy} m/s: lifted off by {worst_gap} m");
+        assert!(worst_sink < 0.0075, "{vy} m/s: sank {worst_sink} m");
+        assert!((world.body(r).unwrap().velocity.y - vy).abs() < 1e-3);
+    }
+}
+
+#[test]
+fn a_platform_that_reverses_from_up_to_down_lands_its_rider_again_without_a_bounce() {
+    // The rider leaves the platform when it turns from 2 m/s up to 3 m/s
+    // down (it falls at g, slower at first than the platform sinks), and
+    // lands on it about 0.8 s later; with restitution 0 it stays there.
+    let mut world = World::default();
+    let k = platform(&mut world, Vec2::ZERO, Vec2::new(0.0, 2.0));
+    let r = rider(&mut world, Vec2::ZERO, Vec2::new(0.0, 2.0));
+    for _ in 0..60 {
+        world.step(DT);
+    }
+    world.set_velocity(k, Vec2::new(0.0, -3.0)).unwrap();
+    for _ in 0..120 {
+        world.step(DT);
+    }
+    let gap = (pos(&world, r).y - 0.5) - (pos(&world, k).y + 0.25);
+    assert!(gap.abs() < 0.01, "back on the platform: gap {gap}");
+    assert!((world.body(r).unwrap().velocity.y + 3.0).abs() < 1e-3);
+    assert!(max_penetration(&world) < 0.0075);
+}
+
+#[test]
+fn a_platform_moving_sideways_pushes_a_box_in_its_way() {
+    let mut world = World::default();
+    world
+        .add_body(BodyDef::fixed(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0)))
+        .unwrap();
+    let wall = world
+        .add_body(BodyDef::kinematic(
+            Vec2::new(-3.0, 1.0),
+            Shape::rect(0.5, 2.0),
+            Vec2::new(1.5, 0.0),
+        ))
+        .unwrap();
+    let b = world
+        .add_body(BodyDef {
+            position: Vec2::new(0.0, 0.5),
+            shape: Some(Shape::rect(1.0, 1.0)),
+            ..Default::default()
+        })
+        .unwrap();
+    for _ in 0..240 {
+        world.step(DT);
+    }
+    // The wall's right face reached 4 s * 1.5 m/s - 3 + 0.25 = 3.25 m; the
+    // box is pushed ahead of it.
+    let face = pos(&world, wall).x + 0.25;
+    let box_left = pos(&world, b).x - 0.5;
+    assert!(
+        (box_left - face).abs() < 0.01,
+        "box at {box_left}, wall at {face}"
+    );
+    assert!((world.body(b).unwrap().velocity.x - 1.5).abs() < 0.01);
+    assert_eq!(world.body(wall).unwrap().velocity, Vec2::new(1.5, 0.0));
+}
+
+#[test]
+fn kinematic_bodies_meet_neither_static_nor_kinematic_ones() {
+    let mut world = World::default();
+    let a = platform(&mut world, Vec2::new(-3.0, 0.0), Vec2::new(1.0, 0.0));
+    let b = platform(&mut world, Vec2::new(3.0, 0.0), Vec2::new(-1.0, 0.0));
+    world
+        .add_body(BodyDef::fixed(Vec2::ZERO, Shape::rect(1.0, 5.0)))
+        .unwrap();
+    // A dynamic body far away, so the contact stage runs.
+    world
+        .add_body(BodyDef {
+            position: Vec2::new(100.0, 0.0),
+            shape: Some(Shape::circle(0.5)),
+            ..Default::default()
+        })
+        .unwrap();
+    for _ in 0..360 {
+        world.step(DT);
+    }
+    assert!((pos(&world, a).x - 3.0).abs() < 1e-3);
+    assert!((pos(&world, b).x + 3.0).abs() < 1e-3);
+    assert!(world.contacts().all(|c| c.a != a && c.b != a));
+}
+
+#[test]
+fn a_kinematic_body_is_interpolated() {
+    let mut world = World::new(WorldSettings {
+        interpolation: true,
+        ..Default::default()
+    })
+    .unwrap();
+    let k = platform(&mut world, Vec2::ZERO, Vec2::new(6.0, 0.0));
+    world.step(0.5);
+    assert_eq!(
+        world.interpolated_position(k, 0.5),
+        Some(Vec2::new(1.5, 0.0))
+    );
+}
+
+#[test]
+fn riders_of_a_moving_platform_stay_awake_and_of_a_stopped_one_sleep() {
+    let mut world = World::default();
+    let k = platform(&mut world, Vec2::ZERO, Vec2::new(0.5, 0.0));
+    let r = rider(&mut world, Vec2::ZERO, Vec2::new(0.5, 0.0));
+    for _ in 0..180 {
+        world.step(DT);
+    }
+    assert_eq!(world.is_asleep(r), Some(false), "moving: awake");
+    world.set_velocity(k, Vec2::ZERO).unwrap();
+    for _ in 0..180 {
+        world.step(DT);
+    }
+    assert_eq!(world.is_asleep(r), Some(true), "stopped: asleep");
+    assert_eq!(world.is_asleep(k), Some(true));
+    // Starting it again wakes the rider, which is carried along.
+    world.set_velocity(k, Vec2::new(0.5, 0.0)).unwrap();
+    let before = pos(&world, r);
+    for _ in 0..60 {
+        world.step(DT);
+    }
+    assert_eq!(world.is_asleep(r), Some(false));
+    assert!(pos(&world, r).x - before.x > 0.4, "carried again");
+}
+
+#[test]
+fn a_snapshot_with_a_kinematic_body_resumes_bit_for_bit() {
+    let mut world = World::default();
+    let k = platform(&mut world, Vec2::ZERO, Vec2::new(1.0, 0.5));
+    rider(&mut world, Vec2::ZERO, Vec2::ZERO);
+    for _ in 0..30 {
+        world.step(DT);
+    }
+    let mut copy = World::from_snapshot(world.snapshot()).unwrap();
+    for _ in 0..90 {
+        world.step(DT);
+        copy.step(DT);
+    }
+    assert_eq!(world.state_hash(), copy.state_hash());
+    assert_eq!(copy.body(k).unwrap().kind, BodyKind::Kinematic);
+    // Energy and momentum leave out the body of infinite mass.
+    assert!(world.kinetic_energy().is_finite());
+    assert!(world.momentum().iter().all(|p| p.is_finite()));
+}
