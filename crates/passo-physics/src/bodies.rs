@@ -71,6 +71,13 @@ pub(crate) struct BodyMeta {
     pub restitution: f32,
     pub filter: CollisionFilter,
     pub sensor: bool,
+    /// The solid side of a one-way platform (unit).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub one_way: Option<Vec2>,
+    /// Seconds left in which this body passes through one-way platforms
+    /// (see `World::drop_through`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub drop_through: f32,
     pub min_speed: Option<f32>,
     pub max_speed: Option<f32>,
     pub user_data: u64,
@@ -283,6 +290,7 @@ impl DynamicBodies {
             restitution: m.restitution,
             filter: m.filter,
             sensor: m.sensor,
+            one_way: m.one_way,
             min_speed: m.min_speed,
             max_speed: m.max_speed,
             user_data: m.user_data,
@@ -333,6 +341,7 @@ impl StaticBodies {
             restitution: m.restitution,
             filter: m.filter,
             sensor: m.sensor,
+            one_way: m.one_way,
             min_speed: m.min_speed,
             max_speed: m.max_speed,
             user_data: m.user_data,

@@ -65,6 +65,13 @@ pub struct BodyDef {
     /// [`World::events`](crate::World::events)) but never pushes them.
     /// Default `false`.
     pub sensor: bool,
+    /// Makes a static or kinematic body a one-way platform: the outward
+    /// normal of its solid side (any finite non-zero vector; `(0, 1)` for a
+    /// platform to land on from above). Bodies meeting it from that side
+    /// land and stand on it; bodies coming from anywhere else pass through
+    /// with their velocity unchanged, and so does a body already partly
+    /// inside it. Default `None` (solid from every side).
+    pub one_way: Option<Vec2>,
     /// Minimum speed override, metres per second, >= 0; `None` (the default)
     /// uses the world's.
     pub min_speed: Option<f32>,
@@ -89,6 +96,7 @@ impl Default for BodyDef {
             restitution: 0.0,
             filter: CollisionFilter::default(),
             sensor: false,
+            one_way: None,
             min_speed: None,
             max_speed: None,
             user_data: 0,
@@ -140,6 +148,16 @@ impl BodyDef {
         non_negative("BodyDef::drag_area", self.drag_area)?;
         non_negative("BodyDef::friction", self.friction)?;
         unit_interval("BodyDef::restitution", self.restitution)?;
+        if let Some(normal) = self.one_way {
+            check_one_way("BodyDef::one_way", normal)?;
+            if self.kind == BodyKind::Dynamic {
+                return Err(PhysicsError::OutOfRange {
+                    what: "BodyDef::one_way",
+                    value: normal.length(),
+                    allowed: "set only on static and kinematic bodies",
+                });
+            }
+        }
         if let Some(min) = self.min_speed {
             non_negative("BodyDef::min_speed", min)?;
         }
@@ -148,6 +166,16 @@ impl BodyDef {
         }
         Ok(())
     }
+}
+
+/// A one-way normal must be finite and not zero; returns it normalised.
+pub(crate) fn check_one_way(what: &'static str, normal: Vec2) -> Result<Vec2, PhysicsError> {
+    finite_vec(what, normal)?;
+    normal.try_normalize().ok_or(PhysicsError::OutOfRange {
+        what,
+        value: 0.0,
+        allowed: "a non-zero direction",
+    })
 }
 
 /// A maximum speed must be > 0; infinity (no clamp) is allowed.
@@ -190,6 +218,8 @@ pub struct Body {
     pub filter: CollisionFilter,
     /// Whether the body is a sensor.
     pub sensor: bool,
+    /// The solid side of a one-way platform (unit), if it is one.
+    pub one_way: Option<Vec2>,
     /// Minimum speed override, if any.
     pub min_speed: Option<f32>,
     /// Maximum speed override, if any.
@@ -222,6 +252,7 @@ impl Body {
             restitution: self.restitution,
             filter: self.filter,
             sensor: self.sensor,
+            one_way: self.one_way,
             min_speed: self.min_speed,
             max_speed: self.max_speed,
             user_data: self.user_data,

@@ -2,9 +2,10 @@
 //! forces and impulses, material. Every value is checked where it enters,
 //! and a change wakes what it may have disturbed.
 
+use crate::body::check_one_way;
 use crate::error::{finite, finite_vec, non_negative, positive, unit_interval};
 use crate::world::{Location, World};
-use crate::{BodyId, PhysicsError};
+use crate::{BodyId, CollisionFilter, PhysicsError};
 use glam::Vec2;
 
 impl World {
@@ -125,13 +126,68 @@ impl World {
     pub fn set_restitution(&mut self, id: BodyId, restitution: f32) -> Result<(), PhysicsError> {
         unit_interval("restitution", restitution)?;
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
-        let meta = match location {
-            Location::Dynamic(i) => &mut self.dynamic.meta[i as usize],
-            Location::Static(i) => &mut self.statics.meta[i as usize],
-        };
+        let meta = self.meta_mut(location);
         let was_bouncy = meta.restitution > 0.0;
         meta.restitution = restitution;
         self.bouncy = self.bouncy - usize::from(was_bouncy) + usize::from(restitution > 0.0);
+        self.wake_after_change(location);
+        Ok(())
+    }
+
+    /// Lets a dynamic body pass through one-way platforms for `seconds`
+    /// (the player pressing down): contacts with them are ignored until the
+    /// time runs out, and a body then still inside one goes on through.
+    /// `0` ends it. Ignored for static and kinematic bodies.
+    ///
+    /// # Errors
+    /// A stale id, or `seconds` not finite and >= 0.
+    pub fn drop_through(&mut self, id: BodyId, seconds: f32) -> Result<(), PhysicsError> {
+        non_negative("drop_through seconds", seconds)?;
+        if let Some(i) = self.movable_index(id)? {
+            let meta = &mut self.dynamic.meta[i];
+            let was = meta.drop_through > 0.0;
+            meta.drop_through = seconds;
+            self.dropping = self.dropping + usize::from(seconds > 0.0) - usize::from(was);
+            self.wake_index(i);
+        }
+        Ok(())
+    }
+
+    /// Changes which bodies this one may touch.
+    pub fn set_filter(&mut self, id: BodyId, filter: CollisionFilter) -> Result<(), PhysicsError> {
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        self.meta_mut(location).filter = filter;
+        self.wake_after_change(location);
+        Ok(())
+    }
+
+    /// Makes a body a sensor (it reports overlaps and pushes nothing) or a
+    /// solid body again.
+    pub fn set_sensor(&mut self, id: BodyId, sensor: bool) -> Result<(), PhysicsError> {
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        self.meta_mut(location).sensor = sensor;
+        self.wake_after_change(location);
+        Ok(())
+    }
+
+    /// Makes a static or kinematic body a one-way platform with the given
+    /// solid side (see [`BodyDef::one_way`](crate::BodyDef::one_way)), or
+    /// solid from every side again with `None`.
+    ///
+    /// # Errors
+    /// A stale id, a zero or non-finite normal, or a dynamic body.
+    pub fn set_one_way(&mut self, id: BodyId, one_way: Option<Vec2>) -> Result<(), PhysicsError> {
+        let normal = one_way.map(|n| check_one_way("one_way", n)).transpose()?;
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        let meta = self.meta_mut(location);
+        if normal.is_some() && matches!(location, Location::Dynamic(_)) && !meta.kinematic {
+            return Err(PhysicsError::OutOfRange {
+                what: "one_way",
+                value: 1.0,
+                allowed: "set only on static and kinematic bodies",
+            });
+        }
+        meta.one_way = normal;
         self.wake_after_change(location);
         Ok(())
     }

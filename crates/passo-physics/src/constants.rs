@@ -57,6 +57,13 @@ pub const LINEAR_SLOP: f32 = 0.005;
 /// through a thin wall.
 pub const SPECULATIVE_DISTANCE: f32 = 4.0 * LINEAR_SLOP;
 
+/// How deep a body may sit in a one-way platform, metres, and still land
+/// on it: 2 × [`LINEAR_SLOP`] = 1 cm. A resting body sits up to the slop
+/// deep; one deeper was coming through (from below, or dropping through)
+/// and goes on through instead of popping up. Raising it makes bodies that
+/// jumped nearly through snap up onto the platform.
+pub const ONE_WAY_DEPTH: f32 = 2.0 * LINEAR_SLOP;
+
 /// Default substeps of a step when contacts are solved: 4. Each substep
 /// integrates forces, solves contacts and moves bodies with `dt / 4`; more
 /// substeps make tall stacks and large mass ratios stiffer.

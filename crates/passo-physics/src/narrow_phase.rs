@@ -4,9 +4,10 @@
 
 use crate::bodies::Colliders;
 use crate::collider::ColliderRef;
+use crate::constants::ONE_WAY_DEPTH;
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::filter::CollisionFilter;
-use crate::manifold::{Faces, collide_seamless};
+use crate::manifold::{Faces, Manifold, collide_seamless};
 use crate::parallel::for_chunks;
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::{BodyId, SensorPair, Shape};
@@ -46,6 +47,10 @@ struct Collider {
     filter: CollisionFilter,
     /// Static or kinematic: contacts and forces do not move it.
     immovable: bool,
+    /// The solid side of a one-way platform.
+    one_way: Option<Vec2>,
+    /// Passes through one-way platforms for now.
+    dropping: bool,
 }
 
 /// What the narrow phase reads (shared by the threads that run it).
@@ -68,6 +73,8 @@ impl Narrow<'_> {
             sensor: meta.sensor,
             filter: meta.filter,
             immovable: body.is_static() || meta.kinematic,
+            one_way: meta.one_way,
+            dropping: meta.drop_through > 0.0,
         }
     }
 
@@ -133,6 +140,7 @@ impl Narrow<'_> {
             margin,
             faces,
         ) {
+            Some(m) if !one_way_allows(&ca, &cb, &m) => Outcome::Skip,
             Some(m) => {
                 let a = ca.body.index() as u32;
                 let (row, info) =
@@ -142,6 +150,21 @@ impl Narrow<'_> {
             None => Outcome::Skip,
         }
     }
+}
+
+/// Whether a contact with a one-way platform holds: it comes from the
+/// platform's solid side (the normal from the platform to the other body
+/// has a positive part along the solid side's normal), the other body is
+/// no deeper in it than [`ONE_WAY_DEPTH`] and is not dropping through. A
+/// pair without a one-way platform always holds.
+fn one_way_allows(a: &Collider, b: &Collider, m: &Manifold) -> bool {
+    // `m.normal` points from A to B.
+    let (other, outward) = match (a.one_way, b.one_way) {
+        (_, Some(n)) => (a, -m.normal.dot(n)),
+        (Some(n), None) => (b, m.normal.dot(n)),
+        (None, None) => return true,
+    };
+    outward > 0.0 && m.separation >= -ONE_WAY_DEPTH && !other.dropping
 }
 
 /// The narrow phase's buffers, kept between steps.

@@ -98,7 +98,13 @@ impl WorldSnapshot {
                     && d.inv_mass[i] > 0.0
                     && (d.meta[i].mass * d.inv_mass[i] - 1.0).abs() < 1e-3
             };
+            let meta_ok = d.meta[i].drop_through.is_finite()
+                && d.meta[i].drop_through >= 0.0
+                && d.meta[i]
+                    .one_way
+                    .is_none_or(|n| n.is_finite() && n.length() > 0.5);
             let ranges = mass_ok
+                && meta_ok
                 && d.drag_area[i] >= 0.0
                 && d.friction[i] >= 0.0
                 && d.friction_force[i] >= 0.0
@@ -201,6 +207,9 @@ impl World {
         world.free = snapshot.free;
         world.dynamic = snapshot.dynamic;
         world.dynamic.find_kinematic();
+        world.dropping = (world.dynamic.meta.iter())
+            .filter(|m| m.drop_through > 0.0)
+            .count();
         world.statics = snapshot.statics;
         world.speed_overrides = snapshot.speed_overrides;
         world.game_friction = snapshot.game_friction;

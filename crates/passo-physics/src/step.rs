@@ -155,6 +155,7 @@ impl World {
             }
         }
         self.clear_forces();
+        self.count_down_drop_through(dt);
         self.stats.steps += 1;
     }
 
@@ -206,6 +207,21 @@ impl World {
             b.pos[i as usize] = p + v * dt;
             b.vel[i as usize] = v;
         }
+    }
+
+    /// Bodies dropping through one-way platforms have `dt` less left.
+    fn count_down_drop_through(&mut self, dt: f32) {
+        if self.dropping == 0 {
+            return;
+        }
+        let mut still = 0;
+        for m in &mut self.dynamic.meta {
+            if m.drop_through > 0.0 {
+                m.drop_through = (m.drop_through - dt).max(0.0);
+                still += usize::from(m.drop_through > 0.0);
+            }
+        }
+        self.dropping = still;
     }
 
     fn clear_forces(&mut self) {

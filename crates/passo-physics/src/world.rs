@@ -79,6 +79,8 @@ pub struct World {
     /// Bodies with a restitution above zero: the restitution stage runs
     /// only with some.
     pub(crate) bouncy: usize,
+    /// Dynamic bodies dropping through one-way platforms.
+    pub(crate) dropping: usize,
     /// Position corrections of the multi-stage integrators, with contacts.
     pub(crate) correction: Vec<Vec2>,
     /// Position and velocity of each kinematic body when the step began
@@ -125,6 +127,7 @@ impl World {
             shaped_static: 0,
             statics_dirty: false,
             bouncy: 0,
+            dropping: 0,
             contacts: None,
             correction: Vec::new(),
             held: Vec::new(),
@@ -279,6 +282,8 @@ impl World {
             restitution: def.restitution,
             filter: def.filter,
             sensor: def.sensor,
+            one_way: def.one_way.and_then(Vec2::try_normalize),
+            drop_through: 0.0,
             min_speed: def.min_speed,
             max_speed: def.max_speed,
             user_data: def.user_data,
@@ -461,6 +466,14 @@ impl World {
         match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
             Location::Dynamic(i) => Ok(Some(i as usize)),
             _ => Ok(None),
+        }
+    }
+
+    /// The cold data of a live body.
+    pub(crate) fn meta_mut(&mut self, location: Location) -> &mut BodyMeta {
+        match location {
+            Location::Dynamic(i) => &mut self.dynamic.meta[i as usize],
+            Location::Static(i) => &mut self.statics.meta[i as usize],
         }
     }
 

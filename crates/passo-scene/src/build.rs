@@ -104,6 +104,7 @@ fn body_def(spec: &BodySpec, position: Vec2) -> BodyDef {
         restitution: spec.material.restitution,
         filter: spec.filter.unwrap_or_default(),
         sensor: spec.sensor,
+        one_way: spec.one_way,
         min_speed: spec.min_speed,
         max_speed: spec.max_speed,
         user_data: 0,

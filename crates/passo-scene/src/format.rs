@@ -208,6 +208,10 @@ pub struct BodySpec {
     pub colour: Option<Colour>,
     /// A sensor reports overlaps and pushes nothing. Default false.
     pub sensor: bool,
+    /// A one-way platform (static or kinematic): the outward normal of its
+    /// solid side, e.g. `(0, 1)`. Default none (solid from every side).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub one_way: Option<Vec2>,
     /// Collision layers and mask. Default: layer 1, collides with all.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub filter: Option<CollisionFilter>,

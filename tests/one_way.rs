@@ -1,0 +1,232 @@
+//! One-way platforms: solid from one side, open from every other.
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, BodyId, CollisionFilter, Shape, World};
+
+const DT: f32 = 1.0 / 60.0;
+const UP: Vec2 = Vec2::Y;
+
+/// A world with a one-way platform 4 m wide, 0.2 m thick, its top at y = 2,
+/// and solid ground at y = 0.
+fn world_with_platform(kind: &str) -> (World, BodyId) {
+    let mut world = World::default();
+    world
+        .add_body(BodyDef::fixed(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0)))
+        .unwrap();
+    let def = match kind {
+        "kinematic" => BodyDef::kinematic(Vec2::new(0.0, 1.9), Shape::rect(4.0, 0.2), Vec2::ZERO),
+        _ => BodyDef::fixed(Vec2::new(0.0, 1.9), Shape::rect(4.0, 0.2)),
+    };
+    let platform = world
+        .add_body(BodyDef {
+            one_way: Some(UP),
+            ..def
+        })
+        .unwrap();
+    (world, platform)
+}
+
+fn ball(world: &mut World, position: Vec2, velocity: Vec2) -> BodyId {
+    world
+        .add_body(BodyDef {
+            position,
+            velocity,
+            shape: Some(Shape::circle(0.25)),
+            ..Default::default()
+        })
+        .unwrap()
+}
+
+#[test]
+fn a_body_moving_up_passes_through_with_its_velocity_unchanged_to_the_bit() {
+    for kind in ["static", "kinematic"] {
+        // From a crawl to speeds where continuous collision would make a
+        // speculative contact from the platform's underside.
+        // (5 m/s rises 1.27 m from y = 1.2: just past the top at y = 2.)
+        for speed in [5.0, 8.0, 40.0, 200.0] {
+            let (mut world, _) = world_with_platform(kind);
+            let a = ball(&mut world, Vec2::new(0.0, 1.2), Vec2::new(0.3, speed));
+            // The same ball in the same world without the platform.
+            let mut open = World::default();
+            open.add_body(BodyDef::fixed(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0)))
+                .unwrap();
+            let b = ball(&mut open, Vec2::new(0.0, 1.2), Vec2::new(0.3, speed));
+            let mut passed = false;
+            for _ in 0..30 {
+                world.step(DT);
+                open.step(DT);
+                let (x, y) = (world.body(a).unwrap(), open.body(b).unwrap());
+                // Until it comes back down onto the platform.
+                if x.velocity.y < 0.0 && x.position.y < 2.6 {
+                    break;
+                }
+                assert_eq!(x.velocity, y.velocity, "{kind}, {speed} m/s");
+                assert_eq!(x.position, y.position, "{kind}, {speed} m/s");
+                passed |= x.position.y - 0.25 > 2.0;
+            }
+            assert!(passed, "{kind}, {speed} m/s: went above the platform");
+        }
+    }
+}
+
+#[test]
+fn a_body_falling_onto_it_from_above_lands_and_stands() {
+    for kind in ["static", "kinematic"] {
+        let (mut world, platform) = world_with_platform(kind);
+        let a = ball(&mut world, Vec2::new(0.5, 5.0), Vec2::ZERO);
+        for _ in 0..120 {
+            world.step(DT);
+        }
+        let b = world.body(a).unwrap();
+        assert!(
+            (b.position.y - 2.25).abs() < 0.006,
+            "{kind}: at {}",
+            b.position.y
+        );
+        assert!(world.is_standing(a, 0.8), "{kind}");
+        assert_eq!(world.standing_on(a, 0.8), Some(platform), "{kind}");
+    }
+}
+
+#[test]
+fn a_body_jumping_up_through_lands_on_top() {
+    let (mut world, platform) = world_with_platform("static");
+    let a = ball(&mut world, Vec2::new(0.0, 0.25), Vec2::new(0.0, 8.0));
+    for _ in 0..180 {
+        world.step(DT);
+    }
+    assert!((world.body(a).unwrap().position.y - 2.25).abs() < 0.006);
+    assert_eq!(world.standing_on(a, 0.8), Some(platform));
+}
+
+#[test]
+fn a_body_partly_inside_when_it_starts_to_fall_goes_on_through() {
+    let (mut world, _) = world_with_platform("static");
+    // Its bottom 12 cm below the platform's top, at rest.
+    let a = ball(&mut world, Vec2::new(0.0, 2.13), Vec2::ZERO);
+    for _ in 0..120 {
+        world.step(DT);
+    }
+    let y = world.body(a).unwrap().position.y;
+    assert!((y - 0.25).abs() < 0.006, "fell to the ground: {y}");
+}
+
+#[test]
+fn a_body_coming_from_the_side_passes_through() {
+    let (mut world, _) = world_with_platform("static");
+    // 30 m/s for 0.2 s: 6 m to the right, 0.2 m lower.
+    let a = ball(&mut world, Vec2::new(-3.0, 1.9), Vec2::new(30.0, 0.0));
+    for _ in 0..12 {
+        world.step(DT);
+    }
+    assert!(
+        world.body(a).unwrap().position.x > 2.5,
+        "through the platform"
+    );
+}
+
+#[test]
+fn drop_through_lets_a_standing_body_fall_to_the_ground() {
+    let (mut world, platform) = world_with_platform("static");
+    let a = ball(&mut world, Vec2::new(0.0, 2.25), Vec2::ZERO);
+    for _ in 0..60 {
+        world.step(DT);
+    }
+    assert_eq!(world.standing_on(a, 0.8), Some(platform));
+    world.drop_through(a, 0.25).unwrap();
+    for _ in 0..120 {
+        world.step(DT);
+    }
+    let y = world.body(a).unwrap().position.y;
+    assert!((y - 0.25).abs() < 0.006, "on the ground: {y}");
+    // After the time ran out the platform holds it again from above.
+    let b = ball(&mut world, Vec2::new(1.0, 4.0), Vec2::ZERO);
+    for _ in 0..120 {
+        world.step(DT);
+    }
+    assert_eq!(world.standing_on(b, 0.8), Some(platform));
+    assert!(world.drop_through(a, -1.0).is_err());
+}
+
+#[test]
+fn a_platform_can_be_made_one_way_and_a_filter_changed_after_creation() {
+    let mut world = World::default();
+    let slab = world
+        .add_body(BodyDef::fixed(Vec2::new(0.0, 1.9), Shape::rect(4.0, 0.2)))
+        .unwrap();
+    world
+        .add_body(BodyDef::fixed(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0)))
+        .unwrap();
+    let a = ball(&mut world, Vec2::new(0.0, 0.25), Vec2::new(0.0, 8.0));
+    world.step(DT);
+    for _ in 0..10 {
+        world.step(DT);
+    }
+    assert!(
+        world.body(a).unwrap().position.y < 1.8,
+        "solid: it hits the underside"
+    );
+    world.set_one_way(slab, Some(Vec2::new(0.0, 3.0))).unwrap();
+    assert_eq!(world.body(slab).unwrap().one_way, Some(UP), "normalised");
+    world.set_velocity(a, Vec2::new(0.0, 8.0)).unwrap();
+    for _ in 0..120 {
+        world.step(DT);
+    }
+    assert_eq!(
+        world.standing_on(a, 0.8),
+        Some(slab),
+        "one-way: up through, then on it"
+    );
+    // A filter that no longer touches the platform's layer: it falls.
+    world
+        .set_filter(
+            a,
+            CollisionFilter {
+                layers: 2,
+                mask: !1 | 1,
+            },
+        )
+        .unwrap();
+    world
+        .set_filter(
+            slab,
+            CollisionFilter {
+                layers: 4,
+                mask: !2,
+            },
+        )
+        .unwrap();
+    for _ in 0..120 {
+        world.step(DT);
+    }
+    assert!((world.body(a).unwrap().position.y - 0.25).abs() < 0.006);
+    // Dynamic bodies cannot be one-way; zero normals are refused.
+    assert!(world.set_one_way(a, Some(UP)).is_err());
+    assert!(world.set_one_way(slab, Some(Vec2::ZERO)).is_err());
+    assert!(
+        world
+            .add_body(BodyDef {
+                one_way: Some(UP),
+                ..BodyDef::dynamic(Vec2::ZERO)
+            })
+            .is_err()
+    );
+}
+
+#[test]
+fn one_way_platforms_and_drop_through_survive_a_snapshot() {
+    let (mut world, _) = world_with_platform("kinematic");
+    let a = ball(&mut world, Vec2::new(0.0, 2.25), Vec2::ZERO);
+    for _ in 0..30 {
+        world.step(DT);
+    }
+    world.drop_through(a, 0.2).unwrap();
+    world.step(DT);
+    let mut copy = World::from_snapshot(world.snapshot()).unwrap();
+    for _ in 0..90 {
+        world.step(DT);
+        copy.step(DT);
+    }
+    assert_eq!(world.state_hash(), copy.state_hash());
+    assert!(copy.body(a).unwrap().position.y < 1.0, "it dropped through");
+}
