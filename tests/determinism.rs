@@ -18,6 +18,10 @@ use std::path::PathBuf;
 const EXPECTED: u64 = 0x8e91_14bf_5326_d2b3;
 /// The same with sleeping off: every body is solved every step.
 const EXPECTED_AWAKE: u64 = 0xa76a_ebcf_6b7c_0b7e;
+/// The busy scene with moving, one-way and plain platforms above it (see
+/// `with_platforms`). Added with kinematic bodies and one-way platforms;
+/// the two constants above stay valid for scenes without them.
+const EXPECTED_PLATFORMS: u64 = 0xb1fa_84e9_810a_31fe;
 const TICKS: usize = 300;
 
 /// Rain (2 000 circles in a box) with a pyramid of boxes beside it and a
@@ -86,6 +90,78 @@ fn with_sleeping_off_the_same_bits_as_always() {
         hash, EXPECTED_AWAKE,
         "the state after {TICKS} ticks with sleeping off changed: hash {hash:#018x}. If the \
          change was intended, set EXPECTED_AWAKE to {hash:#018x} (see the top of this file)"
+    );
+}
+
+/// The busy scene with platforms over the rain: a kinematic one moving
+/// back and forth (driven through `set_kinematic_target`), a static
+/// one-way one, and a kinematic one-way lift, with boxes dropped on them
+/// and balls thrown up through the one-way ones.
+fn with_platforms() -> World {
+    let mut world = busy();
+    let slab = Shape::rect(4.0, 0.3);
+    world
+        .add_body(BodyDef::kinematic(
+            Vec2::new(8.0, 12.0),
+            slab,
+            Vec2::new(1.5, 0.0),
+        ))
+        .unwrap();
+    world
+        .add_body(BodyDef {
+            one_way: Some(Vec2::Y),
+            ..BodyDef::fixed(Vec2::new(14.0, 10.0), slab)
+        })
+        .unwrap();
+    world
+        .add_body(BodyDef {
+            one_way: Some(Vec2::Y),
+            ..BodyDef::kinematic(Vec2::new(20.0, 6.0), slab, Vec2::new(0.0, 1.0))
+        })
+        .unwrap();
+    for (i, x) in [7.0f32, 8.5, 13.5, 14.5, 19.5, 20.5]
+        .into_iter()
+        .enumerate()
+    {
+        let def = BodyDef {
+            position: Vec2::new(x, 14.0 + i as f32),
+            shape: Some(Shape::rect(0.6, 0.6)),
+            ..Default::default()
+        };
+        world.add_body(def).unwrap();
+        let def = BodyDef {
+            position: Vec2::new(x, 3.0),
+            velocity: Vec2::new(0.0, 14.0),
+            shape: Some(Shape::circle(0.2)),
+            ..Default::default()
+        };
+        world.add_body(def).unwrap();
+    }
+    world
+}
+
+#[test]
+fn with_platforms_the_same_bits_as_always() {
+    let mut world = with_platforms();
+    let platform = world
+        .bodies()
+        .find(|b| b.kind == passo_physics::BodyKind::Kinematic)
+        .unwrap()
+        .id;
+    for tick in 0..TICKS {
+        // Back and forth over 2 s, as a game drives a platform.
+        let phase = (tick % 240) as f32 / 240.0;
+        let x = 8.0 + 3.0 * (1.0 - (2.0 * phase - 1.0).abs());
+        world
+            .set_kinematic_target(platform, Vec2::new(x, 12.0), 1.0 / 60.0)
+            .unwrap();
+        world.step(1.0 / 60.0);
+    }
+    let hash = world.state_hash();
+    assert_eq!(
+        hash, EXPECTED_PLATFORMS,
+        "the state after {TICKS} ticks with platforms changed: hash {hash:#018x}. If the \
+         change was intended, set EXPECTED_PLATFORMS to {hash:#018x} (see the top of this file)"
     );
 }
 
