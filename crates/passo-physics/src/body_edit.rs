@@ -26,6 +26,7 @@ impl World {
                 self.statics_dirty = true;
             }
         }
+        self.note_edit(matches!(location, Location::Static(_)));
         self.wake_after_change(location);
         Ok(())
     }

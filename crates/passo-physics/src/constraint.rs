@@ -216,7 +216,7 @@ impl ContactList {
     }
 
     /// Each row with the rest of its contact.
-    pub(crate) fn iter(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> {
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> + Clone {
         self.rows.iter().zip(&self.infos)
     }
 

@@ -170,6 +170,12 @@ pub struct SensorPair {
 /// What happened to contacts and sensors in the last step, in a fixed order.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ContactEvents {
+    /// The step these events happened in: [`StepStats::steps`] right after
+    /// it (0 before the first). A game reading events once per frame
+    /// handles them only when this changed.
+    ///
+    /// [`StepStats::steps`]: crate::StepStats::steps
+    pub step: u64,
     /// Pairs that started touching.
     pub begin: Vec<ContactPair>,
     /// Pairs that stopped touching (or whose body was removed).

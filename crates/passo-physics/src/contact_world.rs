@@ -220,6 +220,7 @@ impl ContactWorld {
         dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
         sleep_dt: Option<f32>,
+        step: u64,
     ) {
         self.events
             .find_sensor_overlaps(&self.narrow.sensor_candidates, dynamic, statics);
@@ -227,17 +228,22 @@ impl ContactWorld {
             self.sleeping
                 .after_step(&mut self.solved, dynamic, &self.motion.delta, dt);
         }
-        self.events.record(&self.solved, &self.sleeping.list);
+        self.events.record(&self.solved, &self.sleeping.list, step);
     }
 
     /// A step in which the contact stage has nothing to do (its colliders
     /// were removed, or contacts were turned off): every contact and
     /// overlap ends, and every body wakes.
-    pub(crate) fn idle_step(&mut self, dynamic: &mut DynamicBodies, statics: &StaticBodies) {
+    pub(crate) fn idle_step(
+        &mut self,
+        dynamic: &mut DynamicBodies,
+        statics: &StaticBodies,
+        step: u64,
+    ) {
         self.solved.clear();
         self.narrow.sensor_candidates.clear();
         self.wake_all(dynamic);
-        self.end_step(dynamic, statics, None);
+        self.end_step(dynamic, statics, None, step);
     }
 
     /// Wakes dynamic body `i` and its island now.
@@ -257,8 +263,20 @@ impl ContactWorld {
 
     /// Every contact after the last step: the solved ones, then those
     /// between sleeping bodies.
-    pub(crate) fn all_contacts(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> {
+    pub(crate) fn all_contacts(&self) -> impl Iterator<Item = (&Constraint, &ContactInfo)> + Clone {
         self.solved.iter().chain(self.sleeping.list.iter())
+    }
+
+    /// The contact at `position` in the order of
+    /// [`all_contacts`](Self::all_contacts).
+    pub(crate) fn contact_at(&self, position: usize) -> (&Constraint, &ContactInfo) {
+        let solved = self.solved.len();
+        let (list, k) = if position < solved {
+            (&self.solved, position)
+        } else {
+            (&self.sleeping.list, position - solved)
+        };
+        (&list.rows[k], &list.infos[k])
     }
 
     /// Sensor overlaps after the last step.

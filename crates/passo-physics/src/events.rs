@@ -95,7 +95,7 @@ impl EventTracker {
     /// starting, and works out which pairs began and ended touching and
     /// which bodies entered and left sensors. `solved` and `asleep` are
     /// each sorted by key.
-    pub(crate) fn record(&mut self, solved: &ContactList, asleep: &ContactList) {
+    pub(crate) fn record(&mut self, solved: &ContactList, asleep: &ContactList, step: u64) {
         self.cache.clear();
         self.touching.clear();
         for (c, info) in merged(solved, asleep) {
@@ -110,6 +110,7 @@ impl EventTracker {
             }
         }
         self.events.clear();
+        self.events.step = step;
         let events = &mut self.events;
         diff(&self.touching_prev, &self.touching, |k, began| {
             let pair = ContactPair { a: k.0, b: k.1 };

@@ -64,6 +64,8 @@ mod kernel;
 mod manifold;
 mod static_tree;
 
+mod cast;
+
 mod broad_phase;
 
 mod proxies;
@@ -85,6 +87,8 @@ mod events;
 mod contact_state;
 
 mod contact_world;
+
+mod query_index;
 
 // The world and its step.
 mod settings;
@@ -117,7 +121,7 @@ pub use id::BodyId;
 pub use integrator::Integrator;
 #[doc(hidden)]
 pub use manifold::{Manifold, collide};
-pub use query::RayHit;
+pub use query::{QueryFilter, RayHit, ShapeHit};
 pub use settings::WorldSettings;
 pub use shape::Shape;
 pub use snapshot::WorldSnapshot;

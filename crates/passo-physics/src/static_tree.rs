@@ -1,7 +1,9 @@
-//! A bounding-volume tree over static bodies, built once and rebuilt only
-//! when a static body is added, removed or moved.
+//! A bounding-volume tree of boxes, built in one go: over static bodies
+//! (rebuilt only when a static body is added, removed or moved), over
+//! sleeping bodies, and for queries.
 
 use crate::Aabb;
+use glam::Vec2;
 
 const LEAF_SIZE: usize = 4;
 
@@ -125,12 +127,79 @@ impl StaticTree {
             }
         }
     }
+
+    /// Calls `f` with every item whose box the segment from `origin` along
+    /// `dir` up to `max_t` crosses (`t` in units of `dir`), nearer nodes
+    /// first. `f` returns a shorter `max_t` once it found a hit, so farther
+    /// nodes are skipped.
+    pub(crate) fn ray(
+        &self,
+        origin: Vec2,
+        dir: Vec2,
+        mut max_t: f32,
+        mut f: impl FnMut(u32) -> Option<f32>,
+    ) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let inv = dir.recip();
+        let mut stack = [0u32; 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let node = &self.nodes[stack[top] as usize];
+            if slab_entry(&node.aabb, origin, inv).is_none_or(|t| t > max_t) {
+                continue;
+            }
+            if node.count > 0 {
+                for &item in &self.items[node.first as usize..(node.first + node.count) as usize] {
+                    let enters = slab_entry(&self.boxes[item as usize], origin, inv);
+                    if enters.is_some_and(|t| t <= max_t)
+                        && let Some(t) = f(item)
+                    {
+                        max_t = max_t.min(t);
+                    }
+                }
+            } else {
+                // Push the farther child first, so the nearer is visited first.
+                let (a, b) = (node.first, node.first + 1);
+                let entry = |n: u32| {
+                    slab_entry(&self.nodes[n as usize].aabb, origin, inv).unwrap_or(f32::INFINITY)
+                };
+                let (near, far) = if entry(a) <= entry(b) { (a, b) } else { (b, a) };
+                stack[top] = far;
+                stack[top + 1] = near;
+                top += 2;
+            }
+        }
+    }
+}
+
+/// Where the ray `origin + t dir` (with `inv = 1 / dir` per component)
+/// enters `aabb`, `t >= 0`, or `None` if it misses (the slab method; a
+/// zero component gives an infinite `inv`, and that slab is then all or
+/// nothing).
+fn slab_entry(aabb: &Aabb, origin: Vec2, inv: Vec2) -> Option<f32> {
+    let mut t0 = 0.0f32;
+    let mut t1 = f32::INFINITY;
+    for axis in 0..2 {
+        let (o, i) = (origin[axis], inv[axis]);
+        if i.is_infinite() {
+            if o < aabb.min[axis] || o > aabb.max[axis] {
+                return None;
+            }
+            continue;
+        }
+        let (a, b) = ((aabb.min[axis] - o) * i, (aabb.max[axis] - o) * i);
+        t0 = t0.max(a.min(b));
+        t1 = t1.min(a.max(b));
+    }
+    (t0 <= t1).then_some(t0)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec2;
 
     #[test]
     fn queries_find_exactly_the_overlapping_boxes() {
@@ -155,6 +224,33 @@ mod tests {
                 .filter(|&i| boxes[i as usize].overlaps(&query))
                 .collect();
             assert_eq!(found, want);
+        }
+        // Rays find every box the segment crosses.
+        for q in 0..100 {
+            let origin = Vec2::new((q * 11 % 70) as f32, (q * 5 % 40) as f32 - 2.0);
+            let dir = Vec2::new(((q % 9) as f32 - 4.0) * 0.7, ((q % 5) as f32 - 2.0) * 0.9);
+            let max_t = 6.0;
+            let mut found = Vec::new();
+            tree.ray(origin, dir, max_t, |i| {
+                found.push(i);
+                None
+            });
+            found.sort_unstable();
+            let want: Vec<u32> = (0..boxes.len() as u32)
+                .filter(|&i| {
+                    slab_entry(&boxes[i as usize], origin, dir.recip()).is_some_and(|t| t <= max_t)
+                })
+                .collect();
+            assert_eq!(found, want);
+            // Brute force over points of the segment finds no box the tree missed.
+            for k in 0..=600 {
+                let p = origin + dir * (max_t * k as f32 / 600.0);
+                for (i, b) in boxes.iter().enumerate() {
+                    if b.contains_point(p) {
+                        assert!(found.contains(&(i as u32)), "box {i} at {p}");
+                    }
+                }
+            }
         }
         let empty = StaticTree::build(Vec::new());
         empty.query(&Aabb::from_centre(Vec2::ZERO, Vec2::ONE), |_| {

@@ -147,7 +147,7 @@ impl World {
                 // Sleeping belongs to the contact stage: without it, no body
                 // sleeps (the idle step wakes them all).
                 if let Some(cw) = &mut self.contacts {
-                    cw.idle_step(&mut self.dynamic, &self.statics);
+                    cw.idle_step(&mut self.dynamic, &self.statics, self.stats.steps + 1);
                 }
                 self.hold_kinematic();
                 self.step_bodies(dt, plan.limits);

@@ -8,6 +8,7 @@ use crate::contact_world::ContactWorld;
 use crate::forces::{Dissipation, Drive};
 use crate::integrator::Forces;
 use crate::kernel::PointMassKernel;
+use crate::query_index::QueryCache;
 use crate::{
     Body, BodyDef, BodyId, BodyKind, ContactSettings, ForceModel, PhysicsError, WorldSettings,
 };
@@ -81,6 +82,13 @@ pub struct World {
     pub(crate) bouncy: usize,
     /// Dynamic bodies dropping through one-way platforms.
     pub(crate) dropping: usize,
+    /// Counts edits that move, add or remove bodies (with the step count,
+    /// it tells queries whether their index is current).
+    pub(crate) edits: u64,
+    /// Counts edits of static bodies.
+    pub(crate) static_edits: u64,
+    /// Trees and contact lists for queries, built on demand.
+    pub(crate) query_cache: QueryCache,
     /// Position corrections of the multi-stage integrators, with contacts.
     pub(crate) correction: Vec<Vec2>,
     /// Position and velocity of each kinematic body when the step began
@@ -128,6 +136,9 @@ impl World {
             statics_dirty: false,
             bouncy: 0,
             dropping: 0,
+            edits: 0,
+            static_edits: 0,
+            query_cache: QueryCache::default(),
             contacts: None,
             correction: Vec::new(),
             held: Vec::new(),
@@ -264,6 +275,7 @@ impl World {
         };
         self.count_shape(def.kind, def.shape.is_some(), 1);
         self.bouncy += usize::from(def.restitution > 0.0);
+        self.note_edit(def.kind == BodyKind::Static);
         let slot = &mut self.slots[index as usize];
         let id = BodyId {
             index,
@@ -316,6 +328,7 @@ impl World {
         let body = self.view(location);
         self.count_shape(body.kind, body.shape.is_some(), -1);
         self.bouncy -= usize::from(body.restitution > 0.0);
+        self.note_edit(body.kind == BodyKind::Static);
         let moved = match location {
             Location::Dynamic(i) => {
                 let meta = &self.dynamic.meta[i as usize];
@@ -466,6 +479,15 @@ impl World {
         match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
             Location::Dynamic(i) => Ok(Some(i as usize)),
             _ => Ok(None),
+        }
+    }
+
+    /// A body was added, removed or moved by hand: queries rebuild their
+    /// index (the static tree too if it was a static body).
+    pub(crate) fn note_edit(&mut self, is_static: bool) {
+        self.edits += 1;
+        if is_static {
+            self.static_edits += 1;
         }
     }
 
