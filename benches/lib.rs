@@ -33,7 +33,7 @@ pub fn rain_grid(n: usize, columns: usize) -> World {
     let width = columns as f32 * spacing + 1.0;
     let height = rows as f32 * spacing + 5.0;
     let fixed = |w: &mut World, centre: Vec2, size: Vec2| {
-        w.add_body(BodyDef::fixed(centre, Shape::rect(size.x, size.y)))
+        w.add_body(BodyDef::new_static(centre, Shape::rect(size.x, size.y)))
             .expect("valid wall");
     };
     fixed(
@@ -79,7 +79,7 @@ pub fn rain_grid(n: usize, columns: usize) -> World {
 pub fn pyramid_world(base: usize) -> World {
     let mut world = World::default();
     world
-        .add_body(BodyDef::fixed(
+        .add_body(BodyDef::new_static(
             Vec2::new(0.0, -0.5),
             Shape::rect(base as f32 * 2.0 + 10.0, 1.0),
         ))

@@ -20,9 +20,7 @@ impl Game for Ball {
     fn fixed_update(&mut self, dt: f32, tick: u64) {
         if tick == 0 {
             // Throw the ball: an impulse of 1 kg * (4, 6) m/s.
-            self.world
-                .apply_impulse(self.ball, Vec2::new(4.0, 6.0))
-                .unwrap();
+            self.world.apply_impulse(self.ball, Vec2::new(4.0, 6.0));
         }
         self.world.step(dt);
     }

@@ -34,7 +34,7 @@ fn a_falling_ball_reports_begin_on_landing_and_end_when_thrown_up() {
     // Weight over a substep: m g h = 9.81 / 240 N s.
     assert!((contact.normal_impulse - 9.81 / 240.0).abs() < 1e-4);
 
-    w.apply_impulse(ball, Vec2::new(0.0, 8.0)).unwrap();
+    w.apply_impulse(ball, Vec2::new(0.0, 8.0));
     w.step(DT);
     assert_eq!(w.events().end, [ContactPair { a: ground, b: ball }]);
     w.step(DT);
@@ -49,7 +49,7 @@ fn standing_needs_a_support_within_the_slope_cone() {
     // A box resting against a wall on its right: touching, but not standing on it.
     add_static_box(&mut w, Vec2::new(0.5, 0.0), Vec2::new(1.0, 5.0));
     let b = add_box(&mut w, Vec2::new(0.0, 2.0), Vec2::ONE, 1.0);
-    w.apply_force(b, Vec2::new(200.0, 0.0)).unwrap();
+    w.apply_force(b, Vec2::new(200.0, 0.0));
     w.step(DT);
     assert!(
         !w.is_standing(b, 0.8),
@@ -108,7 +108,7 @@ fn sensors_report_visitors_and_never_push() {
     let zone = w
         .add_body(BodyDef {
             sensor: true,
-            ..BodyDef::fixed(Vec2::new(5.0, 0.0), Shape::rect(2.0, 2.0))
+            ..BodyDef::new_static(Vec2::new(5.0, 0.0), Shape::rect(2.0, 2.0))
         })
         .unwrap();
     let ball = w
@@ -153,7 +153,8 @@ fn point_box_and_ray_queries() {
     let wall = add_static_box(&mut w, Vec2::new(4.0, -2.0), Vec2::new(5.0, 2.0));
     let ball = add_circle(&mut w, Vec2::new(2.0, 0.0), 0.5, 1.0);
     let other = add_circle(&mut w, Vec2::new(-3.0, 0.0), 1.0, 1.0);
-    w.add_body(BodyDef::dynamic(Vec2::new(2.0, 0.0))).unwrap(); // no shape: never found
+    w.add_body(BodyDef::point_mass(Vec2::new(2.0, 0.0)))
+        .unwrap(); // no shape: never found
 
     assert_eq!(w.query_point(Vec2::new(2.2, 0.1)), [ball]);
     assert_eq!(w.query_point(Vec2::new(4.5, 1.9)), [wall]);
@@ -184,8 +185,8 @@ fn point_box_and_ray_queries() {
 #[test]
 fn the_contact_stage_runs_only_with_colliders() {
     let mut w = World::default();
-    let a = w.add_body(BodyDef::dynamic(Vec2::ZERO)).unwrap();
-    w.add_body(BodyDef::dynamic(Vec2::ZERO)).unwrap();
+    let a = w.add_body(BodyDef::point_mass(Vec2::ZERO)).unwrap();
+    w.add_body(BodyDef::point_mass(Vec2::ZERO)).unwrap();
     assert!(!w.active_stages().contains(&Stage::Contacts));
     w.step(DT);
     assert!(w.contacts().next().is_none());
@@ -218,4 +219,58 @@ fn the_same_scene_twice_gives_the_same_bits() {
         w.state_hash()
     };
     assert_eq!(run(), run());
+}
+
+#[test]
+fn an_ice_tile_with_the_min_rule_slides_at_its_own_friction() {
+    use passo_physics::FrictionMix;
+    // A box launched at 3 m/s stops after v² / (2 mu g): 0.76 m at
+    // sqrt(0.05 * 0.6) = 0.173, 9.17 m at min(0.05, 0.6) = 0.05.
+    let slide = |mix: FrictionMix| {
+        let mut w = World::default();
+        w.add_body(
+            BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0))
+                .with_friction_mix(0.05, mix),
+        )
+        .unwrap();
+        let b = w
+            .add_body(
+                BodyDef::new_dynamic(Vec2::new(-15.0, 0.5), Shape::rect(1.0, 1.0))
+                    .with_velocity(Vec2::new(3.0, 0.0)),
+            )
+            .unwrap();
+        for _ in 0..900 {
+            w.step(1.0 / 60.0);
+        }
+        w.body(b).unwrap().position.x + 15.0
+    };
+    let mean = slide(FrictionMix::GeometricMean);
+    let ice = slide(FrictionMix::Min);
+    let g = 9.81;
+    let stop = |mu: f32| 9.0 / (2.0 * mu * g);
+    assert!((mean - stop((0.05f32 * 0.6).sqrt())).abs() < 0.06, "{mean}");
+    assert!((ice - stop(0.05)).abs() < 0.06, "{ice}");
+}
+
+#[test]
+fn per_tick_setters_count_what_they_refuse_and_change_nothing() {
+    let mut w = World::default();
+    let a = w.add_body(BodyDef::point_mass(Vec2::ZERO)).unwrap();
+    let gone = w.add_body(BodyDef::point_mass(Vec2::ONE)).unwrap();
+    w.remove_body(gone);
+    w.set_velocity(a, Vec2::new(f32::NAN, 0.0));
+    w.apply_force(a, Vec2::new(f32::INFINITY, 0.0));
+    w.set_friction(a, -1.0);
+    w.apply_impulse(gone, Vec2::X);
+    assert_eq!(w.stats().rejected_inputs, 4);
+    assert_eq!(w.body(a).unwrap().velocity, Vec2::ZERO);
+    assert_eq!(w.body(a).unwrap().friction, 0.6);
+    // The try_ forms say why.
+    assert_eq!(
+        w.try_apply_impulse(gone, Vec2::X),
+        Err(passo_physics::PhysicsError::StaleBody(gone))
+    );
+    w.set_velocity(a, Vec2::X);
+    assert_eq!(w.body(a).unwrap().velocity, Vec2::X);
+    assert_eq!(w.stats().rejected_inputs, 4);
 }

@@ -81,7 +81,7 @@ pub fn assert_finite(world: &World) {
 
 /// A static box from `min` to `max`.
 pub fn add_static_box(world: &mut World, min: Vec2, max: Vec2) -> BodyId {
-    let def = BodyDef::fixed((min + max) * 0.5, Shape::rect(max.x - min.x, max.y - min.y));
+    let def = BodyDef::new_static((min + max) * 0.5, Shape::rect(max.x - min.x, max.y - min.y));
     world.add_body(def).expect("valid static box")
 }
 

@@ -43,9 +43,9 @@ fn scene() -> (World, Vec<BodyId>) {
 
 /// The game's input for a tick: a function of the tick number only.
 fn input(world: &mut World, ids: &[BodyId], tick: u64) {
-    world.apply_force(ids[0], Vec2::new(20.0, 0.0)).unwrap();
+    world.apply_force(ids[0], Vec2::new(20.0, 0.0));
     if tick.is_multiple_of(50) {
-        world.apply_impulse(ids[1], Vec2::new(0.0, 8.0)).unwrap();
+        world.apply_impulse(ids[1], Vec2::new(0.0, 8.0));
     }
 }
 

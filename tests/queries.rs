@@ -8,7 +8,10 @@ const DT: f32 = 1.0 / 60.0;
 
 fn ground(world: &mut World) -> BodyId {
     world
-        .add_body(BodyDef::fixed(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0)))
+        .add_body(BodyDef::new_static(
+            Vec2::new(0.0, -0.5),
+            Shape::rect(40.0, 1.0),
+        ))
         .unwrap()
 }
 
@@ -36,7 +39,7 @@ fn a_ray_from_inside_the_player_excluding_it_finds_the_ground_past_a_sensor() {
     let coin = world
         .add_body(BodyDef {
             sensor: true,
-            ..BodyDef::fixed(Vec2::new(0.0, 0.6), Shape::circle(0.3))
+            ..BodyDef::new_static(Vec2::new(0.0, 0.6), Shape::circle(0.3))
         })
         .unwrap();
     let down = -Vec2::Y;
@@ -175,9 +178,7 @@ fn rays_find_what_brute_force_finds_as_the_world_moves_and_changes() {
         // Change the world between rounds: step, move one by hand, remove
         // one, add one.
         world.step(DT);
-        world
-            .set_position(ids[round], Vec2::new(0.0, 30.0 + round as f32))
-            .unwrap();
+        world.set_position(ids[round], Vec2::new(0.0, 30.0 + round as f32));
         world.remove_body(ids[100 + round]).unwrap();
         circle(&mut world, Vec2::new(round as f32, 12.0), 0.3);
         assert_eq!(

@@ -10,7 +10,10 @@ use passo_physics::{BodyDef, Shape, World};
 fn a_ball_landing_on_a_sleeping_box_beside_another_wakes_it_without_a_panic() {
     let mut world = World::default();
     world
-        .add_body(BodyDef::fixed(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0)))
+        .add_body(BodyDef::new_static(
+            Vec2::new(0.0, -0.5),
+            Shape::rect(40.0, 1.0),
+        ))
         .unwrap();
     // A row of boxes 1 cm apart: each its own island (they never touch),
     // joined to its neighbours by speculative contacts.

@@ -15,7 +15,7 @@ fn world_with(ground: &[(Vec2, Vec2)], shape: Shape, x: f32) -> (World, BodyId) 
     let mut world = World::default();
     for &(centre, size) in ground {
         world
-            .add_body(BodyDef::fixed(centre, Shape::rect(size.x, size.y)))
+            .add_body(BodyDef::new_static(centre, Shape::rect(size.x, size.y)))
             .unwrap();
     }
     let body = world
@@ -50,7 +50,7 @@ fn push(world: &mut World, body: BodyId, speed: f32, ticks: usize) -> Vec<Vec2> 
     (0..ticks)
         .map(|_| {
             let v = world.body(body).unwrap().velocity;
-            world.set_velocity(body, Vec2::new(speed, v.y)).unwrap();
+            world.set_velocity(body, Vec2::new(speed, v.y));
             world.step(DT);
             world.body(body).unwrap().velocity
         })
@@ -67,7 +67,7 @@ fn a_box_crosses_the_joint_of_two_flush_boxes_without_stopping() {
         let one = [(Vec2::new(0.0, -0.5), Vec2::new(20.0, 1.0))];
         let slide = |ground: &[(Vec2, Vec2)]| {
             let (mut world, body) = world_with(ground, Shape::rect(0.6, 1.0), -0.5);
-            world.set_velocity(body, Vec2::new(3.25, 0.0)).unwrap();
+            world.set_velocity(body, Vec2::new(3.25, 0.0));
             (0..60)
                 .map(|_| {
                     world.step(DT);
@@ -145,7 +145,7 @@ fn a_box_slides_down_a_wall_of_stacked_tiles_without_catching() {
     for i in 0..50 {
         let def = BodyDef {
             friction: 0.0,
-            ..BodyDef::fixed(Vec2::new(0.0, i as f32), Shape::rect(1.0, 1.0))
+            ..BodyDef::new_static(Vec2::new(0.0, i as f32), Shape::rect(1.0, 1.0))
         };
         world.add_body(def).unwrap();
     }
@@ -160,7 +160,7 @@ fn a_box_slides_down_a_wall_of_stacked_tiles_without_catching() {
     let mut t = 0.0f32;
     for _ in 0..120 {
         // Pressed against the wall.
-        world.apply_force(body, Vec2::new(-5.0, 0.0)).unwrap();
+        world.apply_force(body, Vec2::new(-5.0, 0.0));
         world.step(DT);
         t += DT;
         let b = world.body(body).unwrap();

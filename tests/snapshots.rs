@@ -22,7 +22,7 @@ fn busy() -> World {
     world
         .add_body(BodyDef {
             sensor: true,
-            ..BodyDef::fixed(Vec2::new(0.0, 2.0), Shape::rect(6.0, 2.0))
+            ..BodyDef::new_static(Vec2::new(0.0, 2.0), Shape::rect(6.0, 2.0))
         })
         .unwrap();
     world
@@ -165,7 +165,7 @@ proptest! {
         edits in prop::collection::vec((any::<prop::sample::Index>(), "[0-9.eE,\\-]{1,3}"), 1..4)
     ) {
         let mut world = World::default();
-        world.add_body(BodyDef::fixed(Vec2::ZERO, Shape::rect(10.0, 1.0))).unwrap();
+        world.add_body(BodyDef::new_static(Vec2::ZERO, Shape::rect(10.0, 1.0))).unwrap();
         for i in 0..5 {
             world.add_body(BodyDef {
                 position: Vec2::new(i as f32, 2.0),

@@ -8,6 +8,7 @@ use crate::collider::ColliderRef;
 use crate::filter::CollisionFilter;
 use crate::forces::BodyParams;
 use crate::id::BodyId;
+use crate::material::FrictionMix;
 use glam::Vec2;
 
 /// `SleepState::island` of an awake body.
@@ -68,6 +69,9 @@ pub(crate) struct BodyMeta {
     pub mass: f32,
     pub shape: Option<Shape>,
     pub drag_area: f32,
+    /// How its friction combines with another body's.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub friction_mix: FrictionMix,
     pub restitution: f32,
     pub filter: CollisionFilter,
     pub sensor: bool,
@@ -287,6 +291,7 @@ impl DynamicBodies {
             shape: m.shape,
             drag_area: self.drag_area[i],
             friction: self.friction[i],
+            friction_mix: m.friction_mix,
             restitution: m.restitution,
             filter: m.filter,
             sensor: m.sensor,
@@ -338,6 +343,7 @@ impl StaticBodies {
             shape: m.shape,
             drag_area: m.drag_area,
             friction: self.friction[i],
+            friction_mix: m.friction_mix,
             restitution: m.restitution,
             filter: m.filter,
             sensor: m.sensor,

@@ -5,6 +5,7 @@ use crate::constants::{DEFAULT_DRAG_AREA, DEFAULT_FRICTION};
 use crate::error::{finite_vec, non_negative, positive, unit_interval};
 use crate::filter::CollisionFilter;
 use crate::id::BodyId;
+use crate::material::FrictionMix;
 use crate::{PhysicsError, Shape};
 use glam::Vec2;
 
@@ -57,6 +58,9 @@ pub struct BodyDef {
     /// Kinetic friction coefficient `mu`, >= 0, used by surface friction and
     /// contacts. Default 0.6 ([`DEFAULT_FRICTION`]).
     pub friction: f32,
+    /// How this body's friction combines with another's in a contact.
+    /// Default [`FrictionMix::GeometricMean`].
+    pub friction_mix: FrictionMix,
     /// Restitution (bounciness) in `[0, 1]` used by contacts. Default 0.
     pub restitution: f32,
     /// Which bodies this one may touch. Default: layer 1, touches all.
@@ -93,6 +97,7 @@ impl Default for BodyDef {
             shape: None,
             drag_area: DEFAULT_DRAG_AREA,
             friction: DEFAULT_FRICTION,
+            friction_mix: FrictionMix::GeometricMean,
             restitution: 0.0,
             filter: CollisionFilter::default(),
             sensor: false,
@@ -105,17 +110,39 @@ impl Default for BodyDef {
 }
 
 impl BodyDef {
-    /// A dynamic body of 1 kg at `position`, every other field default.
-    pub fn dynamic(position: Vec2) -> Self {
+    /// A dynamic body of 1 kg at `position` with the given shape, every
+    /// other field default.
+    pub fn new_dynamic(position: Vec2, shape: Shape) -> Self {
+        Self {
+            position,
+            shape: Some(shape),
+            ..Self::default()
+        }
+    }
+
+    /// A dynamic point mass of 1 kg at `position`: no shape, so it takes
+    /// part in no contact (a particle, a projectile under force models).
+    pub fn point_mass(position: Vec2) -> Self {
         Self {
             position,
             ..Self::default()
         }
     }
 
+    /// A static body (ground, walls: [`BodyKind::Static`]) at `position`
+    /// with the given shape.
+    pub fn new_static(position: Vec2, shape: Shape) -> Self {
+        Self {
+            kind: BodyKind::Static,
+            position,
+            shape: Some(shape),
+            ..Self::default()
+        }
+    }
+
     /// A kinematic body (a moving platform) at `position` with the given
     /// shape, moving at `velocity`.
-    pub fn kinematic(position: Vec2, shape: Shape, velocity: Vec2) -> Self {
+    pub fn new_kinematic(position: Vec2, shape: Shape, velocity: Vec2) -> Self {
         Self {
             kind: BodyKind::Kinematic,
             position,
@@ -125,14 +152,89 @@ impl BodyDef {
         }
     }
 
+    /// A dynamic point mass of 1 kg at `position`.
+    #[deprecated(
+        since = "0.1.0",
+        note = "makes a point mass with no shape: use `BodyDef::point_mass`, or `BodyDef::new_dynamic` for a body that collides"
+    )]
+    pub fn dynamic(position: Vec2) -> Self {
+        Self::point_mass(position)
+    }
+
     /// A static body at `position` with the given shape.
+    #[deprecated(since = "0.1.0", note = "use `BodyDef::new_static`")]
     pub fn fixed(position: Vec2, shape: Shape) -> Self {
+        Self::new_static(position, shape)
+    }
+
+    /// The same definition with this velocity, metres per second.
+    #[must_use]
+    pub fn with_velocity(self, velocity: Vec2) -> Self {
+        Self { velocity, ..self }
+    }
+
+    /// The same definition with this mass, kilograms.
+    #[must_use]
+    pub fn with_mass(self, mass: f32) -> Self {
+        Self { mass, ..self }
+    }
+
+    /// The same definition with this friction coefficient and the usual
+    /// mixing (see [`FrictionMix`]).
+    #[must_use]
+    pub fn with_friction(self, friction: f32) -> Self {
+        Self { friction, ..self }
+    }
+
+    /// The same definition with this friction coefficient and mixing rule
+    /// (ice: `with_friction_mix(0.05, FrictionMix::Min)`).
+    #[must_use]
+    pub fn with_friction_mix(self, friction: f32, friction_mix: FrictionMix) -> Self {
         Self {
-            kind: BodyKind::Static,
-            position,
-            shape: Some(shape),
-            ..Self::default()
+            friction,
+            friction_mix,
+            ..self
         }
+    }
+
+    /// The same definition with this restitution, in `[0, 1]`.
+    #[must_use]
+    pub fn with_restitution(self, restitution: f32) -> Self {
+        Self {
+            restitution,
+            ..self
+        }
+    }
+
+    /// The same definition with this collision filter.
+    #[must_use]
+    pub fn with_filter(self, filter: CollisionFilter) -> Self {
+        Self { filter, ..self }
+    }
+
+    /// The same definition as a sensor (reports overlaps, pushes nothing).
+    #[must_use]
+    pub fn as_sensor(self) -> Self {
+        Self {
+            sensor: true,
+            ..self
+        }
+    }
+
+    /// The same definition as a one-way platform, solid from the side
+    /// `normal` points to (see [`one_way`](Self::one_way)).
+    #[must_use]
+    pub fn with_one_way(self, normal: Vec2) -> Self {
+        Self {
+            one_way: Some(normal),
+            ..self
+        }
+    }
+
+    /// The same definition with this game data.
+    #[must_use]
+    pub fn with_user_data(self, user_data: u64) -> Self {
+        Self { user_data, ..self }
     }
 
     /// Checks every field, naming the first one that is wrong.
@@ -212,6 +314,8 @@ pub struct Body {
     pub drag_area: f32,
     /// Friction coefficient.
     pub friction: f32,
+    /// How its friction combines with another body's.
+    pub friction_mix: FrictionMix,
     /// Restitution in `[0, 1]`.
     pub restitution: f32,
     /// Collision filter.
@@ -249,6 +353,7 @@ impl Body {
             shape: self.shape,
             drag_area: self.drag_area,
             friction: self.friction,
+            friction_mix: self.friction_mix,
             restitution: self.restitution,
             filter: self.filter,
             sensor: self.sensor,

@@ -5,13 +5,82 @@
 use crate::body::check_one_way;
 use crate::error::{finite, finite_vec, non_negative, positive, unit_interval};
 use crate::world::{Location, World};
-use crate::{BodyId, CollisionFilter, PhysicsError};
+use crate::{BodyId, CollisionFilter, FrictionMix, PhysicsError};
 use glam::Vec2;
 
 impl World {
+    // ----- per-tick calls: they cannot fail -----
+    //
+    // Game code calls these every tick with values it computed. A stale id
+    // or a value the `try_` form refuses (NaN, infinity, out of range) does
+    // nothing to the world, which never stores a NaN, and is counted in
+    // `StepStats::rejected_inputs`; the `try_` forms say why.
+
+    /// Moves a body (see [`try_set_position`](Self::try_set_position)). A stale id or a refused value changes nothing and counts
+    /// in [`StepStats::rejected_inputs`](crate::StepStats::rejected_inputs).
+    pub fn set_position(&mut self, id: BodyId, position: Vec2) {
+        let result = self.try_set_position(id, position);
+        self.count_rejected(result);
+    }
+
+    /// Sets a body's velocity (see [`try_set_velocity`](Self::try_set_velocity)). A stale id or a refused value changes nothing and counts
+    /// in [`StepStats::rejected_inputs`](crate::StepStats::rejected_inputs).
+    pub fn set_velocity(&mut self, id: BodyId, velocity: Vec2) {
+        let result = self.try_set_velocity(id, velocity);
+        self.count_rejected(result);
+    }
+
+    /// Steers a kinematic body to `target` by the next step (see [`try_set_kinematic_target`](Self::try_set_kinematic_target)). A stale id or a refused value changes nothing and counts
+    /// in [`StepStats::rejected_inputs`](crate::StepStats::rejected_inputs).
+    pub fn set_kinematic_target(&mut self, id: BodyId, target: Vec2, dt: f32) {
+        let result = self.try_set_kinematic_target(id, target, dt);
+        self.count_rejected(result);
+    }
+
+    /// Adds a force for the next step (see [`try_apply_force`](Self::try_apply_force)). A stale id or a refused value changes nothing and counts
+    /// in [`StepStats::rejected_inputs`](crate::StepStats::rejected_inputs).
+    pub fn apply_force(&mut self, id: BodyId, force: Vec2) {
+        let result = self.try_apply_force(id, force);
+        self.count_rejected(result);
+    }
+
+    /// Applies an impulse now (see [`try_apply_impulse`](Self::try_apply_impulse)). A stale id or a refused value changes nothing and counts
+    /// in [`StepStats::rejected_inputs`](crate::StepStats::rejected_inputs).
+    pub fn apply_impulse(&mut self, id: BodyId, impulse: Vec2) {
+        let result = self.try_apply_impulse(id, impulse);
+        self.count_rejected(result);
+    }
+
+    /// Applies kinetic friction for the next step (see [`try_apply_friction`](Self::try_apply_friction)). A stale id or a refused value changes nothing and counts
+    /// in [`StepStats::rejected_inputs`](crate::StepStats::rejected_inputs).
+    pub fn apply_friction(&mut self, id: BodyId, mu: f32, normal: f32) {
+        let result = self.try_apply_friction(id, mu, normal);
+        self.count_rejected(result);
+    }
+
+    /// Sets a body's friction coefficient (see [`try_set_friction`](Self::try_set_friction)). A stale id or a refused value changes nothing and counts
+    /// in [`StepStats::rejected_inputs`](crate::StepStats::rejected_inputs).
+    pub fn set_friction(&mut self, id: BodyId, mu: f32) {
+        let result = self.try_set_friction(id, mu);
+        self.count_rejected(result);
+    }
+
+    /// Lets a body pass one-way platforms for a while (see [`try_drop_through`](Self::try_drop_through)). A stale id or a refused value changes nothing and counts
+    /// in [`StepStats::rejected_inputs`](crate::StepStats::rejected_inputs).
+    pub fn drop_through(&mut self, id: BodyId, seconds: f32) {
+        let result = self.try_drop_through(id, seconds);
+        self.count_rejected(result);
+    }
+
+    fn count_rejected(&mut self, result: Result<(), PhysicsError>) {
+        if result.is_err() {
+            self.stats.rejected_inputs += 1;
+        }
+    }
+
     /// Moves a body (a teleport: no velocity is implied, and an interpolated
     /// drawing jumps too).
-    pub fn set_position(&mut self, id: BodyId, position: Vec2) -> Result<(), PhysicsError> {
+    pub fn try_set_position(&mut self, id: BodyId, position: Vec2) -> Result<(), PhysicsError> {
         finite_vec("position", position)?;
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         match location {
@@ -34,7 +103,7 @@ impl World {
     /// Sets a body's velocity, metres per second: a dynamic body's current
     /// velocity, or the velocity a kinematic body moves at until it is set
     /// again. Ignored for static bodies.
-    pub fn set_velocity(&mut self, id: BodyId, velocity: Vec2) -> Result<(), PhysicsError> {
+    pub fn try_set_velocity(&mut self, id: BodyId, velocity: Vec2) -> Result<(), PhysicsError> {
         finite_vec("velocity", velocity)?;
         if let Some(i) = self.dynamic_index(id)? {
             self.dynamic.vel[i] = velocity;
@@ -51,7 +120,7 @@ impl World {
     /// # Errors
     /// A stale id, a non-finite target, or a `dt` that is not finite and
     /// > 0.
-    pub fn set_kinematic_target(
+    pub fn try_set_kinematic_target(
         &mut self,
         id: BodyId,
         target: Vec2,
@@ -73,7 +142,7 @@ impl World {
     /// Adds a force, newtons, to the body's accumulator for the next step
     /// (acceleration = F / m). Forces are cleared after each step. Ignored
     /// for static and kinematic bodies.
-    pub fn apply_force(&mut self, id: BodyId, force: Vec2) -> Result<(), PhysicsError> {
+    pub fn try_apply_force(&mut self, id: BodyId, force: Vec2) -> Result<(), PhysicsError> {
         finite_vec("force", force)?;
         if let Some(i) = self.movable_index(id)? {
             self.dynamic.force[i] += force;
@@ -84,7 +153,7 @@ impl World {
 
     /// Changes the body's velocity now by `impulse / m` (impulse in newton
     /// seconds): a jump, a hit. Ignored for static and kinematic bodies.
-    pub fn apply_impulse(&mut self, id: BodyId, impulse: Vec2) -> Result<(), PhysicsError> {
+    pub fn try_apply_impulse(&mut self, id: BodyId, impulse: Vec2) -> Result<(), PhysicsError> {
         finite_vec("impulse", impulse)?;
         if let Some(i) = self.movable_index(id)? {
             self.dynamic.vel[i] += impulse * self.dynamic.inv_mass[i];
@@ -99,7 +168,12 @@ impl World {
     /// by at most its speed: it stops, never reverses. Accumulates like a
     /// force and is cleared after each step. Ignored for static and
     /// kinematic bodies.
-    pub fn apply_friction(&mut self, id: BodyId, mu: f32, normal: f32) -> Result<(), PhysicsError> {
+    pub fn try_apply_friction(
+        &mut self,
+        id: BodyId,
+        mu: f32,
+        normal: f32,
+    ) -> Result<(), PhysicsError> {
         non_negative("mu", mu)?;
         finite("normal", normal)?;
         if let Some(i) = self.movable_index(id)? {
@@ -112,7 +186,7 @@ impl World {
 
     /// Sets a body's friction coefficient `mu` (>= 0), for surface friction
     /// and contacts.
-    pub fn set_friction(&mut self, id: BodyId, mu: f32) -> Result<(), PhysicsError> {
+    pub fn try_set_friction(&mut self, id: BodyId, mu: f32) -> Result<(), PhysicsError> {
         non_negative("friction", mu)?;
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         match location {
@@ -142,7 +216,7 @@ impl World {
     ///
     /// # Errors
     /// A stale id, or `seconds` not finite and >= 0.
-    pub fn drop_through(&mut self, id: BodyId, seconds: f32) -> Result<(), PhysicsError> {
+    pub fn try_drop_through(&mut self, id: BodyId, seconds: f32) -> Result<(), PhysicsError> {
         non_negative("drop_through seconds", seconds)?;
         if let Some(i) = self.movable_index(id)? {
             let meta = &mut self.dynamic.meta[i];
@@ -151,6 +225,14 @@ impl World {
             self.dropping = self.dropping + usize::from(seconds > 0.0) - usize::from(was);
             self.wake_index(i);
         }
+        Ok(())
+    }
+
+    /// Changes how a body's friction combines with another's in contacts.
+    pub fn set_friction_mix(&mut self, id: BodyId, mix: FrictionMix) -> Result<(), PhysicsError> {
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        self.meta_mut(location).friction_mix = mix;
+        self.wake_after_change(location);
         Ok(())
     }
 
@@ -226,7 +308,7 @@ mod tests {
     use glam::Vec2;
 
     fn ball(x: f32) -> BodyDef {
-        BodyDef::dynamic(Vec2::new(x, 0.0))
+        BodyDef::point_mass(Vec2::new(x, 0.0))
     }
 
     #[test]
@@ -238,7 +320,7 @@ mod tests {
                 ..Default::default()
             })
             .unwrap();
-        world.apply_impulse(id, Vec2::new(2.0, 8.0)).unwrap();
+        world.apply_impulse(id, Vec2::new(2.0, 8.0));
         assert_eq!(world.body(id).unwrap().velocity, Vec2::new(0.5, 2.0));
     }
 
@@ -247,12 +329,12 @@ mod tests {
         let mut world = World::default();
         let id = world.add_body(ball(0.0)).unwrap();
         let nan = Vec2::new(f32::NAN, 0.0);
-        assert!(world.apply_force(id, nan).is_err());
-        assert!(world.apply_impulse(id, nan).is_err());
-        assert!(world.set_position(id, nan).is_err());
-        assert!(world.set_velocity(id, nan).is_err());
-        assert!(world.apply_friction(id, -1.0, 10.0).is_err());
-        assert!(world.apply_friction(id, 0.5, f32::INFINITY).is_err());
+        assert!(world.try_apply_force(id, nan).is_err());
+        assert!(world.try_apply_impulse(id, nan).is_err());
+        assert!(world.try_set_position(id, nan).is_err());
+        assert!(world.try_set_velocity(id, nan).is_err());
+        assert!(world.try_apply_friction(id, -1.0, 10.0).is_err());
+        assert!(world.try_apply_friction(id, 0.5, f32::INFINITY).is_err());
         let mut bad = WorldSettings::default();
         bad.forces.gravity = Some(nan);
         assert_eq!(
@@ -294,7 +376,7 @@ mod tests {
             world.interpolated_position(id, 1.0),
             Some(Vec2::new(1.0, 0.0))
         );
-        world.set_position(id, Vec2::new(9.0, 0.0)).unwrap();
+        world.set_position(id, Vec2::new(9.0, 0.0));
         assert_eq!(
             world.interpolated_position(id, 0.0),
             Some(Vec2::new(9.0, 0.0))
@@ -305,22 +387,22 @@ mod tests {
     fn material_setters_check_their_input_and_take_effect() {
         let mut world = World::default();
         let id = world.add_body(ball(0.0)).unwrap();
-        world.set_friction(id, 0.1).unwrap();
+        world.set_friction(id, 0.1);
         world.set_restitution(id, 0.9).unwrap();
         world.set_drag_area(id, 2.0).unwrap();
         let b = world.body(id).unwrap();
         assert_eq!((b.friction, b.restitution, b.drag_area), (0.1, 0.9, 2.0));
-        assert!(world.set_friction(id, -1.0).is_err());
+        assert!(world.try_set_friction(id, -1.0).is_err());
         assert!(world.set_restitution(id, 1.1).is_err());
         assert!(world.set_drag_area(id, f32::NAN).is_err());
         let ground = world
-            .add_body(BodyDef::fixed(Vec2::ZERO, Shape::circle(1.0)))
+            .add_body(BodyDef::new_static(Vec2::ZERO, Shape::circle(1.0)))
             .unwrap();
-        world.set_friction(ground, 0.02).unwrap();
+        world.set_friction(ground, 0.02);
         assert_eq!(world.body(ground).unwrap().friction, 0.02);
         world.remove_body(id);
         assert_eq!(
-            world.set_friction(id, 0.5),
+            world.try_set_friction(id, 0.5),
             Err(PhysicsError::StaleBody(id))
         );
     }

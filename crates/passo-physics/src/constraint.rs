@@ -141,7 +141,11 @@ impl Constraint {
             inv_mass_a,
             inv_mass_b,
             mass: if k > 0.0 { 1.0 / k } else { 0.0 },
-            friction: (dynamic.friction[ai] * friction_b).sqrt(),
+            friction: dynamic.meta[ai].friction_mix.combine(
+                bodies.meta(b).friction_mix,
+                dynamic.friction[ai],
+                friction_b,
+            ),
             normal_impulse: 0.0,
             tangent_impulse: 0.0,
             push_impulse: 0.0,

@@ -48,6 +48,8 @@ mod collider;
 mod filter;
 mod shape;
 
+mod material;
+
 mod body;
 
 mod forces;
@@ -121,6 +123,7 @@ pub use id::BodyId;
 pub use integrator::Integrator;
 #[doc(hidden)]
 pub use manifold::{Manifold, collide};
+pub use material::FrictionMix;
 pub use query::{QueryFilter, RayHit, ShapeHit};
 pub use settings::WorldSettings;
 pub use shape::Shape;

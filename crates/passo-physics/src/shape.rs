@@ -26,10 +26,22 @@ impl Shape {
         Self::Circle { radius }
     }
 
-    /// A box of the given full width and height, metres.
+    /// A box of the given full width and height, metres (the [`Box`]
+    /// variant stores half of each: `Shape::rect(2.0, 1.0)` has half
+    /// extents `(1.0, 0.5)`).
+    ///
+    /// [`Box`]: Self::Box
     pub fn rect(width: f32, height: f32) -> Self {
         Self::Box {
             half_extents: Vec2::new(width * 0.5, height * 0.5),
+        }
+    }
+
+    /// A box of the given half width and half height, metres (what the
+    /// [`Box`](Self::Box) variant stores).
+    pub const fn from_half_extents(half_width: f32, half_height: f32) -> Self {
+        Self::Box {
+            half_extents: Vec2::new(half_width, half_height),
         }
     }
 

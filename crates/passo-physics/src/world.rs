@@ -26,6 +26,11 @@ pub struct StepStats {
     /// mass). That step's motion is dropped: the body's velocity becomes
     /// zero and it stays where it was, so the world never stores a NaN.
     pub non_finite_resets: u64,
+    /// Calls of the per-tick setters (`set_velocity`, `apply_force`, ...)
+    /// that changed nothing: a stale id, or a value their `try_` form
+    /// refuses (NaN, infinity, out of range).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub rejected_inputs: u64,
 }
 
 /// Where a live body's data sits.
@@ -51,7 +56,7 @@ pub(crate) struct Slot {
 /// use passo_physics::{BodyDef, World, glam::Vec2};
 ///
 /// let mut world = World::default(); // gravity (0, -9.81) m/s²
-/// let ball = world.add_body(BodyDef::dynamic(Vec2::new(0.0, 10.0))).unwrap();
+/// let ball = world.add_body(BodyDef::point_mass(Vec2::new(0.0, 10.0))).unwrap();
 /// for _ in 0..60 {
 ///     world.step(1.0 / 60.0);
 /// }
@@ -291,6 +296,7 @@ impl World {
             },
             shape: def.shape,
             drag_area: def.drag_area,
+            friction_mix: def.friction_mix,
             restitution: def.restitution,
             filter: def.filter,
             sensor: def.sensor,
@@ -541,7 +547,7 @@ mod tests {
     use crate::Shape;
 
     fn ball(x: f32) -> BodyDef {
-        BodyDef::dynamic(Vec2::new(x, 0.0))
+        BodyDef::point_mass(Vec2::new(x, 0.0))
     }
 
     #[test]
@@ -557,7 +563,7 @@ mod tests {
         assert_eq!(world.body(a), None);
         assert!(world.remove_body(a).is_none());
         assert_eq!(
-            world.set_velocity(a, Vec2::ONE),
+            world.try_set_velocity(a, Vec2::ONE),
             Err(PhysicsError::StaleBody(a))
         );
         assert_eq!(world.body(b).unwrap().position.x, 2.0);
@@ -592,11 +598,14 @@ mod tests {
     fn static_bodies_never_move_and_ignore_forces() {
         let mut world = World::default();
         let ground = world
-            .add_body(BodyDef::fixed(Vec2::new(0.0, -1.0), Shape::rect(10.0, 1.0)))
+            .add_body(BodyDef::new_static(
+                Vec2::new(0.0, -1.0),
+                Shape::rect(10.0, 1.0),
+            ))
             .unwrap();
-        world.apply_force(ground, Vec2::new(1e6, 1e6)).unwrap();
-        world.apply_impulse(ground, Vec2::new(1e6, 1e6)).unwrap();
-        world.set_velocity(ground, Vec2::new(5.0, 5.0)).unwrap();
+        world.apply_force(ground, Vec2::new(1e6, 1e6));
+        world.apply_impulse(ground, Vec2::new(1e6, 1e6));
+        world.set_velocity(ground, Vec2::new(5.0, 5.0));
         for _ in 0..100 {
             world.step(1.0 / 60.0);
         }
@@ -676,7 +685,7 @@ mod tests {
         // A static body needs no mass.
         let ground = BodyDef {
             mass: 0.0,
-            ..BodyDef::fixed(Vec2::ZERO, Shape::circle(1.0))
+            ..BodyDef::new_static(Vec2::ZERO, Shape::circle(1.0))
         };
         assert!(world.add_body(ground).is_ok());
     }

@@ -101,6 +101,7 @@ fn body_def(spec: &BodySpec, position: Vec2) -> BodyDef {
         shape: spec.shape,
         drag_area: spec.material.drag_area,
         friction: spec.material.friction,
+        friction_mix: spec.material.friction_mix,
         restitution: spec.material.restitution,
         filter: spec.filter.unwrap_or_default(),
         sensor: spec.sensor,

@@ -7,8 +7,8 @@ use passo_physics::constants::{
 };
 use passo_physics::glam::Vec2;
 use passo_physics::{
-    BodyKind, CentralGravity, CollisionFilter, ContactSettings, ForceForm, Integrator, LinearDrag,
-    QuadraticDrag, Shape, Spring, SurfaceFriction,
+    BodyKind, CentralGravity, CollisionFilter, ContactSettings, ForceForm, FrictionMix, Integrator,
+    LinearDrag, QuadraticDrag, Shape, Spring, SurfaceFriction,
 };
 use ron::extensions::Extensions;
 use serde::{Deserialize, Serialize};
@@ -118,6 +118,15 @@ pub struct Material {
     pub friction: f32,
     /// Drag area `Cd A`, m², >= 0. Default 0.1.
     pub drag_area: f32,
+    /// How the friction combines with another body's in a contact:
+    /// `GeometricMean` (default), `Average`, `Min` (ice), `Multiply` or
+    /// `Max`; the later rule of the two bodies wins.
+    #[serde(skip_serializing_if = "is_default_mix")]
+    pub friction_mix: FrictionMix,
+}
+
+fn is_default_mix(mix: &FrictionMix) -> bool {
+    *mix == FrictionMix::default()
 }
 
 impl Default for Material {
@@ -126,6 +135,7 @@ impl Default for Material {
             restitution: 0.0,
             friction: DEFAULT_FRICTION,
             drag_area: DEFAULT_DRAG_AREA,
+            friction_mix: FrictionMix::default(),
         }
     }
 }

@@ -30,6 +30,7 @@ pub fn scene_from_world(world: &World, base: &SceneFile, bodies: &[SceneBody]) -
                 material: Material {
                     restitution: b.restitution,
                     friction: b.friction,
+                    friction_mix: b.friction_mix,
                     drag_area: b.drag_area,
                 },
                 colour: record.map(|r| r.colour),

@@ -144,7 +144,10 @@ mod tests {
     fn sleeping_bodies_are_dimmed_only_when_asked() {
         let mut world = World::new(WorldSettings::default()).unwrap();
         world
-            .add_body(BodyDef::fixed(Vec2::new(0.0, -0.5), Shape::rect(10.0, 1.0)))
+            .add_body(BodyDef::new_static(
+                Vec2::new(0.0, -0.5),
+                Shape::rect(10.0, 1.0),
+            ))
             .unwrap();
         let ball = world
             .add_body(BodyDef {

@@ -22,7 +22,7 @@ fn run(sim: &mut Sim, frames: usize, input: Input) {
 fn playground_with_player_at(at: Vec2) -> Sim {
     let mut sim = playground();
     let id = sim.scene.player.unwrap();
-    sim.scene.lanes[0].world.set_position(id, at).unwrap();
+    sim.scene.lanes[0].world.set_position(id, at);
     sim
 }
 
@@ -118,8 +118,7 @@ fn the_ice_patch_lets_the_player_slide_much_further() {
         run(&mut sim, 10, Input::default());
         sim.scene.lanes[0]
             .world
-            .set_velocity(id, Vec2::new(5.0, 0.0))
-            .unwrap();
+            .set_velocity(id, Vec2::new(5.0, 0.0));
         let start = player(&sim).position.x;
         run(&mut sim, 120, Input::default());
         player(&sim).position.x - start

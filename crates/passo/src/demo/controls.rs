@@ -151,10 +151,10 @@ pub(crate) fn drive_player(
         let g = knobs.gravity.abs();
         let max = m * (body.friction * g + WALK_ACCELERATION);
         let push = (m * (target - body.velocity.x) / WALK_RESPONSE).clamp(-max, max);
-        let _ = world.apply_force(player, Vec2::new(push, 0.0));
+        world.apply_force(player, Vec2::new(push, 0.0));
     }
     if jump && standing {
-        let _ = world.apply_impulse(player, Vec2::new(0.0, m * JUMP_SPEED));
+        world.apply_impulse(player, Vec2::new(0.0, m * JUMP_SPEED));
     }
     if let Some(base) = base_drag {
         let open = input.glide && !standing;

@@ -166,7 +166,7 @@ pub(crate) fn integrator_lanes() -> Vec<Lane> {
             })
             .expect("valid settings");
             let anchor = world
-                .add_body(BodyDef::fixed(Vec2::ZERO, Shape::circle(0.08)))
+                .add_body(BodyDef::new_static(Vec2::ZERO, Shape::circle(0.08)))
                 .expect("valid anchor");
             let bob = world
                 .add_body(BodyDef {

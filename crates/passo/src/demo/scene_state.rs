@@ -156,7 +156,7 @@ impl SceneState {
     /// Sets the friction of every dynamic body.
     pub(crate) fn apply_friction(&mut self, mu: f32) {
         for lane in &mut self.lanes {
-            lane.for_each_dynamic(|w, id| w.set_friction(id, mu));
+            lane.for_each_dynamic(|w, id| w.try_set_friction(id, mu));
         }
     }
 
@@ -266,7 +266,7 @@ impl SceneState {
 
     /// Sets a body's velocity (a fling).
     pub fn fling(&mut self, id: BodyId, velocity: Vec2) {
-        if let Err(e) = self.lanes[0].world.set_velocity(id, velocity) {
+        if let Err(e) = self.lanes[0].world.try_set_velocity(id, velocity) {
             log::warn!("fling refused: {e}");
         }
     }

@@ -222,7 +222,7 @@ pub fn long_drift(steps: usize) -> Vec<(&'static str, f64)> {
                 ..Default::default()
             })
             .expect("valid settings");
-            w.add_body(BodyDef::dynamic(Vec2::new(1.0, 0.0)))
+            w.add_body(BodyDef::point_mass(Vec2::new(1.0, 0.0)))
                 .expect("valid body");
             let e0 = w.total_energy();
             for _ in 0..steps {
@@ -330,10 +330,9 @@ pub fn apex_table() -> Vec<Apex> {
         })
         .expect("valid settings");
         let id = w
-            .add_body(BodyDef::dynamic(Vec2::ZERO))
+            .add_body(BodyDef::point_mass(Vec2::ZERO))
             .expect("valid body");
-        w.apply_impulse(id, Vec2::new(0.0, 5.0))
-            .expect("finite impulse");
+        w.apply_impulse(id, Vec2::new(0.0, 5.0));
         let (mut top, mut falling) = (0.0f32, false);
         while !falling {
             frame(&mut w, &mut |w: &World| {
