@@ -297,3 +297,67 @@ fn a_snapshot_with_a_kinematic_body_resumes_bit_for_bit() {
     assert!(world.kinetic_energy().is_finite());
     assert!(world.momentum().iter().all(|p| p.is_finite()));
 }
+
+/// Drives the platform along `path(t)` with `set_kinematic_target`, as a
+/// game drives a lift, for `ticks` ticks; returns the rider's offset from
+/// the platform after each tick.
+fn ride(path: impl Fn(f32) -> Vec2, ticks: usize) -> (World, BodyId, Vec<Vec2>) {
+    let mut world = World::default();
+    let k = platform(&mut world, path(0.0), Vec2::ZERO);
+    // The rider starts with the platform's velocity.
+    let v0 = (path(DT) - path(0.0)) / DT;
+    let r = rider(&mut world, path(0.0), v0);
+    world.set_velocity(k, v0);
+    let offsets = (1..=ticks)
+        .map(|tick| {
+            world.set_kinematic_target(k, path(tick as f32 * DT), DT);
+            world.step(DT);
+            pos(&world, r) - pos(&world, k)
+        })
+        .collect();
+    (world, r, offsets)
+}
+
+#[test]
+fn a_lift_going_up_and_down_at_3_m_s_keeps_its_rider_without_bouncing_or_sinking() {
+    // y = A sin(w t): top speed A w = 3 m/s, top acceleration A w² = 7.5
+    // m/s², less than free fall, so the rider is never left behind.
+    let w = 2.5;
+    let a = 3.0 / w;
+    let (world, r, offsets) = ride(|t| Vec2::new(0.0, a * (w * t).sin()), 600);
+    let rest = 0.25 + 0.5;
+    for (tick, o) in offsets.iter().enumerate() {
+        let gap = o.y - rest;
+        assert!(gap < 0.01, "tick {tick}: lifted off by {gap} m");
+        assert!(gap > -0.0075, "tick {tick}: sank {} m", -gap);
+        assert!(o.x.abs() < 0.01, "tick {tick}: slid {} m", o.x);
+    }
+    assert!(world.is_standing(r, 0.8));
+}
+
+#[test]
+fn a_platform_swinging_sideways_carries_its_rider_with_a_bounded_lag() {
+    // x = A sin(w t): top speed 2 m/s, top acceleration 4 m/s², less than
+    // mu g = 5.9 m/s², so friction holds the rider. The platform's velocity
+    // changes once per tick (up to 0.067 m/s) and friction passes a change
+    // on over a few substeps, so the rider lags by about a centimetre while
+    // the platform speeds up and gives it back as it slows: no drift.
+    let w = 2.0;
+    let a = 2.0 / w;
+    let (_, _, offsets) = ride(|t| Vec2::new(a * (w * t).sin(), 0.0), 400);
+    let start = offsets[0];
+    let lag = |o: &Vec2| (o.x - start.x).abs();
+    for (tick, o) in offsets.iter().enumerate() {
+        assert!(lag(o) < 0.0125, "tick {tick}: lags {} m", lag(o));
+        assert!((o.y - 0.75).abs() < 0.0075, "tick {tick}: {o}");
+    }
+    // Each swing takes pi s (188.5 ticks); near its end the lag is gone.
+    for swing in [1.0f32, 2.0] {
+        let end = (swing * std::f32::consts::PI / DT) as usize;
+        let least = offsets[end - 15..end + 5]
+            .iter()
+            .map(lag)
+            .fold(f32::INFINITY, f32::min);
+        assert!(least < 0.001, "swing {swing}: {least} m left");
+    }
+}
