@@ -205,3 +205,63 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn path_platforms_follow_their_path_and_carry_what_stands_on_them() {
+    let mut built = load("playground").build().unwrap();
+    let mover = built.body_named("moving platform").unwrap();
+    let platform = *built.platforms.iter().find(|p| p.id == mover).unwrap();
+    assert_eq!(built.platforms.len(), 2, "the moving platform and the lift");
+    // A crate dropped onto the moving platform.
+    let start = platform.start;
+    let crate_id = built
+        .world
+        .add_body(passo_physics::BodyDef::new_dynamic(
+            start + passo_physics::glam::Vec2::new(0.0, 0.7),
+            passo_physics::Shape::rect(0.8, 0.8),
+        ))
+        .unwrap();
+    let dt = 1.0 / 60.0;
+    for tick in 0..360u32 {
+        let t_end = f64::from(tick + 1) * f64::from(dt);
+        passo_scene::BuiltScene::drive_platforms(&built.platforms, &mut built.world, t_end, dt);
+        built.world.step(dt);
+        let at = built.world.body(mover).unwrap().position;
+        assert!(
+            (at - platform.at(t_end)).length() < 1e-4,
+            "tick {tick}: {at}"
+        );
+    }
+    // After one period (6 s) it is back at the start, eased in and out.
+    let at = built.world.body(mover).unwrap().position;
+    assert!((at - start).length() < 1e-4);
+    // Half a period in, it was at the far end: 5 m to the right.
+    assert!((platform.at(3.0) - (start + platform.path.by)).length() < 1e-6);
+    let c = built.world.body(crate_id).unwrap().position;
+    assert!(
+        (c.x - start.x).abs() < 0.1,
+        "the crate rode along and back: {c}"
+    );
+    assert_eq!(built.world.standing_on(crate_id, 0.8), Some(mover));
+}
+
+#[test]
+fn a_path_or_a_one_way_on_a_dynamic_body_is_refused_with_the_field_named() {
+    for (text, field) in [
+        (
+            "(name: \"x\", bodies: [(path: (by: (1, 0), period: 2))])",
+            "bodies[0].path",
+        ),
+        (
+            "(name: \"x\", bodies: [(kind: Kinematic, path: (by: (1, 0), period: 0))])",
+            "bodies[0].path.period",
+        ),
+        (
+            "(name: \"x\", bodies: [(one_way: (0, 1))])",
+            "bodies[0].one_way",
+        ),
+    ] {
+        let err = Scene::parse(text, "t.ron").unwrap_err().to_string();
+        assert!(err.contains(field), "{err}");
+    }
+}

@@ -1,7 +1,7 @@
 //! Building a physics world from a scene.
 
 use crate::error::SceneError;
-use crate::format::{BodySpec, Colour, SceneFile};
+use crate::format::{BodySpec, Colour, PlatformPath, SceneFile};
 use crate::generate::generate;
 use passo_physics::glam::Vec2;
 use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, ForceModels, World, WorldSettings};
@@ -19,9 +19,10 @@ const PALETTE: [[u8; 4]; 6] = [
 /// Static bodies without a colour.
 const STATIC_COLOUR: Colour = Colour([0x6b, 0x70, 0x7a, 0xff]);
 
-/// Kinematic bodies (moving platforms) without a colour (sRGB): teal, apart
-/// from the palette of dynamic bodies and the grey of static ones.
-pub const KINEMATIC_COLOUR: Colour = Colour([0x3a, 0xa6, 0x9b, 0xff]);
+/// Kinematic bodies (moving platforms) without a colour (sRGB): a pale
+/// lavender, apart from the palette of dynamic bodies and the grey of
+/// static ones.
+pub const KINEMATIC_COLOUR: Colour = Colour([0xd8, 0xd4, 0xf0, 0xff]);
 
 /// What the renderer and the game need to know about a scene body.
 #[derive(Clone, Debug, PartialEq)]
@@ -43,9 +44,40 @@ pub struct BuiltScene {
     pub bodies: Vec<SceneBody>,
     /// The region to show.
     pub camera: Aabb,
+    /// The kinematic bodies that follow a path, for
+    /// [`drive_platforms`](BuiltScene::drive_platforms).
+    pub platforms: Vec<Platform>,
+}
+
+/// A kinematic body on a back-and-forth path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Platform {
+    /// The body.
+    pub id: BodyId,
+    /// Where the path starts (the body's position in the scene).
+    pub start: Vec2,
+    /// The path.
+    pub path: PlatformPath,
+}
+
+impl Platform {
+    /// Where the platform is at `t` seconds of simulated time.
+    pub fn at(&self, t: f64) -> Vec2 {
+        self.start + self.path.offset(t)
+    }
 }
 
 impl BuiltScene {
+    /// Steers each path platform so it reaches its place at `t_end`
+    /// seconds (the simulated time at the end of the next step of `dt`):
+    /// call it before every step, with the step's end time from the tick
+    /// count so it does not drift.
+    pub fn drive_platforms(platforms: &[Platform], world: &mut World, t_end: f64, dt: f32) {
+        for p in platforms {
+            world.set_kinematic_target(p.id, p.at(t_end), dt);
+        }
+    }
+
     /// The body with this name, if any.
     pub fn body_named(&self, name: &str) -> Option<BodyId> {
         self.bodies
@@ -120,6 +152,7 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
     };
     let mut world = World::new(settings(file)).map_err(|e| invalid("settings".into(), e))?;
     let mut bodies = Vec::new();
+    let mut platforms = Vec::new();
     let mut bounds: Option<Aabb> = None;
     let mut add = |spec: &BodySpec, position: Vec2, path: &dyn Fn() -> String| {
         let def = body_def(spec, position);
@@ -137,6 +170,13 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
             name: spec.name.clone(),
             colour,
         });
+        if let Some(path) = spec.path {
+            platforms.push(Platform {
+                id,
+                start: position,
+                path,
+            });
+        }
         Ok::<(), SceneError>(())
     };
     for (i, spec) in file.bodies.iter().enumerate() {
@@ -169,5 +209,6 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         world,
         bodies,
         camera,
+        platforms,
     })
 }

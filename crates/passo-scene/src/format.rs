@@ -108,6 +108,30 @@ pub struct Camera {
     pub max: Vec2,
 }
 
+/// A kinematic body's motion back and forth between its position and
+/// `position + by`: there and back in `period` seconds, easing in and out
+/// at each end (no sudden reversal), the same at every frame rate.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlatformPath {
+    /// The far end, relative to the body's position, m.
+    pub by: Vec2,
+    /// Seconds for the way there and back, > 0.
+    pub period: f32,
+}
+
+impl PlatformPath {
+    /// The offset from the start at `t` seconds: a smoothstep ease of the
+    /// triangle wave (arithmetic only, so every platform computes the same
+    /// bits).
+    pub fn offset(&self, t: f64) -> Vec2 {
+        let phase = (t / f64::from(self.period)).rem_euclid(1.0);
+        let s = 1.0 - (2.0 * phase - 1.0).abs();
+        let eased = s * s * (3.0 - 2.0 * s);
+        self.by * eased as f32
+    }
+}
+
 /// Material of a body.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -222,6 +246,10 @@ pub struct BodySpec {
     /// solid side, e.g. `(0, 1)`. Default none (solid from every side).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub one_way: Option<Vec2>,
+    /// A kinematic body's back-and-forth path (a moving platform, a lift).
+    /// Default none (it keeps its `velocity`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub path: Option<PlatformPath>,
     /// Collision layers and mask. Default: layer 1, collides with all.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub filter: Option<CollisionFilter>,
@@ -615,6 +643,22 @@ impl BodySpec {
         }
         if self.sensor && self.shape.is_none() {
             return Err(c.fail(&at("sensor"), "needs a `shape`".to_owned()));
+        }
+        if let Some(n) = self.one_way {
+            c.finite_vec(&at("one_way"), n)?;
+            if n == Vec2::ZERO || self.kind == BodyKind::Dynamic {
+                return Err(c.fail(
+                    &at("one_way"),
+                    "must be a non-zero direction on a Static or Kinematic body".to_owned(),
+                ));
+            }
+        }
+        if let Some(path) = &self.path {
+            c.finite_vec(&at("path.by"), path.by)?;
+            c.positive(&at("path.period"), path.period, "s")?;
+            if self.kind != BodyKind::Kinematic {
+                return Err(c.fail(&at("path"), "is for `kind: Kinematic` bodies".to_owned()));
+            }
         }
         Ok(())
     }

@@ -27,7 +27,7 @@ mod format;
 mod generate;
 mod save;
 
-pub use build::{BuiltScene, KINEMATIC_COLOUR, SceneBody};
+pub use build::{BuiltScene, KINEMATIC_COLOUR, Platform, SceneBody};
 pub use error::SceneError;
 pub use format::{BodySpec, Camera, Colour, Forces, Generator, MAX_BODIES, Material, SceneFile};
 pub use save::scene_from_world;

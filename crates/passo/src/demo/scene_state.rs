@@ -10,7 +10,7 @@ use crate::scenes::Plot;
 use anyhow::Result;
 use glam::Vec2;
 use passo_physics::{Aabb, BodyId, BodyKind, Integrator};
-use passo_scene::{Generator, Scene, SceneFile};
+use passo_scene::{BuiltScene, Generator, Platform, Scene, SceneFile};
 
 /// A scene being run: everything a reset rebuilds.
 #[derive(Debug)]
@@ -34,6 +34,8 @@ pub struct SceneState {
     pub file: Option<SceneFile>,
     /// Game input for the next tick (jump is consumed by it).
     input: Input,
+    /// Kinematic bodies of lane 0 that follow a path (moving platforms).
+    platforms: Vec<Platform>,
 }
 
 impl SceneState {
@@ -43,6 +45,7 @@ impl SceneState {
         let built = scene.build()?;
         let file = scene.file.clone();
         let player = built.body_named("player");
+        let platforms = built.platforms;
         let lanes = vec![Lane::new(
             String::new(),
             built.world,
@@ -59,6 +62,7 @@ impl SceneState {
             fixed_integrators: false,
             file: Some(file),
             input: Input::default(),
+            platforms,
         };
         state.set_interpolation(true);
         Ok(state)
@@ -83,6 +87,7 @@ impl SceneState {
             fixed_integrators: true,
             file: None,
             input: Input::default(),
+            platforms: Vec::new(),
         }
     }
 
@@ -124,9 +129,12 @@ impl SceneState {
         self.input = input;
     }
 
-    /// Steps every lane by `dt` seconds after the player's controls, then
-    /// samples the plot at simulated time `t`.
+    /// Steps every lane by `dt` seconds after the player's controls and
+    /// the moving platforms (the step starts at simulated time `t`), then
+    /// samples the plot at `t`.
     pub(crate) fn step(&mut self, dt: f32, t: f32, knobs: &Knobs) {
+        let t_end = f64::from(t) + f64::from(dt);
+        BuiltScene::drive_platforms(&self.platforms, &mut self.lanes[0].world, t_end, dt);
         if let Some(player) = self.player {
             let lane = &mut self.lanes[0];
             let base_drag = lane.base_drag(player);
