@@ -45,7 +45,7 @@ done
 
 for round in $(seq "$rounds"); do
     for side in old new; do
-        for what in integration rain pyramid sleep; do
+        for what in integration rain pyramid sleep rays; do
             "$work/target-$side/release/steps-$side" "$what" | sed "s/^/$side round $round: /"
         done
     done

@@ -147,3 +147,71 @@ pub fn time_steps_with(
         last_ms: last / f64::from(tail),
     }
 }
+
+/// `count` rays (origin, unit direction) from pseudo-random points of the
+/// box `min..max` in pseudo-random directions, the same every run.
+pub fn rays(min: Vec2, max: Vec2, count: usize) -> Vec<(Vec2, Vec2)> {
+    let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 40) as f32 / (1u64 << 24) as f32
+    };
+    (0..count)
+        .map(|_| {
+            let origin = min + (max - min) * Vec2::new(next(), next());
+            let angle = next() * std::f32::consts::TAU;
+            (origin, Vec2::new(angle.cos(), angle.sin()))
+        })
+        .collect()
+}
+
+/// A kinematic platform sweeping back and forth: its body, where it
+/// starts, and how far it goes.
+#[derive(Clone, Copy, Debug)]
+pub struct Sweeper {
+    /// The platform.
+    pub id: passo_physics::BodyId,
+    /// Its position at tick 0.
+    pub start: Vec2,
+    /// The far end, relative to the start.
+    pub by: Vec2,
+}
+
+/// The rain of `n` circles with `platforms` kinematic platforms (4 m by
+/// 0.3 m) sweeping sideways through it in rows, as a level's moving
+/// platforms; drive them with [`drive_sweepers`] before each step.
+pub fn rain_with_platforms(n: usize, platforms: usize) -> (World, Vec<Sweeper>) {
+    let columns = ((2.0 * (n as f32).sqrt()).ceil() as usize).max(1);
+    let mut world = rain_grid(n, columns);
+    let width = columns as f32 * 0.25;
+    let rows = n.div_ceil(columns) as f32 * 0.25;
+    let sweepers = (0..platforms)
+        .map(|k| {
+            let start = Vec2::new(
+                -width * 0.5 + 2.5 + (k % 4) as f32 * width * 0.2,
+                1.0 + (k / 4) as f32 * rows / (platforms.div_ceil(4) as f32).max(1.0),
+            );
+            let def = BodyDef::new_kinematic(start, Shape::rect(4.0, 0.3), Vec2::ZERO);
+            let id = world.add_body(def).expect("valid platform");
+            Sweeper {
+                id,
+                start,
+                by: Vec2::new(width * 0.15, 0.0),
+            }
+        })
+        .collect();
+    (world, sweepers)
+}
+
+/// Steers the sweepers to their place at the end of tick `tick` (a
+/// 4-second triangle wave, 60 Hz).
+pub fn drive_sweepers(world: &mut World, sweepers: &[Sweeper], tick: u32) {
+    let dt = 1.0 / 60.0;
+    let phase = ((tick + 1) % 240) as f32 / 240.0;
+    let s = 1.0 - (2.0 * phase - 1.0).abs();
+    for p in sweepers {
+        world.set_kinematic_target(p.id, p.start + p.by * s, dt);
+    }
+}

@@ -3,7 +3,7 @@
 //! interleaved, so a change can be compared with the code before it in
 //! the same conditions.
 //!
-//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|sleep|integration`
+//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|sleep|integration|rays`
 
 use passo_benches::{pyramid_world, rain_world, with_sleeping};
 use passo_physics::glam::Vec2;
@@ -49,6 +49,25 @@ fn integration(n: usize) -> f64 {
     start.elapsed().as_nanos() as f64 / (n * steps) as f64
 }
 
+/// 10 000 rays through the rain's box, the same every run (a copy of
+/// `passo_benches::rays`, which older commits lack).
+fn passo_benches_rays() -> Vec<(Vec2, Vec2)> {
+    let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 40) as f32 / (1u64 << 24) as f32
+    };
+    (0..10_000)
+        .map(|_| {
+            let origin = Vec2::new(-20.0, 0.0) + Vec2::new(40.0, 15.0) * Vec2::new(next(), next());
+            let angle = next() * std::f32::consts::TAU;
+            (origin, Vec2::new(angle.cos(), angle.sin()))
+        })
+        .collect()
+}
+
 fn main() {
     let which = std::env::args().nth(1).unwrap_or_default();
     match which.as_str() {
@@ -69,6 +88,26 @@ fn main() {
             let w = with_sleeping(&pyramid_world(20), false);
             println!("pyramid 20 awake: {:.3} ms/step", ms_per_step(w, 60, 600));
         }
+        "rays" => {
+            let mut w = rain_world(10_000);
+            w.set_parallel(false);
+            for _ in 0..120 {
+                w.step(1.0 / 60.0);
+            }
+            let rays = passo_benches_rays();
+            // A step, then a batch of rays (the first builds any index).
+            w.step(1.0 / 60.0);
+            let start = Instant::now();
+            let hits = rays
+                .iter()
+                .filter(|(o, d)| w.ray_cast(*o, *d, 10.0).is_some())
+                .count();
+            let secs = start.elapsed().as_secs_f64();
+            println!(
+                "rays against 10000 (first batch after a step): {:.0} rays/s ({hits} hits)",
+                rays.len() as f64 / secs
+            );
+        }
         "sleep" => {
             let w = rain_world(10_000);
             println!(
@@ -77,7 +116,7 @@ fn main() {
             );
         }
         _ => {
-            eprintln!("usage: steps integration|rain|pyramid|sleep");
+            eprintln!("usage: steps integration|rain|pyramid|sleep|rays");
             std::process::exit(2);
         }
     }

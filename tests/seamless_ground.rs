@@ -174,3 +174,48 @@ fn a_box_slides_down_a_wall_of_stacked_tiles_without_catching() {
         assert!(b.position.x > 0.79, "it stays against the wall");
     }
 }
+
+#[test]
+fn a_box_slides_from_static_ground_onto_a_flush_kinematic_platform_and_off_again() {
+    // Ground, a kinematic platform level with it (a lift at rest), ground.
+    let slide = |with_platform: bool| {
+        let mut world = World::default();
+        let ground = |w: &mut World, x: f32, width: f32| {
+            w.add_body(BodyDef::new_static(
+                Vec2::new(x, -0.5),
+                Shape::rect(width, 1.0),
+            ))
+            .unwrap();
+        };
+        if with_platform {
+            ground(&mut world, -6.0, 10.0);
+            world
+                .add_body(BodyDef::new_kinematic(
+                    Vec2::new(0.0, -0.5),
+                    Shape::rect(2.0, 1.0),
+                    Vec2::ZERO,
+                ))
+                .unwrap();
+            ground(&mut world, 6.0, 10.0);
+        } else {
+            ground(&mut world, 0.0, 22.0);
+        }
+        let body = world
+            .add_body(BodyDef::new_dynamic(
+                Vec2::new(-4.0, 0.5),
+                Shape::rect(0.6, 1.0),
+            ))
+            .unwrap();
+        push(&mut world, body, 4.0, 150)
+    };
+    let (with, without) = (slide(true), slide(false));
+    for (tick, (a, b)) in with.iter().zip(&without).enumerate() {
+        assert!(a.y.abs() < 1e-4, "tick {tick}: vertical speed {}", a.y);
+        assert!(
+            (a.x - b.x).abs() < 1e-5,
+            "tick {tick}: {} against {}",
+            a.x,
+            b.x
+        );
+    }
+}

@@ -74,7 +74,7 @@ impl ContactWorld {
             dt: step.dt,
             continuous: settings.continuous,
         };
-        self.proxies.begin(statics, dynamic.len(), margin);
+        self.proxies.begin(dynamic, statics, margin);
         self.sleeping.begin(dynamic, any_asleep, &margin);
         self.add_proxies(dynamic, any_asleep);
         self.proxies.find_pairs(step.parallel);

@@ -120,17 +120,20 @@ impl Narrow<'_> {
                 visitor: v.body,
             });
         }
-        // A static body is always B; otherwise the lower id is A, so a
-        // contact's orientation does not depend on storage order.
-        let (ca, cb) = if cb.body.is_static() || ca.id.index() <= cb.id.index() {
+        // A static or kinematic body is always B (two of them never meet);
+        // otherwise the lower id is A, so a contact's orientation does not
+        // depend on storage order.
+        let (ca, cb) = if cb.immovable || (!ca.immovable && ca.id.index() <= cb.id.index()) {
             (ca, cb)
         } else {
             (cb, ca)
         };
         let position = |c: &Collider| self.bodies.position(c.body);
-        let faces = match cb.body.dynamic_index() {
-            Some(_) => Faces::default(),
-            None => self.proxies.static_faces[cb.body.index()],
+        // Seamless ground: B's faces that a neighbour covers.
+        let faces = if cb.immovable {
+            self.proxies.covered_faces(cb.body)
+        } else {
+            Faces::default()
         };
         match collide_seamless(
             &ca.shape,

@@ -5,6 +5,7 @@
 
 use crate::bodies::{DynamicBodies, StaticBodies};
 use crate::broad_phase::BroadPhase;
+use crate::collider::ColliderRef;
 use crate::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE};
 use crate::manifold::Faces;
 use crate::static_tree::StaticTree;
@@ -50,7 +51,13 @@ pub(crate) struct Proxies {
     tree_items: Vec<u32>,
     /// Per static body: the faces other static boxes cover (seamless
     /// ground; see [`Faces`]).
-    pub static_faces: Vec<Faces>,
+    pub(crate) static_faces: Vec<Faces>,
+    /// This step, by dynamic index: the faces of each kinematic box that
+    /// static or other kinematic boxes cover; sorted.
+    kinematic_faces: Vec<(u32, Faces)>,
+    /// This step, by static index: the faces of static boxes that a
+    /// kinematic box covers; sorted.
+    faces_by_kinematic: Vec<(u32, Faces)>,
     tree_dirty: bool,
     /// Proxy -> dynamic index.
     pub body: Vec<u32>,
@@ -85,10 +92,17 @@ impl Proxies {
 
     /// Starts a step: rebuilds the static tree if static bodies changed and
     /// forgets the last step's proxies.
-    pub(crate) fn begin(&mut self, statics: &StaticBodies, bodies: usize, margin: ProxyMargin) {
+    pub(crate) fn begin(
+        &mut self,
+        dynamic: &DynamicBodies,
+        statics: &StaticBodies,
+        margin: ProxyMargin,
+    ) {
+        let bodies = dynamic.len();
         if self.tree_dirty {
             self.rebuild_tree(statics);
         }
+        self.find_faces_covered_by_kinematic(dynamic, statics);
         self.body.clear();
         self.boxes.clear();
         self.margins.clear();
@@ -134,6 +148,70 @@ impl Proxies {
                 }
             });
             self.static_faces[i] = Faces(faces);
+        }
+    }
+
+    /// Which faces kinematic boxes and static boxes cover of each other
+    /// where they lie flush (a platform level with the ground), at the
+    /// positions the step starts from: `O(k log n)` for `k` kinematic
+    /// bodies, nothing without them.
+    fn find_faces_covered_by_kinematic(&mut self, dynamic: &DynamicBodies, statics: &StaticBodies) {
+        self.kinematic_faces.clear();
+        self.faces_by_kinematic.clear();
+        let box_of = |i: u32| match dynamic.meta[i as usize].shape {
+            Some(Shape::Box { half_extents }) => {
+                Some(Aabb::from_centre(dynamic.pos[i as usize], half_extents))
+            }
+            _ => None,
+        };
+        for &k in &dynamic.kinematic {
+            let Some(a) = box_of(k) else { continue };
+            let mut faces = 0;
+            let (items, by_kinematic) = (&self.tree_items, &mut self.faces_by_kinematic);
+            self.tree.query(&a.grown(2.0 * LINEAR_SLOP), |item| {
+                let s = items[item as usize];
+                if let Some(Shape::Box { half_extents }) = statics.meta[s as usize].shape {
+                    let b = Aabb::from_centre(statics.pos[s as usize], half_extents);
+                    faces |= Faces::covered_by(&a, &b, LINEAR_SLOP);
+                    let covered = Faces::covered_by(&b, &a, LINEAR_SLOP);
+                    if covered != 0 {
+                        by_kinematic.push((s, Faces(covered)));
+                    }
+                }
+            });
+            for &other in &dynamic.kinematic {
+                if let (true, Some(b)) = (other != k, box_of(other)) {
+                    faces |= Faces::covered_by(&a, &b, LINEAR_SLOP);
+                }
+            }
+            if faces != 0 {
+                self.kinematic_faces.push((k, Faces(faces)));
+            }
+        }
+        self.kinematic_faces.sort_unstable_by_key(|f| f.0);
+        self.faces_by_kinematic.sort_unstable_by_key(|f| f.0);
+    }
+
+    /// The covered faces of an immovable collider this step: a static box
+    /// (by its neighbours, static or kinematic) or a kinematic box.
+    pub(crate) fn covered_faces(&self, body: ColliderRef) -> Faces {
+        let lookup = |list: &[(u32, Faces)], i: usize| {
+            let at = list.partition_point(|f| (f.0 as usize) < i);
+            let mut faces = 0;
+            for f in &list[at..] {
+                if f.0 as usize != i {
+                    break;
+                }
+                faces |= f.1.0;
+            }
+            faces
+        };
+        match body.dynamic_index() {
+            Some(i) => Faces(lookup(&self.kinematic_faces, i)),
+            None => {
+                let s = body.index();
+                Faces(self.static_faces[s].0 | lookup(&self.faces_by_kinematic, s))
+            }
         }
     }
 

@@ -3,8 +3,10 @@
 use anyhow::Result;
 use glam::Vec2;
 use passo_benches::{
-    pyramid_world, rain_strip, rain_world, time_steps, time_steps_with, with_sleeping,
+    drive_sweepers, pyramid_world, rain_strip, rain_with_platforms, rain_world, rays, time_steps,
+    time_steps_with, with_sleeping,
 };
+use passo_physics::{BodyKind, QueryFilter, World};
 use passo_render::{AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer};
 use std::time::Instant;
 
@@ -31,6 +33,36 @@ pub enum BenchWhat {
     Scaling(ScalingBenchArgs),
     /// What a settled scene costs with sleeping on and off.
     Sleep(SleepBenchArgs),
+    /// Ray casts per second against a settled rain, unfiltered and
+    /// filtered, with and without a step between batches.
+    Queries(QueriesBenchArgs),
+    /// A rain with kinematic platforms sweeping through it.
+    Platforms(PlatformsBenchArgs),
+}
+
+/// Options of `passo bench queries`.
+#[derive(clap::Args, Debug)]
+pub struct QueriesBenchArgs {
+    /// Rain size (bodies).
+    #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub bodies: u32,
+    /// Rays per batch.
+    #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
+    pub rays: u32,
+}
+
+/// Options of `passo bench platforms`.
+#[derive(clap::Args, Debug)]
+pub struct PlatformsBenchArgs {
+    /// Rain size (bodies).
+    #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub bodies: u32,
+    /// Kinematic platforms.
+    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(0..=10_000))]
+    pub platforms: u32,
+    /// Ticks to run at 60 Hz.
+    #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub ticks: u32,
 }
 
 /// Options of `passo bench sleep`.
@@ -116,6 +148,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         BenchWhat::Integration(a) => integration(a),
         BenchWhat::Scaling(a) => scaling(a),
         BenchWhat::Sleep(a) => sleep(a),
+        BenchWhat::Queries(a) => queries(a),
+        BenchWhat::Platforms(a) => platforms(a),
     }
 }
 
@@ -334,6 +368,87 @@ fn sleep(args: &SleepBenchArgs) -> Result<()> {
             t_off / t_on
         );
     }
+    Ok(())
+}
+
+fn queries(args: &QueriesBenchArgs) -> Result<()> {
+    let mut world = rain_world(args.bodies as usize);
+    for _ in 0..120 {
+        world.step(1.0 / 60.0);
+    }
+    let rays = rays(
+        Vec2::new(-20.0, 0.0),
+        Vec2::new(20.0, 15.0),
+        args.rays as usize,
+    );
+    let player = world
+        .bodies()
+        .find(|b| b.kind == BodyKind::Dynamic)
+        .map(|b| b.id);
+    let solid = match player {
+        Some(id) => QueryFilter::solid().excluding(id),
+        None => QueryFilter::solid(),
+    };
+    let batch = |world: &World, filter: &QueryFilter| {
+        let start = Instant::now();
+        let hits = rays
+            .iter()
+            .filter(|(o, d)| world.ray_cast_with(*o, *d, 10.0, filter).is_some())
+            .count();
+        (start.elapsed().as_secs_f64(), hits)
+    };
+    println!(
+        "{} bodies, {} rays of up to 10 m per batch",
+        world.len(),
+        rays.len()
+    );
+    println!("| batch | rays per second | µs per ray | hits |");
+    println!("|---|---:|---:|---:|");
+    // The first batch after a step builds the moving bodies' tree.
+    world.step(1.0 / 60.0);
+    let (first, hits) = batch(&world, &QueryFilter::default());
+    let (again, _) = batch(&world, &QueryFilter::default());
+    let (filtered, filtered_hits) = batch(&world, &solid);
+    let n = rays.len() as f64;
+    for (name, secs, hits) in [
+        ("first after a step (tree built)", first, hits),
+        ("again, same step", again, hits),
+        (
+            "filtered: solid, excluding one body",
+            filtered,
+            filtered_hits,
+        ),
+    ] {
+        println!(
+            "| {name} | {:.0} | {:.2} | {hits} |",
+            n / secs,
+            secs / n * 1e6
+        );
+    }
+    Ok(())
+}
+
+fn platforms(args: &PlatformsBenchArgs) -> Result<()> {
+    let (mut world, sweepers) = rain_with_platforms(args.bodies as usize, args.platforms as usize);
+    let mut tick = 0;
+    let t = time_steps(args.ticks, || {
+        drive_sweepers(&mut world, &sweepers, tick);
+        world.step(1.0 / 60.0);
+        tick += 1;
+    });
+    println!(
+        "| bodies | kinematic platforms | ticks | ms per step (mean) | ms per step (last fifth) | max penetration at the end (mm) |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "| {} | {} | {} | {:.2} | {:.2} | {:.1} |",
+        world.dynamic_len() - sweepers.len(),
+        sweepers.len(),
+        args.ticks,
+        t.mean_ms,
+        t.last_ms,
+        world.max_penetration() * 1e3
+    );
     Ok(())
 }
 
