@@ -180,18 +180,20 @@ pub struct Sweeper {
 }
 
 /// The rain of `n` circles with `platforms` kinematic platforms (4 m by
-/// 0.3 m) sweeping sideways through it in rows, as a level's moving
-/// platforms; drive them with [`drive_sweepers`] before each step.
-pub fn rain_with_platforms(n: usize, platforms: usize) -> (World, Vec<Sweeper>) {
+/// 0.3 m) sweeping sideways in rows, as a level's moving platforms: through
+/// the pile, or (with `above`) above where it lands; drive them with
+/// [`drive_sweepers`] before each step.
+pub fn rain_with_platforms(n: usize, platforms: usize, above: bool) -> (World, Vec<Sweeper>) {
     let columns = ((2.0 * (n as f32).sqrt()).ceil() as usize).max(1);
     let mut world = rain_grid(n, columns);
     let width = columns as f32 * 0.25;
     let rows = n.div_ceil(columns) as f32 * 0.25;
     let sweepers = (0..platforms)
         .map(|k| {
+            let base = if above { rows + 6.0 } else { 1.0 };
             let start = Vec2::new(
                 -width * 0.5 + 2.5 + (k % 4) as f32 * width * 0.2,
-                1.0 + (k / 4) as f32 * rows / (platforms.div_ceil(4) as f32).max(1.0),
+                base + (k / 4) as f32 * rows / (platforms.div_ceil(4) as f32).max(1.0),
             );
             let def = BodyDef::new_kinematic(start, Shape::rect(4.0, 0.3), Vec2::ZERO);
             let id = world.add_body(def).expect("valid platform");

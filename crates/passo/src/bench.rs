@@ -63,6 +63,10 @@ pub struct PlatformsBenchArgs {
     /// Ticks to run at 60 Hz.
     #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub ticks: u32,
+    /// Sweep the platforms above where the rain lands instead of through
+    /// the pile (what the platforms cost, without what they stir up).
+    #[arg(long)]
+    pub above: bool,
 }
 
 /// Options of `passo bench sleep`.
@@ -429,7 +433,8 @@ fn queries(args: &QueriesBenchArgs) -> Result<()> {
 }
 
 fn platforms(args: &PlatformsBenchArgs) -> Result<()> {
-    let (mut world, sweepers) = rain_with_platforms(args.bodies as usize, args.platforms as usize);
+    let (mut world, sweepers) =
+        rain_with_platforms(args.bodies as usize, args.platforms as usize, args.above);
     let mut tick = 0;
     let t = time_steps(args.ticks, || {
         drive_sweepers(&mut world, &sweepers, tick);
