@@ -361,3 +361,43 @@ fn a_platform_swinging_sideways_carries_its_rider_with_a_bounded_lag() {
         assert!(least < 0.001, "swing {swing}: {least} m left");
     }
 }
+
+#[test]
+fn refused_velocities_leave_the_body_as_it_was() {
+    let mut world = World::default();
+    let k = platform(&mut world, Vec2::ZERO, Vec2::new(1.0, 0.0));
+    // Faster than the world's maximum speed (1000 m/s): refused.
+    assert!(world.try_set_velocity(k, Vec2::new(3e38, 0.0)).is_err());
+    assert!(world.try_set_velocity(k, Vec2::new(2000.0, 0.0)).is_err());
+    assert!(
+        world
+            .try_set_kinematic_target(k, Vec2::new(1e6, 0.0), DT)
+            .is_err()
+    );
+    assert_eq!(world.body(k).unwrap().velocity, Vec2::new(1.0, 0.0));
+    // Forces that sum past f32::MAX are refused, not stored as infinity.
+    let d = world.add_body(BodyDef::point_mass(Vec2::ZERO)).unwrap();
+    world.apply_force(d, Vec2::new(3e38, 0.0));
+    world.apply_force(d, Vec2::new(3e38, 0.0));
+    assert_eq!(world.stats().rejected_inputs, 1);
+    assert!(world.body(d).unwrap().force.is_finite());
+    world.step(DT);
+    assert!(World::from_snapshot(world.snapshot()).is_ok());
+}
+
+#[test]
+fn a_platform_held_still_by_its_path_sleeps_with_its_rider() {
+    let mut world = World::default();
+    let k = platform(&mut world, Vec2::ZERO, Vec2::ZERO);
+    let r = rider(&mut world, Vec2::ZERO, Vec2::ZERO);
+    for _ in 0..120 {
+        // A path at one of its ends: the target is where the platform is.
+        world.set_kinematic_target(k, Vec2::ZERO, DT);
+        world.step(DT);
+    }
+    assert_eq!(world.is_asleep(k), Some(true));
+    assert_eq!(world.is_asleep(r), Some(true));
+    // The path moving on wakes them.
+    world.set_kinematic_target(k, Vec2::new(0.1, 0.0), DT);
+    assert_eq!(world.is_asleep(r), Some(false));
+}

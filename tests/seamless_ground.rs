@@ -219,3 +219,37 @@ fn a_box_slides_from_static_ground_onto_a_flush_kinematic_platform_and_off_again
         );
     }
 }
+
+#[test]
+fn a_sensor_or_a_one_way_ledge_flush_on_the_ground_does_not_make_it_seamless() {
+    // A sensor zone as wide as the ground box, lying on it, and a one-way
+    // ledge beside it: neither covers the ground's faces, so a box resting
+    // on the ground stays put (it used to be pushed out sideways).
+    for kind in ["sensor", "one-way"] {
+        let mut world = World::default();
+        world
+            .add_body(BodyDef::new_static(
+                Vec2::new(0.0, -0.5),
+                Shape::rect(4.0, 1.0),
+            ))
+            .unwrap();
+        let cover = BodyDef::new_static(Vec2::new(0.0, 0.5), Shape::rect(4.0, 1.0));
+        let cover = if kind == "sensor" {
+            cover.as_sensor()
+        } else {
+            cover.with_one_way(Vec2::Y)
+        };
+        world.add_body(cover).unwrap();
+        let body = world
+            .add_body(BodyDef::new_dynamic(
+                Vec2::new(0.0, 0.5),
+                Shape::rect(0.6, 1.0),
+            ))
+            .unwrap();
+        for _ in 0..60 {
+            world.step(DT);
+        }
+        let p = world.body(body).unwrap().position;
+        assert!(p.x.abs() < 1e-3 && (p.y - 0.5).abs() < 0.006, "{kind}: {p}");
+    }
+}

@@ -103,11 +103,41 @@ impl World {
     /// Sets a body's velocity, metres per second: a dynamic body's current
     /// velocity, or the velocity a kinematic body moves at until it is set
     /// again. Ignored for static bodies.
+    ///
+    /// # Errors
+    /// A stale id, a velocity that is not finite (or whose square
+    /// overflows), or a kinematic body's speed above the world's
+    /// [`max_speed`](crate::WorldSettings::max_speed).
     pub fn try_set_velocity(&mut self, id: BodyId, velocity: Vec2) -> Result<(), PhysicsError> {
         finite_vec("velocity", velocity)?;
         if let Some(i) = self.dynamic_index(id)? {
+            self.check_velocity(i, velocity, "velocity")?;
             self.dynamic.vel[i] = velocity;
             self.wake_index(i);
+        }
+        Ok(())
+    }
+
+    /// Refuses a velocity whose square overflows (its body's speed limit
+    /// could not scale it), and a kinematic body's speed above the world's
+    /// maximum (nothing else limits it, and positions would overflow).
+    fn check_velocity(
+        &self,
+        i: usize,
+        velocity: Vec2,
+        what: &'static str,
+    ) -> Result<(), PhysicsError> {
+        let speed_sq = velocity.length_squared();
+        if !speed_sq.is_finite() {
+            return Err(PhysicsError::NonFinite { what });
+        }
+        let max = self.settings.max_speed;
+        if self.dynamic.meta[i].kinematic && speed_sq > max * max {
+            return Err(PhysicsError::OutOfRange {
+                what,
+                value: speed_sq.sqrt(),
+                allowed: "at most WorldSettings::max_speed for a kinematic body",
+            });
         }
         Ok(())
     }
@@ -133,8 +163,13 @@ impl World {
         {
             let velocity = (target - self.dynamic.pos[i]) / dt;
             finite_vec("velocity to the target", velocity)?;
-            self.dynamic.vel[i] = velocity;
-            self.wake_index(i);
+            self.check_velocity(i, velocity, "velocity to the target")?;
+            // A platform held still may sleep with its riders: only a
+            // change of velocity wakes them.
+            if self.dynamic.vel[i] != velocity {
+                self.dynamic.vel[i] = velocity;
+                self.wake_index(i);
+            }
         }
         Ok(())
     }
@@ -145,7 +180,9 @@ impl World {
     pub fn try_apply_force(&mut self, id: BodyId, force: Vec2) -> Result<(), PhysicsError> {
         finite_vec("force", force)?;
         if let Some(i) = self.movable_index(id)? {
-            self.dynamic.force[i] += force;
+            let total = self.dynamic.force[i] + force;
+            finite_vec("accumulated force", total)?;
+            self.dynamic.force[i] = total;
             self.wake_index(i);
         }
         Ok(())
@@ -156,7 +193,9 @@ impl World {
     pub fn try_apply_impulse(&mut self, id: BodyId, impulse: Vec2) -> Result<(), PhysicsError> {
         finite_vec("impulse", impulse)?;
         if let Some(i) = self.movable_index(id)? {
-            self.dynamic.vel[i] += impulse * self.dynamic.inv_mass[i];
+            let velocity = self.dynamic.vel[i] + impulse * self.dynamic.inv_mass[i];
+            self.check_velocity(i, velocity, "velocity after the impulse")?;
+            self.dynamic.vel[i] = velocity;
             self.wake_index(i);
         }
         Ok(())
@@ -240,6 +279,7 @@ impl World {
     pub fn set_filter(&mut self, id: BodyId, filter: CollisionFilter) -> Result<(), PhysicsError> {
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         self.meta_mut(location).filter = filter;
+        self.static_shape_changed(location);
         self.wake_after_change(location);
         Ok(())
     }
@@ -249,6 +289,7 @@ impl World {
     pub fn set_sensor(&mut self, id: BodyId, sensor: bool) -> Result<(), PhysicsError> {
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         self.meta_mut(location).sensor = sensor;
+        self.static_shape_changed(location);
         self.wake_after_change(location);
         Ok(())
     }
@@ -271,6 +312,7 @@ impl World {
             });
         }
         meta.one_way = normal;
+        self.static_shape_changed(location);
         self.wake_after_change(location);
         Ok(())
     }

@@ -43,6 +43,10 @@ pub(crate) struct ContactWorld {
     events: EventTracker,
     /// Room for merging contacts found again, kept between steps.
     scratch: ContactList,
+    /// Counts changes of the contact lists (a step, a wake that drops
+    /// stored contacts, a removal), so what is built from them (the
+    /// per-body contact index of queries) knows when it is stale.
+    revision: u64,
 }
 
 impl ContactWorld {
@@ -229,6 +233,7 @@ impl ContactWorld {
                 .after_step(&mut self.solved, dynamic, &self.motion.delta, dt);
         }
         self.events.record(&self.solved, &self.sleeping.list, step);
+        self.revision += 1;
     }
 
     /// A step in which the contact stage has nothing to do (its colliders
@@ -249,16 +254,24 @@ impl ContactWorld {
     /// Wakes dynamic body `i` and its island now.
     pub(crate) fn wake_body(&mut self, dynamic: &mut DynamicBodies, i: usize) {
         self.sleeping.wake_body(dynamic, i);
+        self.revision += 1;
     }
 
     /// Wakes every body (nothing to do when every body is awake).
     pub(crate) fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
         self.sleeping.wake_all(dynamic);
+        self.revision += 1;
     }
 
     /// Dynamic body `from` now sits at index `to` (a removal moved it).
     pub(crate) fn body_moved(&mut self, from: u32, to: u32) {
         self.sleeping.body_moved(from, to);
+        self.revision += 1;
+    }
+
+    /// How many times the contact lists changed.
+    pub(crate) fn revision(&self) -> u64 {
+        self.revision
     }
 
     /// Every contact after the last step: the solved ones, then those
@@ -269,14 +282,14 @@ impl ContactWorld {
 
     /// The contact at `position` in the order of
     /// [`all_contacts`](Self::all_contacts).
-    pub(crate) fn contact_at(&self, position: usize) -> (&Constraint, &ContactInfo) {
+    pub(crate) fn contact_at(&self, position: usize) -> Option<(&Constraint, &ContactInfo)> {
         let solved = self.solved.len();
         let (list, k) = if position < solved {
             (&self.solved, position)
         } else {
             (&self.sleeping.list, position - solved)
         };
-        (&list.rows[k], &list.infos[k])
+        Some((list.rows.get(k)?, list.infos.get(k)?))
     }
 
     /// Sensor overlaps after the last step.

@@ -3,7 +3,7 @@
 /// How a contact combines the friction coefficients `a` and `b` of its two
 /// bodies. When the bodies name different rules, the later one in this
 /// list wins (as Rapier's combine rules): an ice tile with `Min` makes
-/// every body slide on it, whatever rule the body has.
+/// every body with the default rule (or `Average`) slide on it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum FrictionMix {

@@ -3,7 +3,7 @@
 //! the grid ([`BroadPhase`]) and the static bodies of the static tree whose
 //! boxes it overlaps.
 
-use crate::bodies::{DynamicBodies, StaticBodies};
+use crate::bodies::{BodyMeta, DynamicBodies, StaticBodies};
 use crate::broad_phase::BroadPhase;
 use crate::collider::ColliderRef;
 use crate::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE};
@@ -143,7 +143,8 @@ impl Proxies {
             let items = &self.tree_items;
             self.tree.query(&a.grown(2.0 * LINEAR_SLOP), |item| {
                 let j = items[item as usize] as usize;
-                if let (true, Some(b)) = (j != i, aabb(j)) {
+                let covers = j != i && can_cover(&statics.meta[j], &statics.meta[i]);
+                if let (true, Some(b)) = (covers, aabb(j)) {
                     faces |= Faces::covered_by(&a, &b, LINEAR_SLOP);
                 }
             });
@@ -153,8 +154,8 @@ impl Proxies {
 
     /// Which faces kinematic boxes and static boxes cover of each other
     /// where they lie flush (a platform level with the ground), at the
-    /// positions the step starts from: `O(k log n)` for `k` kinematic
-    /// bodies, nothing without them.
+    /// positions the step starts from: `O(k log n + k²)` for `k` kinematic
+    /// bodies (a level has a few), nothing without them.
     fn find_faces_covered_by_kinematic(&mut self, dynamic: &DynamicBodies, statics: &StaticBodies) {
         self.kinematic_faces.clear();
         self.faces_by_kinematic.clear();
@@ -168,19 +169,24 @@ impl Proxies {
             let Some(a) = box_of(k) else { continue };
             let mut faces = 0;
             let (items, by_kinematic) = (&self.tree_items, &mut self.faces_by_kinematic);
+            let meta_k = &dynamic.meta[k as usize];
             self.tree.query(&a.grown(2.0 * LINEAR_SLOP), |item| {
                 let s = items[item as usize];
-                if let Some(Shape::Box { half_extents }) = statics.meta[s as usize].shape {
+                let meta_s = &statics.meta[s as usize];
+                if let Some(Shape::Box { half_extents }) = meta_s.shape {
                     let b = Aabb::from_centre(statics.pos[s as usize], half_extents);
-                    faces |= Faces::covered_by(&a, &b, LINEAR_SLOP);
+                    if can_cover(meta_s, meta_k) {
+                        faces |= Faces::covered_by(&a, &b, LINEAR_SLOP);
+                    }
                     let covered = Faces::covered_by(&b, &a, LINEAR_SLOP);
-                    if covered != 0 {
+                    if covered != 0 && can_cover(meta_k, meta_s) {
                         by_kinematic.push((s, Faces(covered)));
                     }
                 }
             });
             for &other in &dynamic.kinematic {
-                if let (true, Some(b)) = (other != k, box_of(other)) {
+                let covers = other != k && can_cover(&dynamic.meta[other as usize], meta_k);
+                if let (true, Some(b)) = (covers, box_of(other)) {
                     faces |= Faces::covered_by(&a, &b, LINEAR_SLOP);
                 }
             }
@@ -262,4 +268,12 @@ impl Proxies {
             });
         }
     }
+}
+
+/// Whether `coverer` can make the faces of `covered` seamless: a solid
+/// body (not a sensor, not a one-way platform) with the same filter, as
+/// the tiles of one level are. A sensor zone or a decoration on another
+/// layer lying flush on the ground must not turn the ground's face away.
+fn can_cover(coverer: &BodyMeta, covered: &BodyMeta) -> bool {
+    !coverer.sensor && coverer.one_way.is_none() && coverer.filter == covered.filter
 }

@@ -136,15 +136,21 @@ impl World {
             let pairs = cw
                 .all_contacts()
                 .map(|(_, info)| (info.id_a.index(), info.id_b.index()));
-            index.update_contacts(self.query_version(), self.slots.len(), pairs);
+            // The lists change with steps, wakes and removals.
+            let version = (self.stats.steps, cw.revision());
+            index.update_contacts(version, self.slots.len(), pairs);
             for &k in index.contacts_of(id.index()) {
-                let (c, info) = cw.contact_at(k as usize);
+                let Some((c, info)) = cw.contact_at(k as usize) else {
+                    continue;
+                };
+                // The whole id, generation included: a body that reuses the
+                // slot of one removed since the step has none of its contacts.
                 let contact = public_contact(c, info);
-                found.push(if contact.a == id {
-                    contact
-                } else {
-                    contact.flipped()
-                });
+                if contact.a == id {
+                    found.push(contact);
+                } else if contact.b == id {
+                    found.push(contact.flipped());
+                }
             }
         }
         found.into_iter()

@@ -98,11 +98,12 @@ impl WorldSnapshot {
                     && d.inv_mass[i] > 0.0
                     && (d.meta[i].mass * d.inv_mass[i] - 1.0).abs() < 1e-3
             };
-            let meta_ok = d.meta[i].drop_through.is_finite()
-                && d.meta[i].drop_through >= 0.0
-                && d.meta[i]
-                    .one_way
-                    .is_none_or(|n| n.is_finite() && n.length() > 0.5);
+            let m = &d.meta[i];
+            let meta_ok = m.drop_through.is_finite()
+                && m.drop_through >= 0.0
+                && (0.0..=1.0).contains(&m.restitution)
+                && m.one_way
+                    .is_none_or(|n| m.kinematic && n.is_finite() && n.length() > 0.5);
             let ranges = mass_ok
                 && meta_ok
                 && d.drag_area[i] >= 0.0
@@ -117,7 +118,10 @@ impl WorldSnapshot {
             self.check_slot(d.meta[i].id, Location::Dynamic(i as u32))?;
         }
         for i in 0..s.pos.len() {
-            if !(s.pos[i].is_finite() && s.friction[i] >= 0.0) {
+            let m = &s.meta[i];
+            let meta_ok = (0.0..=1.0).contains(&m.restitution)
+                && m.one_way.is_none_or(|n| n.is_finite() && n.length() > 0.5);
+            if !(s.pos[i].is_finite() && s.friction[i] >= 0.0 && meta_ok) {
                 return bad(format!(
                     "static body {i} has a non-finite or out-of-range value"
                 ));
@@ -231,6 +235,7 @@ impl World {
         let custom = std::mem::take(&mut self.custom);
         let mut restored = World::from_snapshot(snapshot)?;
         restored.custom = custom;
+        restored.parallel = self.parallel;
         *self = restored;
         Ok(())
     }

@@ -341,6 +341,9 @@ impl World {
                 if has_overrides(meta) {
                     self.speed_overrides -= 1;
                 }
+                if meta.drop_through > 0.0 {
+                    self.dropping -= 1;
+                }
                 // What rested on it must fall.
                 self.wake_index(i as usize);
                 let last = self.dynamic.len() as u32 - 1;
@@ -494,6 +497,15 @@ impl World {
         self.edits += 1;
         if is_static {
             self.static_edits += 1;
+        }
+    }
+
+    /// A static body changed what it covers of its neighbours (filter,
+    /// sensor, one-way): the static tree and its covered faces are built
+    /// again at the next step.
+    pub(crate) fn static_shape_changed(&mut self, location: Location) {
+        if matches!(location, Location::Static(_)) {
+            self.statics_dirty = true;
         }
     }
 
