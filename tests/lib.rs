@@ -106,3 +106,20 @@ pub fn add_circle(world: &mut World, centre: Vec2, radius: f32, mass: f32) -> Bo
     };
     world.add_body(def).expect("valid circle")
 }
+
+/// The contacts naming `id`, each seen from it, found by scanning every
+/// contact of the world: the reference `World::contacts_of` must match.
+pub fn contacts_seen_from(world: &World, id: BodyId) -> Vec<passo_physics::Contact> {
+    world
+        .contacts()
+        .filter_map(|c| {
+            if c.a == id {
+                Some(c)
+            } else if c.b == id {
+                Some(c.flipped())
+            } else {
+                None
+            }
+        })
+        .collect()
+}

@@ -3,6 +3,7 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{Aabb, BodyDef, BodyId, CollisionFilter, QueryFilter, Shape, World};
+use passo_tests::contacts_seen_from;
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -293,18 +294,7 @@ fn contacts_of_a_body_are_the_contacts_naming_it() {
             world.step(DT);
         }
         for &id in ids.iter().step_by(7) {
-            let want: Vec<_> = world
-                .contacts()
-                .filter_map(|c| {
-                    if c.a == id {
-                        Some(c)
-                    } else if c.b == id {
-                        Some(c.flipped())
-                    } else {
-                        None
-                    }
-                })
-                .collect();
+            let want = contacts_seen_from(&world, id);
             let got: Vec<_> = world.contacts_of(id).collect();
             assert_eq!(got, want, "round {round}, {id:?}");
         }

@@ -4,22 +4,8 @@
 //! returned a removed body's contacts for the body that reused its slot.
 
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, Contact, Shape, World};
-
-fn scan(world: &World, id: passo_physics::BodyId) -> Vec<Contact> {
-    world
-        .contacts()
-        .filter_map(|c| {
-            if c.a == id {
-                Some(c)
-            } else if c.b == id {
-                Some(c.flipped())
-            } else {
-                None
-            }
-        })
-        .collect()
-}
+use passo_physics::{BodyDef, Shape, World};
+use passo_tests::contacts_seen_from as scan;
 
 #[test]
 fn contacts_of_after_waking_a_sleeping_pile_matches_the_contact_list() {

@@ -87,6 +87,34 @@ pub(crate) struct BodyMeta {
     pub user_data: u64,
 }
 
+impl BodyMeta {
+    /// The public view of a body from its cold data, at rest: the caller
+    /// fills in what the hot arrays hold (velocity, force, drag area,
+    /// sleep).
+    fn view(&self, kind: BodyKind, position: Vec2, friction: f32) -> Body {
+        Body {
+            id: self.id,
+            kind,
+            position,
+            velocity: Vec2::ZERO,
+            force: Vec2::ZERO,
+            mass: self.mass,
+            shape: self.shape,
+            drag_area: self.drag_area,
+            friction,
+            friction_mix: self.friction_mix,
+            restitution: self.restitution,
+            filter: self.filter,
+            sensor: self.sensor,
+            one_way: self.one_way,
+            min_speed: self.min_speed,
+            max_speed: self.max_speed,
+            user_data: self.user_data,
+            asleep: false,
+        }
+    }
+}
+
 /// Flushes velocity components smaller than the smallest normal `f32`
 /// (1.2e-38 m/s) to zero. A component that decays under drag while the
 /// other does not (the horizontal speed of a body falling at terminal
@@ -277,30 +305,17 @@ impl DynamicBodies {
 
     pub(crate) fn view(&self, i: usize) -> Body {
         let m = &self.meta[i];
-        Body {
-            id: m.id,
-            kind: if m.kinematic {
-                BodyKind::Kinematic
-            } else {
-                BodyKind::Dynamic
-            },
-            position: self.pos[i],
-            velocity: self.vel[i],
-            force: self.force[i],
-            mass: m.mass,
-            shape: m.shape,
-            drag_area: self.drag_area[i],
-            friction: self.friction[i],
-            friction_mix: m.friction_mix,
-            restitution: m.restitution,
-            filter: m.filter,
-            sensor: m.sensor,
-            one_way: m.one_way,
-            min_speed: m.min_speed,
-            max_speed: m.max_speed,
-            user_data: m.user_data,
-            asleep: self.sleep[i].is_asleep(),
-        }
+        let kind = if m.kinematic {
+            BodyKind::Kinematic
+        } else {
+            BodyKind::Dynamic
+        };
+        let mut body = m.view(kind, self.pos[i], self.friction[i]);
+        body.velocity = self.vel[i];
+        body.force = self.force[i];
+        body.drag_area = self.drag_area[i];
+        body.asleep = self.sleep[i].is_asleep();
+        body
     }
 }
 
@@ -332,27 +347,7 @@ impl StaticBodies {
     }
 
     pub(crate) fn view(&self, i: usize) -> Body {
-        let m = &self.meta[i];
-        Body {
-            id: m.id,
-            kind: BodyKind::Static,
-            position: self.pos[i],
-            velocity: Vec2::ZERO,
-            force: Vec2::ZERO,
-            mass: f32::INFINITY,
-            shape: m.shape,
-            drag_area: m.drag_area,
-            friction: self.friction[i],
-            friction_mix: m.friction_mix,
-            restitution: m.restitution,
-            filter: m.filter,
-            sensor: m.sensor,
-            one_way: m.one_way,
-            min_speed: m.min_speed,
-            max_speed: m.max_speed,
-            user_data: m.user_data,
-            asleep: false,
-        }
+        self.meta[i].view(BodyKind::Static, self.pos[i], self.friction[i])
     }
 }
 

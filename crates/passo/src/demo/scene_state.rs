@@ -36,6 +36,9 @@ pub struct SceneState {
     input: Input,
     /// Kinematic bodies of lane 0 that follow a path (moving platforms).
     platforms: Vec<Platform>,
+    /// Ticks this state has stepped: the platforms' clock, which starts
+    /// with the scene (a replay or a reset starts it again).
+    ticks: u64,
 }
 
 impl SceneState {
@@ -63,6 +66,7 @@ impl SceneState {
             file: Some(file),
             input: Input::default(),
             platforms,
+            ticks: 0,
         };
         state.set_interpolation(true);
         Ok(state)
@@ -88,6 +92,7 @@ impl SceneState {
             file: None,
             input: Input::default(),
             platforms: Vec::new(),
+            ticks: 0,
         }
     }
 
@@ -130,10 +135,10 @@ impl SceneState {
     }
 
     /// Steps every lane by `dt` seconds after the player's controls and
-    /// the moving platforms (the step starts at simulated time `t`), then
-    /// samples the plot at `t`.
+    /// the moving platforms, then samples the plot at simulated time `t`.
     pub(crate) fn step(&mut self, dt: f32, t: f32, knobs: &Knobs) {
-        let t_end = f64::from(t) + f64::from(dt);
+        self.ticks += 1;
+        let t_end = self.ticks as f64 * f64::from(dt);
         BuiltScene::drive_platforms(&self.platforms, &mut self.lanes[0].world, t_end, dt);
         if let Some(player) = self.player {
             let lane = &mut self.lanes[0];
