@@ -2,7 +2,8 @@
 //! the world hands out, and the packed arrays the world steps.
 
 use crate::constants::{DEFAULT_DRAG_AREA, DEFAULT_FRICTION};
-use crate::error::{finite_vec, non_negative, positive, unit_interval};
+use crate::constants::{MAX_DRAG_AREA, MAX_FRICTION};
+use crate::error::{at_most, finite_vec, mass, non_negative, positive, unit_interval};
 use crate::filter::CollisionFilter;
 use crate::id::BodyId;
 use crate::material::FrictionMix;
@@ -242,13 +243,13 @@ impl BodyDef {
         finite_vec("BodyDef::position", self.position)?;
         finite_vec("BodyDef::velocity", self.velocity)?;
         if self.kind == BodyKind::Dynamic {
-            positive("BodyDef::mass", self.mass)?;
+            mass("BodyDef::mass", self.mass)?;
         }
         if let Some(shape) = &self.shape {
             shape.validate()?;
         }
-        non_negative("BodyDef::drag_area", self.drag_area)?;
-        non_negative("BodyDef::friction", self.friction)?;
+        check_drag_area("BodyDef::drag_area", self.drag_area)?;
+        check_friction("BodyDef::friction", self.friction)?;
         unit_interval("BodyDef::restitution", self.restitution)?;
         if let Some(normal) = self.one_way {
             check_one_way("BodyDef::one_way", normal)?;
@@ -268,6 +269,16 @@ impl BodyDef {
         }
         Ok(())
     }
+}
+
+/// A friction coefficient: in `[0, MAX_FRICTION]`.
+pub(crate) fn check_friction(what: &'static str, mu: f32) -> Result<f32, PhysicsError> {
+    at_most(what, mu, MAX_FRICTION, "in [0, 1000] (MAX_FRICTION)")
+}
+
+/// A drag area: in `[0, MAX_DRAG_AREA]` square metres.
+pub(crate) fn check_drag_area(what: &'static str, area: f32) -> Result<f32, PhysicsError> {
+    at_most(what, area, MAX_DRAG_AREA, "in [0, 1e6] m² (MAX_DRAG_AREA)")
 }
 
 /// A one-way normal must be finite and not zero; returns it normalised.

@@ -2,7 +2,7 @@
 //! forces and impulses, material. Every value is checked where it enters,
 //! and a change wakes what it may have disturbed.
 
-use crate::body::check_one_way;
+use crate::body::{check_drag_area, check_friction, check_one_way};
 use crate::error::{finite, finite_vec, non_negative, positive, unit_interval};
 use crate::world::{Location, World};
 use crate::{BodyId, CollisionFilter, FrictionMix, PhysicsError};
@@ -226,7 +226,7 @@ impl World {
     /// Sets a body's friction coefficient `mu` (>= 0), for surface friction
     /// and contacts.
     pub fn try_set_friction(&mut self, id: BodyId, mu: f32) -> Result<(), PhysicsError> {
-        non_negative("friction", mu)?;
+        check_friction("friction", mu)?;
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         match location {
             Location::Dynamic(i) => self.dynamic.friction[i as usize] = mu,
@@ -320,7 +320,7 @@ impl World {
     /// Sets a body's drag area `Cd A`, square metres (>= 0): a glider
     /// opening its wings.
     pub fn set_drag_area(&mut self, id: BodyId, drag_area: f32) -> Result<(), PhysicsError> {
-        non_negative("drag_area", drag_area)?;
+        check_drag_area("drag_area", drag_area)?;
         match self.locate(id).ok_or(PhysicsError::StaleBody(id))? {
             Location::Dynamic(i) => {
                 self.dynamic.drag_area[i as usize] = drag_area;
@@ -333,7 +333,8 @@ impl World {
     }
 
     /// Where to draw a body between the last two steps: `lerp(previous,
-    /// current, alpha)` with `alpha` in `[0, 1]` (clamped). Without
+    /// current, alpha)` with `alpha` in `[0, 1]` (clamped; NaN draws the
+    /// current position). Without
     /// [`WorldSettings::interpolation`](crate::WorldSettings::interpolation) this is the current position.
     pub fn interpolated_position(&self, id: BodyId, alpha: f32) -> Option<Vec2> {
         Some(match self.locate(id)? {

@@ -39,6 +39,16 @@ pub const DEFAULT_DRAG_AREA: f32 = 0.1;
 /// Default friction coefficient `mu` of a body (dimensionless), as in Box2D.
 pub const DEFAULT_FRICTION: f32 = 0.6;
 
+/// Largest friction coefficient a body may have: 1000. Real materials stay
+/// below 2; the bound keeps `mu * normal impulse` (the friction row's
+/// limit) finite for any finite impulse, where two coefficients of 1e20
+/// would overflow it to infinity and the limit to NaN.
+pub const MAX_FRICTION: f32 = 1.0e3;
+
+/// Largest drag area `Cd A` a body may have, square metres: 10⁶ (a square
+/// kilometre). Far above any game body; it keeps drag terms finite.
+pub const MAX_DRAG_AREA: f32 = 1.0e6;
+
 /// Default surface gravity for top-down friction, metres per second²: the
 /// normal force on a body resting on the plane is `m * 9.81`.
 pub const DEFAULT_SURFACE_GRAVITY: f32 = 9.81;

@@ -170,7 +170,7 @@ impl World {
             &mut self.dynamic,
             &self.statics,
             settings.sleeping.then_some(dt),
-            self.stats.steps + 1,
+            self.stats.steps.saturating_add(1),
         );
         self.contacts = Some(cw);
         self.correction = correction;

@@ -82,6 +82,40 @@ pub(crate) fn unit_interval(what: &'static str, value: f32) -> Result<f32, Physi
     }
 }
 
+/// Checks that a scalar is finite and in `[0, max]`.
+pub(crate) fn at_most(
+    what: &'static str,
+    value: f32,
+    max: f32,
+    allowed: &'static str,
+) -> Result<f32, PhysicsError> {
+    non_negative(what, value)?;
+    if value <= max {
+        Ok(value)
+    } else {
+        Err(PhysicsError::OutOfRange {
+            what,
+            value,
+            allowed,
+        })
+    }
+}
+
+/// Checks a mass: finite, > 0, and with a finite inverse (a subnormal
+/// mass such as 1e-40 kg has none).
+pub(crate) fn mass(what: &'static str, value: f32) -> Result<f32, PhysicsError> {
+    positive(what, value)?;
+    if (1.0 / value).is_finite() {
+        Ok(value)
+    } else {
+        Err(PhysicsError::OutOfRange {
+            what,
+            value,
+            allowed: ">= 3e-39 kg (its inverse must be finite)",
+        })
+    }
+}
+
 /// Checks that a scalar is finite and >= 0.
 pub(crate) fn non_negative(what: &'static str, value: f32) -> Result<f32, PhysicsError> {
     finite(what, value)?;

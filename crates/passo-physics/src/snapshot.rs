@@ -4,7 +4,7 @@ use crate::bodies::{DynamicBodies, StaticBodies};
 use crate::contact_state::ContactState;
 use crate::contact_world::ContactWorld;
 use crate::world::{Location, Slot};
-use crate::{PhysicsError, StepStats, World, WorldSettings};
+use crate::{BodyKind, PhysicsError, StepStats, World, WorldSettings};
 
 /// Everything a world needs to continue exactly where it was: settings,
 /// every body (position, velocity, accumulated force, material, ids and
@@ -48,12 +48,31 @@ impl WorldSnapshot {
     }
 
     /// Checks that the snapshot is one a world could have produced: array
-    /// lengths agree, ids and slots point at each other, every number is
-    /// finite and in range. Snapshots from files pass through this before a
-    /// world is made from them.
+    /// lengths agree, ids and slots point at each other, every body passes
+    /// the checks [`BodyDef::validate`](crate::BodyDef::validate) makes of a
+    /// new body, the counters match the bodies, and the carried contact
+    /// state names bodies that exist. Snapshots from files pass through
+    /// this before a world is made from them.
     pub fn validate(&self) -> Result<(), PhysicsError> {
-        let bad = |why: String| Err(PhysicsError::InvalidSnapshot(why));
         self.settings.validate()?;
+        self.check_lengths()?;
+        for i in 0..self.dynamic.len() {
+            self.check_dynamic(i)?;
+        }
+        for i in 0..self.statics.len() {
+            self.check_static(i)?;
+        }
+        self.check_slots()?;
+        self.check_counters()?;
+        if let Some(contacts) = &self.contacts {
+            contacts
+                .validate(&self.dynamic, &self.statics)
+                .map_err(PhysicsError::InvalidSnapshot)?;
+        }
+        Ok(())
+    }
+
+    fn check_lengths(&self) -> Result<(), PhysicsError> {
         let d = &self.dynamic;
         let n = d.pos.len();
         let lengths = [
@@ -85,62 +104,80 @@ impl WorldSnapshot {
         if s.friction.len() != s.pos.len() || s.meta.len() != s.pos.len() {
             return bad("static arrays of different lengths".into());
         }
-        for i in 0..n {
-            let finite = d.pos[i].is_finite()
-                && d.vel[i].is_finite()
-                && d.force[i].is_finite()
-                && d.prev_pos.get(i).is_none_or(|p| p.is_finite());
-            // A kinematic body has inverse mass zero and infinite mass.
-            let mass_ok = if d.meta[i].kinematic {
-                d.inv_mass[i] == 0.0 && d.meta[i].mass == f32::INFINITY
-            } else {
-                d.inv_mass[i].is_finite()
-                    && d.inv_mass[i] > 0.0
-                    && (d.meta[i].mass * d.inv_mass[i] - 1.0).abs() < 1e-3
-            };
-            let m = &d.meta[i];
-            let meta_ok = m.drop_through.is_finite()
-                && m.drop_through >= 0.0
-                && (0.0..=1.0).contains(&m.restitution)
-                && m.one_way
-                    .is_none_or(|n| m.kinematic && n.is_finite() && n.length() > 0.5);
-            let ranges = mass_ok
-                && meta_ok
-                && d.drag_area[i] >= 0.0
-                && d.friction[i] >= 0.0
-                && d.friction_force[i] >= 0.0
-                && d.sleep[i].is_valid();
-            if !(finite && ranges) {
-                return bad(format!(
-                    "dynamic body {i} has a non-finite or out-of-range value"
-                ));
-            }
-            self.check_slot(d.meta[i].id, Location::Dynamic(i as u32))?;
+        Ok(())
+    }
+
+    /// Dynamic body `i`: what a new body must be, and the hot data a step
+    /// leaves (force, previous position, inverse mass, rest time).
+    fn check_dynamic(&self, i: usize) -> Result<(), PhysicsError> {
+        let d = &self.dynamic;
+        let m = &d.meta[i];
+        let body = d.view(i);
+        if body.kind == BodyKind::Dynamic {
+            crate::error::mass("mass", m.mass)
+                .map_err(|e| invalid(format!("dynamic body {i}: {e}")))?;
         }
-        for i in 0..s.pos.len() {
-            let m = &s.meta[i];
-            let meta_ok = (0.0..=1.0).contains(&m.restitution)
-                && m.one_way.is_none_or(|n| n.is_finite() && n.length() > 0.5);
-            if !(s.pos[i].is_finite() && s.friction[i] >= 0.0 && meta_ok) {
-                return bad(format!(
-                    "static body {i} has a non-finite or out-of-range value"
-                ));
-            }
-            self.check_slot(s.meta[i].id, Location::Static(i as u32))?;
+        body.to_def()
+            .validate()
+            .map_err(|e| invalid(format!("dynamic body {i}: {e}")))?;
+        // A kinematic body has inverse mass zero and infinite mass.
+        let mass_ok = if m.kinematic {
+            d.inv_mass[i] == 0.0 && m.mass == f32::INFINITY
+        } else {
+            d.inv_mass[i].is_finite()
+                && d.inv_mass[i] > 0.0
+                && (m.mass * d.inv_mass[i] - 1.0).abs() < 1e-3
+        };
+        let ok = mass_ok
+            && d.force[i].is_finite()
+            && d.prev_pos.get(i).is_none_or(|p| p.is_finite())
+            && d.friction_force[i].is_finite()
+            && d.friction_force[i] >= 0.0
+            && d.sleep[i].is_valid()
+            && m.drop_through.is_finite()
+            && m.drop_through >= 0.0;
+        if !ok {
+            return bad(format!(
+                "dynamic body {i} has a non-finite or out-of-range value"
+            ));
         }
+        self.check_slot(m.id, Location::Dynamic(i as u32))
+    }
+
+    /// Static body `i`: what a new static body must be.
+    fn check_static(&self, i: usize) -> Result<(), PhysicsError> {
+        let s = &self.statics;
+        s.view(i)
+            .to_def()
+            .validate()
+            .map_err(|e| invalid(format!("static body {i}: {e}")))?;
+        self.check_slot(s.meta[i].id, Location::Static(i as u32))
+    }
+
+    /// Every body has a live slot, the free list names free slots once each.
+    fn check_slots(&self) -> Result<(), PhysicsError> {
+        let bodies = self.dynamic.len() + self.statics.len();
         let live = self.slots.iter().filter(|s| s.location.is_some()).count();
-        if live != n + s.pos.len() {
-            return bad(format!("{live} live slots for {} bodies", n + s.pos.len()));
+        if live != bodies {
+            return bad(format!("{live} live slots for {bodies} bodies"));
         }
+        let mut seen = vec![false; self.slots.len()];
         for &f in &self.free {
-            if self
+            let free = self
                 .slots
                 .get(f as usize)
-                .is_none_or(|s| s.location.is_some())
-            {
-                return bad(format!("free list names slot {f}, which is not free"));
+                .is_some_and(|s| s.location.is_none());
+            if !free || std::mem::replace(&mut seen[f as usize], true) {
+                return bad(format!(
+                    "free list names slot {f}, which is not free or is named twice"
+                ));
             }
         }
+        Ok(())
+    }
+
+    fn check_counters(&self) -> Result<(), PhysicsError> {
+        let (d, s) = (&self.dynamic, &self.statics);
         let overrides = d
             .meta
             .iter()
@@ -156,16 +193,6 @@ impl WorldSnapshot {
             )
         {
             return bad("body counters disagree with the bodies".into());
-        }
-        for meta in d.meta.iter().chain(&s.meta) {
-            if let Some(shape) = &meta.shape {
-                shape.validate()?;
-            }
-        }
-        if let Some(contacts) = &self.contacts {
-            contacts
-                .validate(d, s)
-                .map_err(PhysicsError::InvalidSnapshot)?;
         }
         Ok(())
     }
@@ -211,6 +238,11 @@ impl World {
         world.free = snapshot.free;
         world.dynamic = snapshot.dynamic;
         world.dynamic.find_kinematic();
+        // Speed limits are derived from each body's overrides and the
+        // settings: made again, not trusted.
+        for i in 0..world.dynamic.len() {
+            world.dynamic.limits[i] = world.resolve_limits(&world.dynamic.meta[i]);
+        }
         world.dropping = (world.dynamic.meta.iter())
             .filter(|m| m.drop_through > 0.0)
             .count();
@@ -239,4 +271,12 @@ impl World {
         *self = restored;
         Ok(())
     }
+}
+
+fn invalid(why: String) -> PhysicsError {
+    PhysicsError::InvalidSnapshot(why)
+}
+
+fn bad<T>(why: String) -> Result<T, PhysicsError> {
+    Err(invalid(why))
 }

@@ -147,7 +147,11 @@ impl World {
                 // Sleeping belongs to the contact stage: without it, no body
                 // sleeps (the idle step wakes them all).
                 if let Some(cw) = &mut self.contacts {
-                    cw.idle_step(&mut self.dynamic, &self.statics, self.stats.steps + 1);
+                    cw.idle_step(
+                        &mut self.dynamic,
+                        &self.statics,
+                        self.stats.steps.saturating_add(1),
+                    );
                 }
                 self.hold_kinematic();
                 self.step_bodies(dt, plan.limits);
@@ -156,7 +160,9 @@ impl World {
         }
         self.clear_forces();
         self.count_down_drop_through(dt);
-        self.stats.steps += 1;
+        // Saturates rather than wraps: 2^64 steps at 60 Hz is 10^10 years,
+        // but a restored snapshot may start anywhere.
+        self.stats.steps = self.stats.steps.saturating_add(1);
     }
 
     /// Integrates velocities, clamps speeds and moves bodies, one body at a

@@ -527,8 +527,9 @@ impl World {
     pub(crate) fn lerp_dynamic(&self, i: usize, alpha: f32) -> Vec2 {
         let current = self.dynamic.pos[i];
         match self.dynamic.prev_pos.get(i) {
-            Some(prev) => prev.lerp(current, alpha.clamp(0.0, 1.0)),
-            None => current,
+            // A NaN alpha draws the current position.
+            Some(prev) if !alpha.is_nan() => prev.lerp(current, alpha.clamp(0.0, 1.0)),
+            _ => current,
         }
     }
 }

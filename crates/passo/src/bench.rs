@@ -73,16 +73,16 @@ pub struct PlatformsBenchArgs {
 #[derive(clap::Args, Debug)]
 pub struct SleepBenchArgs {
     /// Rain sizes (bodies), comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "10000")]
+    #[arg(long, value_delimiter = ',', default_value = "10000", value_parser = crate::count_in(1, 1_000_000))]
     pub rain: Vec<usize>,
     /// Pyramid base widths, comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "50")]
+    #[arg(long, value_delimiter = ',', default_value = "50", value_parser = crate::count_in(1, 2_000))]
     pub pyramid: Vec<usize>,
     /// Simulated seconds to let each scene settle first.
-    #[arg(long, default_value_t = 15)]
+    #[arg(long, default_value_t = 15, value_parser = clap::value_parser!(u32).range(0..=3_600))]
     pub settle: u32,
     /// Ticks timed after settling, each way.
-    #[arg(long, default_value_t = 120)]
+    #[arg(long, default_value_t = 120, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub ticks: u32,
 }
 
@@ -93,7 +93,8 @@ pub struct IntegrationBenchArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "1000,10000,100000,1000000"
+        default_value = "1000,10000,100000,1000000",
+        value_parser = crate::count_in(1, 100_000_000)
     )]
     pub sizes: Vec<usize>,
 }
@@ -105,11 +106,12 @@ pub struct ScalingBenchArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "1000,2000,5000,10000,20000,50000,100000"
+        default_value = "1000,2000,5000,10000,20000,50000,100000",
+        value_parser = crate::count_in(1, 10_000_000)
     )]
     pub sizes: Vec<usize>,
     /// Ticks per size; the mean of the last two thirds is kept.
-    #[arg(long, default_value_t = 180)]
+    #[arg(long, default_value_t = 180, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub ticks: u32,
 }
 
@@ -117,13 +119,13 @@ pub struct ScalingBenchArgs {
 #[derive(clap::Args, Debug)]
 pub struct PhysicsBenchArgs {
     /// Rain sizes (bodies), comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "1000,10000,50000")]
+    #[arg(long, value_delimiter = ',', default_value = "1000,10000,50000", value_parser = crate::count_in(1, 1_000_000))]
     pub rain: Vec<usize>,
     /// Pyramid base widths, comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "20")]
+    #[arg(long, value_delimiter = ',', default_value = "20", value_parser = crate::count_in(1, 2_000))]
     pub pyramid: Vec<usize>,
     /// Ticks to run each scene at 60 Hz.
-    #[arg(long, default_value_t = 300)]
+    #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub ticks: u32,
 }
 
@@ -131,10 +133,10 @@ pub struct PhysicsBenchArgs {
 #[derive(clap::Args, Debug)]
 pub struct RenderBenchArgs {
     /// Instance counts to measure, comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "1000,10000,100000")]
+    #[arg(long, value_delimiter = ',', default_value = "1000,10000,100000", value_parser = crate::count_in(1, 10_000_000))]
     pub instances: Vec<usize>,
     /// Frames to time per count (after 3 warm-up frames).
-    #[arg(long, default_value_t = 20)]
+    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub frames: u32,
     /// Picture size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x720", value_parser = crate::render_cmd::parse_size)]

@@ -13,3 +13,13 @@ pub mod report;
 pub mod scenes;
 pub mod simulate;
 pub mod snapshot;
+
+/// A command-line count in `[min, max]`: clap refuses anything else with a
+/// message naming the range, so no argument can ask for an empty run or
+/// for more memory than the machine has.
+pub(crate) fn count_in(min: u64, max: u64) -> impl clap::builder::TypedValueParser<Value = usize> {
+    use clap::builder::TypedValueParser;
+    clap::builder::RangedU64ValueParser::<u64>::new()
+        .range(min..=max)
+        .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
+}

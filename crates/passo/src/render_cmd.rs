@@ -12,7 +12,7 @@ pub struct RenderArgs {
     /// Scene name (see `passo scenes`) or path to a .ron file.
     pub scene: String,
     /// Fixed ticks to simulate before taking the picture.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u64).range(0..=100_000_000))]
     pub ticks: u64,
     /// The PNG file to write.
     #[arg(long)]

@@ -15,7 +15,7 @@ pub struct SimulateArgs {
     /// Scene name (see `passo scenes`) or path to a .ron file.
     pub scene: String,
     /// Fixed ticks to run.
-    #[arg(long, default_value_t = 600)]
+    #[arg(long, default_value_t = 600, value_parser = clap::value_parser!(u64).range(0..=1_000_000_000))]
     pub ticks: u64,
     /// Write `tick,body,x,y,vx,vy` rows to this CSV file.
     #[arg(long)]
@@ -98,6 +98,14 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         wall.as_secs_f64(),
         wall.as_secs_f64() * 1e6 / args.ticks.max(1) as f64
     );
+    let stats = world.stats();
+    if stats.non_finite_resets > 0 {
+        eprintln!(
+            "warning: {} body-steps produced a non-finite velocity and were dropped \
+             (the body stood still that step); a force model or a force overflowed",
+            stats.non_finite_resets
+        );
+    }
     if args.hash {
         println!("{:016x}", world.state_hash());
     }

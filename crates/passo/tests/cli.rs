@@ -200,3 +200,45 @@ fn bench_physics_reports_every_scene_with_its_penetration() {
         assert!((0.0..50.0).contains(&end) && worst >= end, "{row:?}");
     }
 }
+
+#[test]
+fn numeric_arguments_out_of_range_are_refused_before_any_work() {
+    // `report --cost-bodies 0` used to grow memory until the machine
+    // killed it.
+    for args in [
+        &["report", "--cost-bodies", "0"][..],
+        &["report", "--cost-steps", "0"],
+        &["report", "--long-steps", "1000000000000"],
+        &["simulate", "rain", "--ticks", "99999999999999"],
+        &["bench", "physics", "--rain", "0"],
+        &["bench", "platforms", "--ticks", "0"],
+    ] {
+        let out = passo(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(
+            stderr(&out).contains("is not in"),
+            "{args:?}: {}",
+            stderr(&out)
+        );
+    }
+}
+
+#[test]
+fn simulate_says_so_when_a_step_was_dropped_for_a_non_finite_velocity() {
+    let dir = std::env::temp_dir().join(format!("passo-cli-nan-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A force field enormous against a tiny mass overflows the velocity.
+    let scene = dir.join("overflow.ron");
+    std::fs::write(
+        &scene,
+        "(name: \"overflow\", forces: (force_field: (3e38, 0)), max_speed: inf, bodies: [(mass: 1e-30)])",
+    )
+    .unwrap();
+    let out = passo(&["simulate", scene.to_str().unwrap(), "--ticks", "3"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("non-finite velocity"),
+        "{}",
+        stderr(&out)
+    );
+}

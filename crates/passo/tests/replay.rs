@@ -188,3 +188,25 @@ fn passo_replay_checks_the_final_state() {
     );
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn replays_out_of_order_past_the_end_or_at_absurd_rates_are_refused() {
+    let replay = record(Duration::from_micros(16_667));
+    let mut late = replay.clone();
+    late.commands.push((u64::MAX, passo::demo::Command::Reset));
+    let mut backwards = replay.clone();
+    backwards.inputs.reverse();
+    let mut slow = replay.clone();
+    slow.commands
+        .push((replay.ticks, passo::demo::Command::Rate(1e-300)));
+    for (what, bad) in [("late", late), ("backwards", backwards), ("slow", slow)] {
+        let err = Replay::from_ron(&bad.to_ron()).unwrap_err().to_string();
+        assert!(
+            err.contains("past the last tick")
+                || err.contains("out of order")
+                || err.contains("Hz"),
+            "{what}: {err}"
+        );
+    }
+    assert!(Replay::from_ron(&replay.to_ron()).is_ok());
+}

@@ -31,7 +31,7 @@ pub struct DemoArgs {
     #[arg(long)]
     pub scene: Option<String>,
     /// Run this many frames, then exit (for tests and recordings).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100_000_000))]
     pub frames: Option<u64>,
     /// With --frames: save the last presented frame as a PNG.
     #[arg(long, requires = "frames")]

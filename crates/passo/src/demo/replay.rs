@@ -68,9 +68,45 @@ impl Replay {
             .expect("a replay always serializes")
     }
 
-    /// Parses RON text.
+    /// Parses RON text and checks it ([`validate`](Self::validate)).
     pub fn from_ron(text: &str) -> anyhow::Result<Self> {
-        Ok(ron::from_str(text)?)
+        let replay: Self = ron::from_str(text)?;
+        replay.validate()?;
+        Ok(replay)
+    }
+
+    /// Checks what a recording could have produced: inputs and commands in
+    /// tick order, none after the last tick, and fixed rates a scene file
+    /// may have (1 to 10 000 Hz). A command out of order would be applied
+    /// at the wrong tick and one past the end never, so they are refused.
+    pub fn validate(&self) -> anyhow::Result<()> {
+        use anyhow::bail;
+        let in_order = |ticks: &mut dyn Iterator<Item = u64>, what: &str| {
+            let mut last = 0;
+            for tick in ticks {
+                if tick < last {
+                    bail!("{what} at tick {tick} comes after one at tick {last}: out of order");
+                }
+                if tick > self.ticks {
+                    bail!(
+                        "{what} at tick {tick} is past the last tick, {}",
+                        self.ticks
+                    );
+                }
+                last = tick;
+            }
+            Ok(())
+        };
+        in_order(&mut self.inputs.iter().map(|(t, _)| *t), "an input")?;
+        in_order(&mut self.commands.iter().map(|(t, _)| *t), "a command")?;
+        for (tick, command) in &self.commands {
+            if let Command::Rate(hz) = command
+                && !(hz.is_finite() && (1.0..=10_000.0).contains(hz))
+            {
+                bail!("the rate set at tick {tick} must be in [1, 10000] Hz, got {hz:?}");
+            }
+        }
+        Ok(())
     }
 
     /// Reads a replay file.

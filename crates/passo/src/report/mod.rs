@@ -40,13 +40,13 @@ pub struct ReportArgs {
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
     /// Bodies stepped together when measuring cost.
-    #[arg(long, default_value_t = 20_000)]
+    #[arg(long, default_value_t = 20_000, value_parser = crate::count_in(1, 10_000_000))]
     pub cost_bodies: usize,
     /// Steps per cost measurement (the best of three is kept).
-    #[arg(long, default_value_t = 50)]
+    #[arg(long, default_value_t = 50, value_parser = crate::count_in(1, 1_000_000))]
     pub cost_steps: usize,
     /// Steps of the long spring run that shows energy drift.
-    #[arg(long, default_value_t = 1_000_000)]
+    #[arg(long, default_value_t = 1_000_000, value_parser = crate::count_in(1, 100_000_000))]
     pub long_steps: usize,
 }
 

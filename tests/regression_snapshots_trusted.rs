@@ -1,0 +1,168 @@
+//! Snapshots were trusted in places: a warm-start impulse of -1 or NaN, an
+//! infinite friction, a sleeping contact naming a shapeless body, a NaN
+//! speed limit or a free list naming a slot twice got past `validate` and
+//! panicked later or produced NaN positions or two bodies with one id.
+//! Every such edit is now refused with a message, and a step count near
+//! `u64::MAX` steps on without overflowing.
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, Shape, World, WorldSnapshot};
+
+const DT: f32 = 1.0 / 60.0;
+
+/// A settled pile (contacts with impulses, sleeping contacts) and a freed
+/// slot, as RON text.
+fn snapshot_text() -> String {
+    let mut world = World::default();
+    world
+        .add_body(BodyDef::new_static(
+            Vec2::new(0.0, -0.5),
+            Shape::rect(10.0, 1.0),
+        ))
+        .unwrap();
+    let gone = world
+        .add_body(BodyDef::point_mass(Vec2::new(5.0, 5.0)))
+        .unwrap();
+    for i in 0..3 {
+        world
+            .add_body(BodyDef::new_dynamic(
+                Vec2::new(0.0, 0.5 + i as f32),
+                Shape::rect(1.0, 1.0),
+            ))
+            .unwrap();
+    }
+    world.remove_body(gone).unwrap();
+    for _ in 0..90 {
+        world.step(DT);
+    }
+    ron::to_string(&world.snapshot()).unwrap()
+}
+
+fn restore(text: &str) -> Result<World, String> {
+    let snapshot: WorldSnapshot = ron::from_str(text).map_err(|e| e.to_string())?;
+    World::from_snapshot(snapshot).map_err(|e| e.to_string())
+}
+
+/// The text with the first `from` replaced by `to` (which must be there).
+fn edited(text: &str, edits: &[(&str, &str)]) -> String {
+    let mut text = text.to_owned();
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from} is in the snapshot");
+        text = text.replacen(from, to, 1);
+    }
+    text
+}
+
+#[test]
+fn each_untrusted_edit_is_refused_with_a_message() {
+    let text = snapshot_text();
+    assert!(restore(&text).is_ok(), "the unedited snapshot restores");
+    let cases: &[(&str, &[(&str, &str)])] = &[
+        (
+            "a negative warm-start impulse",
+            &[("normal_impulse:0.1", "normal_impulse:-1.")],
+        ),
+        (
+            "a NaN warm-start impulse",
+            &[("normal_impulse:0.1", "normal_impulse:NaN,x:0.1")],
+        ),
+        (
+            "an infinite static friction",
+            &[("friction:[0.6]", "friction:[inf]")],
+        ),
+        (
+            "a friction past MAX_FRICTION",
+            &[("friction:[0.6,", "friction:[1e20,")],
+        ),
+        (
+            "a sleeping contact with a shapeless body",
+            &[
+                ("shape:Some(Box(half_extents:(5.0,0.5)))", "shape:None"),
+                ("shaped_static:1", "shaped_static:0"),
+            ],
+        ),
+        (
+            "a NaN speed limit",
+            &[
+                ("max_speed:None", "max_speed:Some(NaN)"),
+                ("speed_overrides:0", "speed_overrides:1"),
+            ],
+        ),
+        (
+            "a subnormal mass",
+            &[
+                ("inv_mass:[1.0,", "inv_mass:[1e40,"),
+                ("mass:1.0,", "mass:1e-40,"),
+            ],
+        ),
+        ("a slot freed twice", &[("free:[1]", "free:[1,1]")]),
+    ];
+    for (what, edits) in cases {
+        let text = edited(&text, edits);
+        match restore(&text) {
+            Ok(_) => panic!("{what}: restored"),
+            Err(e) => assert!(
+                e.contains("invalid world snapshot") || e.contains("must be"),
+                "{what}: {e}"
+            ),
+        }
+    }
+}
+
+#[test]
+fn a_step_count_at_the_end_of_u64_steps_on_without_overflow() {
+    let text = edited(
+        &snapshot_text(),
+        &[("steps:90", "steps:18446744073709551615")],
+    );
+    let mut world = restore(&text).unwrap();
+    world.step(DT);
+    world.step(DT);
+    assert_eq!(world.stats().steps, u64::MAX);
+    assert!(world.bodies().all(|b| b.position.is_finite()));
+}
+
+#[test]
+fn subnormal_and_out_of_range_materials_are_refused_where_they_enter() {
+    let mut world = World::default();
+    let err = world
+        .add_body(BodyDef::point_mass(Vec2::ZERO).with_mass(1e-40))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("BodyDef::mass"), "{err}");
+    assert!(
+        world
+            .add_body(BodyDef::new_static(Vec2::ZERO, Shape::circle(1.0)).with_friction(1e20))
+            .is_err()
+    );
+    // Two touching bodies at the largest friction step without a panic.
+    world
+        .add_body(
+            BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(10.0, 1.0))
+                .with_friction(passo_physics::constants::MAX_FRICTION),
+        )
+        .unwrap();
+    let b = world
+        .add_body(
+            BodyDef::new_dynamic(Vec2::new(0.0, 0.5), Shape::rect(1.0, 1.0))
+                .with_friction(passo_physics::constants::MAX_FRICTION)
+                .with_velocity(Vec2::new(5.0, 0.0)),
+        )
+        .unwrap();
+    world.set_friction(b, 1e20);
+    assert_eq!(world.stats().rejected_inputs, 1);
+    for _ in 0..60 {
+        world.step(DT);
+    }
+    assert!(world.body(b).unwrap().velocity.is_finite());
+    // A scene with a density that gives a subnormal mass names the body.
+    let scene = passo_scene::Scene::parse(
+        "(name: \"t\", bodies: [(shape: Circle(radius: 1e-20), density: 1e-5)])",
+        "t.ron",
+    );
+    let err = scene
+        .and_then(|s| s.build().map(|_| ()))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("bodies[0]"), "{err}");
+}
