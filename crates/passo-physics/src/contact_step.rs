@@ -166,6 +166,7 @@ impl World {
             self.relax(&mut cw, &plan);
         }
         self.finish_contacts(&mut cw, &plan);
+        self.may_rest |= settings.sleeping;
         cw.end_step(
             &mut self.dynamic,
             &self.statics,

@@ -238,6 +238,7 @@ impl World {
         world.free = snapshot.free;
         world.dynamic = snapshot.dynamic;
         world.dynamic.find_kinematic();
+        world.may_rest = true;
         // Speed limits are derived from each body's overrides and the
         // settings: made again, not trusted.
         for i in 0..world.dynamic.len() {

@@ -87,6 +87,9 @@ pub struct World {
     pub(crate) bouncy: usize,
     /// Dynamic bodies dropping through one-way platforms.
     pub(crate) dropping: usize,
+    /// Some body may have rest time or sleep: a contact step with sleeping
+    /// on ran (or a snapshot was restored) since every body was last woken.
+    pub(crate) may_rest: bool,
     /// Counts edits that move, add or remove bodies (with the step count,
     /// it tells queries whether their index is current).
     pub(crate) edits: u64,
@@ -141,6 +144,7 @@ impl World {
             statics_dirty: false,
             bouncy: 0,
             dropping: 0,
+            may_rest: false,
             edits: 0,
             static_edits: 0,
             query_cache: QueryCache::default(),
@@ -223,6 +227,11 @@ impl World {
     /// Wakes every body. Changing the settings, the force models or a
     /// static body does this already.
     pub fn wake_all(&mut self) {
+        // Nothing rests before a step with sleeping on: building a world
+        // (each static body added wakes every body) costs nothing here.
+        if !std::mem::take(&mut self.may_rest) {
+            return;
+        }
         match &mut self.contacts {
             Some(cw) => cw.wake_all(&mut self.dynamic),
             None => self.dynamic.wake_all(),
