@@ -216,7 +216,9 @@ impl World {
         non_negative("mu", mu)?;
         finite("normal", normal)?;
         if let Some(i) = self.movable_index(id)? {
-            self.dynamic.friction_force[i] += mu * normal.abs();
+            let total = self.dynamic.friction_force[i] + mu * normal.abs();
+            finite("accumulated friction force", total)?;
+            self.dynamic.friction_force[i] = total;
             self.wake_index(i);
             self.game_friction = true;
         }

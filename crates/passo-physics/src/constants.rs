@@ -45,6 +45,13 @@ pub const DEFAULT_FRICTION: f32 = 0.6;
 /// would overflow it to infinity and the limit to NaN.
 pub const MAX_FRICTION: f32 = 1.0e3;
 
+/// Largest mass a dynamic body may have, kilograms: 10³⁰ (half the Sun).
+/// A contact impulse is a mass times a speed; above this, one against a
+/// body at the maximum speed could overflow `f32`, and the inverse mass
+/// would be subnormal (3e38 kg has 3.3e-39 1/kg), which turns a push into
+/// an infinity. Use a static or kinematic body for anything immovable.
+pub const MAX_MASS: f32 = 1.0e30;
+
 /// Largest drag area `Cd A` a body may have, square metres: 10⁶ (a square
 /// kilometre). Far above any game body; it keeps drag terms finite.
 pub const MAX_DRAG_AREA: f32 = 1.0e6;

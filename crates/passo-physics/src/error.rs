@@ -101,17 +101,19 @@ pub(crate) fn at_most(
     }
 }
 
-/// Checks a mass: finite, > 0, and with a finite inverse (a subnormal
-/// mass such as 1e-40 kg has none).
+/// Checks a mass: finite, > 0, with a finite inverse (a subnormal mass
+/// such as 1e-40 kg has none), and at most [`MAX_MASS`].
+///
+/// [`MAX_MASS`]: crate::constants::MAX_MASS
 pub(crate) fn mass(what: &'static str, value: f32) -> Result<f32, PhysicsError> {
     positive(what, value)?;
-    if (1.0 / value).is_finite() {
+    if (1.0 / value).is_finite() && value <= crate::constants::MAX_MASS {
         Ok(value)
     } else {
         Err(PhysicsError::OutOfRange {
             what,
             value,
-            allowed: ">= 3e-39 kg (its inverse must be finite)",
+            allowed: "in [3e-39, 1e30] kg (MAX_MASS; the inverse must be finite)",
         })
     }
 }

@@ -276,6 +276,7 @@ impl World {
     /// Adds a body; its definition is checked first.
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyId, PhysicsError> {
         def.validate()?;
+        self.check_start_velocity(&def)?;
         let index = match self.free.pop() {
             Some(index) => index,
             None => {
@@ -498,6 +499,27 @@ impl World {
             Location::Dynamic(i) => Ok(Some(i as usize)),
             _ => Ok(None),
         }
+    }
+
+    /// A new body's velocity must have a finite square, and a kinematic
+    /// body's speed (which nothing else limits) must not exceed the world's
+    /// maximum speed, as [`try_set_velocity`](Self::try_set_velocity) asks.
+    fn check_start_velocity(&self, def: &BodyDef) -> Result<(), PhysicsError> {
+        let speed_sq = def.velocity.length_squared();
+        let max = self.settings.max_speed;
+        if !speed_sq.is_finite() {
+            return Err(PhysicsError::NonFinite {
+                what: "BodyDef::velocity (its square)",
+            });
+        }
+        if def.kind == BodyKind::Kinematic && speed_sq > max * max {
+            return Err(PhysicsError::OutOfRange {
+                what: "BodyDef::velocity",
+                value: speed_sq.sqrt(),
+                allowed: "at most WorldSettings::max_speed for a kinematic body",
+            });
+        }
+        Ok(())
     }
 
     /// A body was added, removed or moved by hand: queries rebuild their
