@@ -274,3 +274,44 @@ fn per_tick_setters_count_what_they_refuse_and_change_nothing() {
     assert_eq!(w.body(a).unwrap().velocity, Vec2::X);
     assert_eq!(w.stats().rejected_inputs, 4);
 }
+
+#[test]
+fn positions_beyond_the_usable_extent_and_giant_shapes_are_refused() {
+    // Beyond 2e9 m the grid's cells saturated and every body fell into one
+    // cell; at 1e30 m bodies 1 m apart were one point.
+    let mut w = World::default();
+    for p in [
+        Vec2::new(3e9, 0.0),
+        Vec2::new(0.0, -1e30),
+        Vec2::new(1.0e7 + 1e3, 0.0),
+    ] {
+        let err = w.add_body(BodyDef::point_mass(p)).unwrap_err().to_string();
+        assert!(err.contains("MAX_COORDINATE"), "{err}");
+    }
+    let a = w
+        .add_body(BodyDef::point_mass(Vec2::new(1.0e7, -1.0e7)))
+        .unwrap();
+    assert!(w.try_set_position(a, Vec2::new(2e7, 0.0)).is_err());
+    assert!(
+        w.add_body(BodyDef::new_static(Vec2::ZERO, Shape::circle(2e6)))
+            .unwrap_err()
+            .to_string()
+            .contains("MAX_SHAPE_SIZE")
+    );
+    // The largest shape at the edge of the extent, among small bodies,
+    // steps without overflowing a cell index.
+    w.add_body(BodyDef::new_dynamic(
+        Vec2::new(1.0e7, 0.0),
+        Shape::rect(2.0e6, 2.0e6),
+    ))
+    .unwrap();
+    for i in 0..20 {
+        w.add_body(BodyDef::new_dynamic(
+            Vec2::new(i as f32, 0.0),
+            Shape::circle(0.2),
+        ))
+        .unwrap();
+    }
+    w.step(1.0 / 60.0);
+    assert!(w.bodies().all(|b| b.position.is_finite()));
+}

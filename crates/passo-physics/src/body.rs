@@ -3,7 +3,7 @@
 
 use crate::constants::{DEFAULT_DRAG_AREA, DEFAULT_FRICTION};
 use crate::constants::{MAX_DRAG_AREA, MAX_FRICTION};
-use crate::error::{at_most, finite_vec, mass, non_negative, positive, unit_interval};
+use crate::error::{at_most, finite_vec, mass, non_negative, position, positive, unit_interval};
 use crate::filter::CollisionFilter;
 use crate::id::BodyId;
 use crate::material::FrictionMix;
@@ -240,7 +240,7 @@ impl BodyDef {
 
     /// Checks every field, naming the first one that is wrong.
     pub fn validate(&self) -> Result<(), PhysicsError> {
-        finite_vec("BodyDef::position", self.position)?;
+        position("BodyDef::position", self.position)?;
         finite_vec("BodyDef::velocity", self.velocity)?;
         if self.kind == BodyKind::Dynamic {
             mass("BodyDef::mass", self.mass)?;

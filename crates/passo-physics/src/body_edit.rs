@@ -81,7 +81,7 @@ impl World {
     /// Moves a body (a teleport: no velocity is implied, and an interpolated
     /// drawing jumps too).
     pub fn try_set_position(&mut self, id: BodyId, position: Vec2) -> Result<(), PhysicsError> {
-        finite_vec("position", position)?;
+        crate::error::position("position", position)?;
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         match location {
             Location::Dynamic(i) => {
@@ -156,7 +156,7 @@ impl World {
         target: Vec2,
         dt: f32,
     ) -> Result<(), PhysicsError> {
-        finite_vec("target", target)?;
+        crate::error::position("target", target)?;
         positive("dt", dt)?;
         if let Some(i) = self.dynamic_index(id)?
             && self.dynamic.meta[i].kinematic

@@ -77,7 +77,10 @@ impl BroadPhase {
         for (i, b) in proxies.iter().enumerate() {
             let lo = cell_of(b.min);
             let hi = cell_of(b.max);
-            if hi.0 - lo.0 >= LARGE_PROXY_CELLS || hi.1 - lo.1 >= LARGE_PROXY_CELLS {
+            // In i64: cells saturated at the ends of i32 must not overflow.
+            let span = |lo: i32, hi: i32| i64::from(hi) - i64::from(lo);
+            let limit = i64::from(LARGE_PROXY_CELLS);
+            if span(lo.0, hi.0) >= limit || span(lo.1, hi.1) >= limit {
                 self.large.push(i as u32);
                 continue;
             }

@@ -45,6 +45,18 @@ pub const DEFAULT_FRICTION: f32 = 0.6;
 /// would overflow it to infinity and the limit to NaN.
 pub const MAX_FRICTION: f32 = 1.0e3;
 
+/// Farthest a body may be placed from the origin along either axis,
+/// metres: 10⁷ (10 000 km). `f32` positions there are 1 m apart, far too
+/// coarse for contacts (keep play within a few kilometres, see the README),
+/// and the broad phase's cell indices stay well inside `i32` for any body
+/// size. Positions beyond it are refused where they enter (definitions,
+/// `set_position`, kinematic targets, snapshots); a body that flies past it
+/// keeps flying.
+pub const MAX_COORDINATE: f32 = 1.0e7;
+
+/// Largest radius or half extent a shape may have, metres: 10⁶.
+pub const MAX_SHAPE_SIZE: f32 = 1.0e6;
+
 /// Largest mass a dynamic body may have, kilograms: 10³⁰ (half the Sun).
 /// A contact impulse is a mass times a speed; above this, one against a
 /// body at the maximum speed could overflow `f32`, and the inverse mass

@@ -56,6 +56,24 @@ pub(crate) fn finite(what: &'static str, value: f32) -> Result<f32, PhysicsError
     }
 }
 
+/// Checks that a position is finite and within [`MAX_COORDINATE`] of the
+/// origin along each axis.
+///
+/// [`MAX_COORDINATE`]: crate::constants::MAX_COORDINATE
+pub(crate) fn position(what: &'static str, p: glam::Vec2) -> Result<glam::Vec2, PhysicsError> {
+    finite_vec(what, p)?;
+    let far = p.abs().max_element();
+    if far <= crate::constants::MAX_COORDINATE {
+        Ok(p)
+    } else {
+        Err(PhysicsError::OutOfRange {
+            what,
+            value: far,
+            allowed: "within 1e7 m of the origin along each axis (MAX_COORDINATE)",
+        })
+    }
+}
+
 /// Checks that both components of a vector are finite.
 pub(crate) fn finite_vec(
     what: &'static str,

@@ -39,9 +39,9 @@
 // Data: ids, errors, tuning constants, shapes, filters, bodies.
 mod id;
 
-mod error;
-
 pub mod constants;
+
+mod error;
 
 mod aabb;
 mod collider;

@@ -64,12 +64,26 @@ impl Shape {
     /// Checks that every size is finite and strictly positive.
     pub(crate) fn validate(&self) -> Result<(), crate::PhysicsError> {
         match *self {
-            Self::Circle { radius } => crate::error::positive("Shape::Circle::radius", radius)?,
+            Self::Circle { radius } => size("Shape::Circle::radius", radius)?,
             Self::Box { half_extents } => {
-                crate::error::positive("Shape::Box::half_extents.x", half_extents.x)?;
-                crate::error::positive("Shape::Box::half_extents.y", half_extents.y)?
+                size("Shape::Box::half_extents.x", half_extents.x)?;
+                size("Shape::Box::half_extents.y", half_extents.y)?
             }
         };
         Ok(())
+    }
+}
+
+/// A size: finite, > 0 and at most [`MAX_SHAPE_SIZE`](crate::constants::MAX_SHAPE_SIZE).
+fn size(what: &'static str, value: f32) -> Result<f32, crate::PhysicsError> {
+    crate::error::positive(what, value)?;
+    if value <= crate::constants::MAX_SHAPE_SIZE {
+        Ok(value)
+    } else {
+        Err(crate::PhysicsError::OutOfRange {
+            what,
+            value,
+            allowed: "at most 1e6 m (MAX_SHAPE_SIZE)",
+        })
     }
 }
