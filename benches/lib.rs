@@ -217,3 +217,52 @@ pub fn drive_sweepers(world: &mut World, sweepers: &[Sweeper], tick: u32) {
         world.set_kinematic_target(p.id, p.start + p.by * s, dt);
     }
 }
+
+/// `n` circles of radius 0.1 m spawned on one spot, no gravity.
+pub fn spawned_on_one_spot(n: usize) -> World {
+    let settings = passo_physics::WorldSettings {
+        forces: passo_physics::ForceModels::none(),
+        ..Default::default()
+    };
+    let mut world = World::new(settings).expect("valid settings");
+    for _ in 0..n {
+        world
+            .add_body(BodyDef::new_dynamic(Vec2::ZERO, Shape::circle(0.1)))
+            .expect("valid circle");
+    }
+    world
+}
+
+/// `n` circles of radius 0.1 m flying at 100 to 500 m/s in pseudo-random
+/// directions inside a closed 60 m × 30 m box, no gravity.
+pub fn fast_circles_in_a_box(n: usize) -> World {
+    let settings = passo_physics::WorldSettings {
+        forces: passo_physics::ForceModels::none(),
+        ..Default::default()
+    };
+    let mut world = World::new(settings).expect("valid settings");
+    let wall = |w: &mut World, centre: Vec2, size: Vec2| {
+        w.add_body(BodyDef::new_static(centre, Shape::rect(size.x, size.y)))
+            .expect("valid wall");
+    };
+    wall(&mut world, Vec2::new(0.0, -15.5), Vec2::new(62.0, 1.0));
+    wall(&mut world, Vec2::new(0.0, 15.5), Vec2::new(62.0, 1.0));
+    wall(&mut world, Vec2::new(-30.5, 0.0), Vec2::new(1.0, 30.0));
+    wall(&mut world, Vec2::new(30.5, 0.0), Vec2::new(1.0, 30.0));
+    let mut seed = 0xD1B5_4A32_D192_ED03u64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 40) as f32 / (1u64 << 24) as f32
+    };
+    for _ in 0..n {
+        let p = Vec2::new(next() * 58.0 - 29.0, next() * 28.0 - 14.0);
+        let angle = next() * std::f32::consts::TAU;
+        let speed = 100.0 + 400.0 * next();
+        let def = BodyDef::new_dynamic(p, Shape::circle(0.1))
+            .with_velocity(Vec2::new(angle.cos(), angle.sin()) * speed);
+        world.add_body(def).expect("valid circle");
+    }
+    world
+}

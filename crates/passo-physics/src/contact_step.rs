@@ -143,6 +143,9 @@ impl World {
             parallel: self.parallel,
         };
         cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
+        if cw.crowded() > 0 {
+            self.stats.crowded_steps = self.stats.crowded_steps.saturating_add(1);
+        }
         let plan = SubstepPlan::new(self, settings, dt, cw.sleeping.any(&self.dynamic));
         if plan.hold_kinematic {
             self.hold_kinematic();

@@ -269,6 +269,12 @@ impl ContactWorld {
         self.revision += 1;
     }
 
+    /// Crowded grid buckets in this step's pair search (their pairs were
+    /// bounded: bodies piled on one spot).
+    pub(crate) fn crowded(&self) -> usize {
+        self.proxies.crowded()
+    }
+
     /// How many times the contact lists changed.
     pub(crate) fn revision(&self) -> u64 {
         self.revision

@@ -135,15 +135,19 @@ impl Narrow<'_> {
         } else {
             Faces::default()
         };
-        match collide_seamless(
-            &ca.shape,
-            position(&ca),
-            &cb.shape,
-            position(&cb),
-            margin,
-            faces,
-        ) {
+        let (pa, pb) = (position(&ca), position(&cb));
+        match collide_seamless(&ca.shape, pa, &cb.shape, pb, margin, faces) {
             Some(m) if !one_way_allows(&ca, &cb, &m) => Outcome::Skip,
+            // Two dynamic bodies on exactly the same spot (spawned there)
+            // have no direction between them; each pair gets its own, so a
+            // pile spreads out in every direction, not along one line.
+            Some(mut m) if pa == pb && !cb.immovable => {
+                m.normal = spread_direction(ca.id, cb.id);
+                let a = ca.body.index() as u32;
+                let (row, info) =
+                    Constraint::new(&m, a, cb.body, self.bodies, self.gravity, self.h);
+                Outcome::Contact(row, info)
+            }
             Some(m) => {
                 let a = ca.body.index() as u32;
                 let (row, info) =
@@ -151,6 +155,27 @@ impl Narrow<'_> {
                 Outcome::Contact(row, info)
             }
             None => Outcome::Skip,
+        }
+    }
+}
+
+/// A unit direction of its own for the pair of bodies `a` and `b`, from an
+/// integer hash of their ids (arithmetic only, so every platform gives the
+/// same bits).
+fn spread_direction(a: BodyId, b: BodyId) -> Vec2 {
+    let mut h = u64::from(a.index()) << 32 | u64::from(b.index());
+    loop {
+        // SplitMix64.
+        h = h.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = h;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        let unit = |bits: u64| (bits & 0xFF_FFFF) as f32 / 8_388_608.0 - 1.0;
+        let v = Vec2::new(unit(z), unit(z >> 32));
+        let len_sq = v.length_squared();
+        if len_sq > 0.01 && len_sq <= 1.0 {
+            return v / len_sq.sqrt();
         }
     }
 }

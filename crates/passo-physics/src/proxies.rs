@@ -251,6 +251,11 @@ impl Proxies {
         self.asleep.get(p) == Some(&true)
     }
 
+    /// Crowded grid buckets in the last pair search (see `CROWDED_CELL`).
+    pub(crate) fn crowded(&self) -> usize {
+        self.grid.crowded
+    }
+
     /// Finds the pairs among the proxies (except pairs of two sleeping
     /// ones) and the static bodies each awake proxy overlaps.
     pub(crate) fn find_pairs(&mut self, parallel: bool) {

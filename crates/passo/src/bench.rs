@@ -3,8 +3,8 @@
 use anyhow::Result;
 use glam::Vec2;
 use passo_benches::{
-    drive_sweepers, pyramid_world, rain_strip, rain_with_platforms, rain_world, rays, time_steps,
-    time_steps_with, with_sleeping,
+    drive_sweepers, fast_circles_in_a_box, pyramid_world, rain_strip, rain_with_platforms,
+    rain_world, rays, spawned_on_one_spot, time_steps, time_steps_with, with_sleeping,
 };
 use passo_physics::{BodyKind, QueryFilter, World};
 use passo_render::{AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer};
@@ -38,6 +38,23 @@ pub enum BenchWhat {
     Queries(QueriesBenchArgs),
     /// A rain with kinematic platforms sweeping through it.
     Platforms(PlatformsBenchArgs),
+    /// Scenes that make work grow faster than the bodies: circles spawned
+    /// on one spot, and fast circles in a closed box.
+    Extreme(ExtremeBenchArgs),
+}
+
+/// Options of `passo bench extreme`.
+#[derive(clap::Args, Debug)]
+pub struct ExtremeBenchArgs {
+    /// Circles spawned on one spot.
+    #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub spawn: u32,
+    /// Fast circles (100 to 500 m/s) in a closed 60 m × 30 m box.
+    #[arg(long, default_value_t = 5_000, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub fast: u32,
+    /// Ticks to run each scene at 60 Hz.
+    #[arg(long, default_value_t = 600, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub ticks: u32,
 }
 
 /// Options of `passo bench queries`.
@@ -156,6 +173,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         BenchWhat::Sleep(a) => sleep(a),
         BenchWhat::Queries(a) => queries(a),
         BenchWhat::Platforms(a) => platforms(a),
+        BenchWhat::Extreme(a) => extreme(a),
     }
 }
 
@@ -457,6 +475,57 @@ fn platforms(args: &PlatformsBenchArgs) -> Result<()> {
         world.max_penetration() * 1e3
     );
     Ok(())
+}
+
+fn extreme(args: &ExtremeBenchArgs) -> Result<()> {
+    println!(
+        "| scene | bodies | ticks | ms per tick (mean) | ms per tick (last fifth) | peak memory (MB) | max overlap at the end (mm) | escaped |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    let scenes: [(&str, fn(usize) -> World, usize); 2] = [
+        (
+            "spawned on one spot",
+            spawned_on_one_spot,
+            args.spawn as usize,
+        ),
+        (
+            "fast circles in a box",
+            fast_circles_in_a_box,
+            args.fast as usize,
+        ),
+    ];
+    for (name, make, n) in scenes {
+        reset_peak_memory();
+        let mut world = make(n);
+        let t = time_steps(args.ticks, || world.step(1.0 / 60.0));
+        let escaped = world
+            .bodies()
+            .filter(|b| b.kind == BodyKind::Dynamic)
+            .filter(|b| b.position.x.abs() > 31.0 || b.position.y.abs() > 16.0)
+            .count();
+        println!(
+            "| {name} | {n} | {} | {:.2} | {:.2} | {} | {:.1} | {escaped} |",
+            args.ticks,
+            t.mean_ms,
+            t.last_ms,
+            peak_memory_mb().map_or("n/a".to_owned(), |mb| format!("{mb:.0}")),
+            world.max_penetration() * 1e3
+        );
+    }
+    Ok(())
+}
+
+/// Starts a new peak of resident memory (Linux: `/proc/self/clear_refs`).
+fn reset_peak_memory() {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+}
+
+/// The peak resident memory since the last reset, MB (Linux only).
+fn peak_memory_mb() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
 }
 
 fn render(args: &RenderBenchArgs) -> Result<()> {

@@ -1,0 +1,52 @@
+//! Bodies spawned on one spot made a pair of every two of them: 10 000
+//! circles took over 2 s per step and 14 GB. Now a crowded grid cell
+//! bounds each body's pairs (`CROWDED_CELL`), and bodies on exactly the
+//! same spot are pushed apart each pair its own way, so the pile spreads
+//! in every direction instead of along one line.
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, ForceModels, Shape, World, WorldSettings};
+use passo_tests::max_penetration;
+
+#[test]
+fn a_pile_spawned_on_one_spot_spreads_out_calmly_with_bounded_contacts() {
+    let n = 400;
+    let mut world = World::new(WorldSettings {
+        forces: ForceModels::none(),
+        ..Default::default()
+    })
+    .unwrap();
+    for _ in 0..n {
+        world
+            .add_body(BodyDef::new_dynamic(Vec2::ZERO, Shape::circle(0.1)))
+            .unwrap();
+    }
+    let mut fastest = 0.0f32;
+    for _ in 0..600 {
+        world.step(1.0 / 60.0);
+        // At most 64 pairs per body from the grid (plus none from the
+        // static tree: there is no static body).
+        assert!(world.contacts().count() <= 64 * n);
+        for b in world.bodies() {
+            fastest = fastest.max(b.velocity.length());
+        }
+    }
+    assert!(
+        world.stats().crowded_steps > 0,
+        "the first steps were crowded"
+    );
+    let overlap = max_penetration(&world);
+    assert!(overlap <= 0.01, "apart within 10 s: {overlap} m left");
+    // Split impulses push without turning overlap into speed.
+    assert!(
+        fastest < 1.0,
+        "calm: the fastest body moved at {fastest} m/s"
+    );
+    // Spread in two dimensions: not a line.
+    let (mut xs, mut ys) = (0.0f32, 0.0f32);
+    for b in world.bodies() {
+        xs = xs.max(b.position.x.abs());
+        ys = ys.max(b.position.y.abs());
+    }
+    assert!(xs > 1.0 && ys > 1.0, "spread {xs} by {ys} m");
+}
