@@ -477,12 +477,15 @@ fn platforms(args: &PlatformsBenchArgs) -> Result<()> {
     Ok(())
 }
 
+/// A benchmark scene of `n` bodies.
+type MakeWorld = fn(usize) -> World;
+
 fn extreme(args: &ExtremeBenchArgs) -> Result<()> {
     println!(
         "| scene | bodies | ticks | ms per tick (mean) | ms per tick (last fifth) | peak memory (MB) | max overlap at the end (mm) | escaped |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
-    let scenes: [(&str, fn(usize) -> World, usize); 2] = [
+    let scenes: [(&str, MakeWorld, usize); 2] = [
         (
             "spawned on one spot",
             spawned_on_one_spot,
