@@ -79,7 +79,15 @@ impl World {
     }
 
     /// Moves a body (a teleport: no velocity is implied, and an interpolated
-    /// drawing jumps too).
+    /// drawing jumps too). A static body moved this way carries no rider
+    /// and is not interpolated: move platforms as
+    /// [`BodyKind::Kinematic`](crate::BodyKind::Kinematic) bodies, with
+    /// [`set_velocity`](Self::set_velocity) or
+    /// [`set_kinematic_target`](Self::set_kinematic_target).
+    ///
+    /// # Errors
+    /// A stale id, or a position that is not finite or lies beyond
+    /// [`MAX_COORDINATE`](crate::constants::MAX_COORDINATE).
     pub fn try_set_position(&mut self, id: BodyId, position: Vec2) -> Result<(), PhysicsError> {
         crate::error::position("position", position)?;
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
