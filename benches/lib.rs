@@ -151,13 +151,7 @@ pub fn time_steps_with(
 /// `count` rays (origin, unit direction) from pseudo-random points of the
 /// box `min..max` in pseudo-random directions, the same every run.
 pub fn rays(min: Vec2, max: Vec2, count: usize) -> Vec<(Vec2, Vec2)> {
-    let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-    let mut next = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut next = unit_sequence(0x9E37_79B9_7F4A_7C15);
     (0..count)
         .map(|_| {
             let origin = min + (max - min) * Vec2::new(next(), next());
@@ -249,13 +243,7 @@ pub fn fast_circles_in_a_box(n: usize) -> World {
     wall(&mut world, Vec2::new(0.0, 15.5), Vec2::new(62.0, 1.0));
     wall(&mut world, Vec2::new(-30.5, 0.0), Vec2::new(1.0, 30.0));
     wall(&mut world, Vec2::new(30.5, 0.0), Vec2::new(1.0, 30.0));
-    let mut seed = 0xD1B5_4A32_D192_ED03u64;
-    let mut next = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut next = unit_sequence(0xD1B5_4A32_D192_ED03);
     for _ in 0..n {
         let p = Vec2::new(next() * 58.0 - 29.0, next() * 28.0 - 14.0);
         let angle = next() * std::f32::consts::TAU;
@@ -265,4 +253,15 @@ pub fn fast_circles_in_a_box(n: usize) -> World {
         world.add_body(def).expect("valid circle");
     }
     world
+}
+
+/// Pseudo-random numbers in `[0, 1)` from a xorshift of `seed`, the same
+/// on every run and machine.
+fn unit_sequence(mut seed: u64) -> impl FnMut() -> f32 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 40) as f32 / (1u64 << 24) as f32
+    }
 }

@@ -41,6 +41,19 @@ pub enum BenchWhat {
     /// Scenes that make work grow faster than the bodies: circles spawned
     /// on one spot, and fast circles in a closed box.
     Extreme(ExtremeBenchArgs),
+    /// A long run of a busy scene: no NaN, and no memory growth.
+    Soak(SoakBenchArgs),
+}
+
+/// Options of `passo bench soak`.
+#[derive(clap::Args, Debug)]
+pub struct SoakBenchArgs {
+    /// Ticks to run at 60 Hz.
+    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(1..=100_000_000))]
+    pub ticks: u64,
+    /// Circles in the rain.
+    #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub bodies: u32,
 }
 
 /// Options of `passo bench extreme`.
@@ -174,6 +187,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         BenchWhat::Queries(a) => queries(a),
         BenchWhat::Platforms(a) => platforms(a),
         BenchWhat::Extreme(a) => extreme(a),
+        BenchWhat::Soak(a) => soak(a),
     }
 }
 
@@ -515,6 +529,67 @@ fn extreme(args: &ExtremeBenchArgs) -> Result<()> {
             world.max_penetration() * 1e3
         );
     }
+    Ok(())
+}
+
+fn soak(args: &SoakBenchArgs) -> Result<()> {
+    // A rain with two sweeping platforms; every 600 ticks one circle is
+    // removed and another thrown in fast, and the world is snapshotted and
+    // restored, so every path of the step keeps running.
+    let (mut world, sweepers) = rain_with_platforms(args.bodies as usize, 2, false);
+    let started = Instant::now();
+    let mut memory_at_10k = None;
+    let mut thrown = 0u64;
+    for tick in 0..args.ticks {
+        drive_sweepers(&mut world, &sweepers, (tick % 240) as u32);
+        if tick % 600 == 599 {
+            let victim = world
+                .bodies()
+                .filter(|b| b.kind == BodyKind::Dynamic)
+                .nth((tick / 600) as usize % args.bodies as usize)
+                .map(|b| b.id);
+            if let Some(id) = victim {
+                world.remove_body(id);
+            }
+            let def = passo_physics::BodyDef::new_dynamic(
+                Vec2::new(0.0, 20.0),
+                passo_physics::Shape::circle(0.1),
+            )
+            .with_velocity(Vec2::new(((tick / 600) % 7) as f32 * 10.0 - 30.0, -60.0));
+            world.add_body(def)?;
+            thrown += 1;
+            let snapshot = world.snapshot();
+            world.restore(snapshot)?;
+        }
+        world.step(1.0 / 60.0);
+        if tick % 10_000 == 9_999 {
+            if world
+                .bodies()
+                .any(|b| !(b.position.is_finite() && b.velocity.is_finite()))
+            {
+                anyhow::bail!("a non-finite body at tick {}", tick + 1);
+            }
+            if tick + 1 == 10_000 {
+                memory_at_10k = peak_memory_mb();
+            }
+        }
+    }
+    let stats = world.stats();
+    let mb = |m: Option<f64>| m.map_or("n/a".to_owned(), |mb| format!("{mb:.1}"));
+    println!(
+        "| ticks | bodies | bodies thrown in | seconds | peak memory at tick 10 000 (MB) | peak memory at the end (MB) | non-finite resets | crowded steps |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "| {} | {} | {thrown} | {:.0} | {} | {} | {} | {} |",
+        args.ticks,
+        world.len(),
+        started.elapsed().as_secs_f64(),
+        mb(memory_at_10k),
+        mb(peak_memory_mb()),
+        stats.non_finite_resets,
+        stats.crowded_steps
+    );
     Ok(())
 }
 
