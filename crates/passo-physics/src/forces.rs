@@ -362,7 +362,7 @@ impl Dissipation {
             v = stable_quadratic_drag(v, self.air, half_rho * b.drag_area * b.inv_mass, dt);
         }
         if let Some(damping) = self.linear {
-            v = self.air + (v - self.air) * (-damping * b.inv_mass * dt).exp();
+            v = self.air + (v - self.air) * libm::expf(-damping * b.inv_mass * dt);
         }
         let decel = self.friction_decel(b);
         if decel > 0.0 {

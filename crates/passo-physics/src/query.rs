@@ -172,7 +172,7 @@ impl World {
             .gravity
             .and_then(|g| g.try_normalize())
             .unwrap_or(-Vec2::Y);
-        let min_cos = max_slope.cos();
+        let min_cos = libm::cosf(max_slope);
         self.contacts_of(id)
             .filter(|c| c.touching && (-c.normal).dot(up) >= min_cos)
             .max_by(|x, y| x.normal_impulse.total_cmp(&y.normal_impulse))
