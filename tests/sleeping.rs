@@ -360,3 +360,49 @@ fn a_body_inside_a_sensor_stays_awake_and_inside() {
         assert!(w.events().sensor_end.is_empty());
     }
 }
+
+#[test]
+fn a_woken_island_reports_awake_at_once_and_a_snapshot_taken_then_resumes_bit_for_bit() {
+    // Two stacks of three boxes, each its own island, asleep.
+    let mut world = World::default();
+    world
+        .add_body(BodyDef::new_static(
+            Vec2::new(0.0, -0.5),
+            Shape::rect(20.0, 1.0),
+        ))
+        .unwrap();
+    let stack = |world: &mut World, x: f32| -> Vec<_> {
+        (0..3)
+            .map(|i| {
+                world
+                    .add_body(BodyDef::new_dynamic(
+                        Vec2::new(x, 0.5 + i as f32),
+                        Shape::rect(1.0, 1.0),
+                    ))
+                    .unwrap()
+            })
+            .collect()
+    };
+    let (left, right) = (stack(&mut world, -3.0), stack(&mut world, 3.0));
+    for _ in 0..120 {
+        world.step(1.0 / 60.0);
+    }
+    assert_eq!(world.sleeping_len(), 6);
+    // Waking the top of the left stack wakes its island, at once.
+    world.wake(left[2]).unwrap();
+    for &id in &left {
+        assert_eq!(world.is_asleep(id), Some(false));
+        assert!(!world.body(id).unwrap().asleep);
+    }
+    for &id in &right {
+        assert_eq!(world.is_asleep(id), Some(true));
+    }
+    assert_eq!(world.sleeping_len(), 3);
+    // A snapshot taken now resumes to the same bits as the world.
+    let mut copy = World::from_snapshot(world.snapshot()).unwrap();
+    for _ in 0..60 {
+        world.step(1.0 / 60.0);
+        copy.step(1.0 / 60.0);
+    }
+    assert_eq!(world.state_hash(), copy.state_hash());
+}

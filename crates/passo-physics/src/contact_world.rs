@@ -71,6 +71,7 @@ impl ContactWorld {
         settings: &ContactSettings,
         step: &StepParams,
     ) {
+        self.sleeping.flush(dynamic);
         self.motion.begin(&dynamic.pos);
         let any_asleep = self.sleeping.any(dynamic);
         let margin = ProxyMargin {
@@ -251,7 +252,8 @@ impl ContactWorld {
         self.end_step(dynamic, statics, None, step);
     }
 
-    /// Wakes dynamic body `i` and its island now.
+    /// Wakes dynamic body `i` now and its island before anything needs it
+    /// (see [`flush_wakes`](Self::flush_wakes)).
     pub(crate) fn wake_body(&mut self, dynamic: &mut DynamicBodies, i: usize) {
         self.sleeping.wake_body(dynamic, i);
         self.revision += 1;
@@ -261,6 +263,25 @@ impl ContactWorld {
     pub(crate) fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
         self.sleeping.wake_all(dynamic);
         self.revision += 1;
+    }
+
+    /// Wakes the islands game code woke since the last step.
+    pub(crate) fn flush_wakes(&mut self, dynamic: &mut DynamicBodies) {
+        if self.sleeping.has_pending() {
+            self.sleeping.flush(dynamic);
+            self.revision += 1;
+        }
+    }
+
+    /// Whether game code woke `island` since the last step (its bodies
+    /// count as awake already).
+    pub(crate) fn wakes_pending(&self, island: u32) -> bool {
+        self.sleeping.is_pending(island)
+    }
+
+    /// Whether any island waits to wake.
+    pub(crate) fn has_pending_wakes(&self) -> bool {
+        self.sleeping.has_pending()
     }
 
     /// Dynamic body `from` now sits at index `to` (a removal moved it).

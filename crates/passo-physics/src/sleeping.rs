@@ -28,6 +28,11 @@ use crate::island::Islands;
 use crate::proxies::{NO_PROXY, ProxyMargin};
 use crate::static_tree::StaticTree;
 use glam::Vec2;
+use std::collections::HashSet;
+
+/// Islands woken by game code between two steps that fit without an
+/// allocation once a world has slept.
+const PENDING_ROOM: usize = 64;
 
 /// Sleeping bodies outside the sleep tree that trigger its rebuild, at the
 /// least (below it they are simply binned with the awake ones).
@@ -56,6 +61,11 @@ pub(crate) struct SleepingContacts {
     changed: bool,
     /// Island bookkeeping.
     islands: Islands,
+    /// Islands game code woke since the last step (by their id): they wake
+    /// all together when the next step begins (or a removal or a snapshot
+    /// needs them awake), so waking one island costs one lookup, not a
+    /// pass over every body. Looked up, never iterated.
+    pending: HashSet<u32>,
 }
 
 impl SleepingContacts {
@@ -189,6 +199,9 @@ impl SleepingContacts {
     /// Moves the solved contacts whose bodies all sleep now into the stored
     /// list, keeping both lists in key order.
     fn store(&mut self, solved: &mut ContactList, dynamic: &DynamicBodies) {
+        // Room for the islands game code may wake between two steps, so a
+        // few wakes allocate nothing once a world has slept.
+        self.pending.reserve(PENDING_ROOM);
         let mut merge = Merge::new(&mut self.list, &mut self.scratch);
         solved.retain(
             |c| has_awake_body(dynamic, c),
@@ -222,11 +235,31 @@ impl SleepingContacts {
         self.drop_awake(dynamic);
     }
 
-    /// Wakes dynamic body `i` and its island now.
+    /// Wakes dynamic body `i` now and its island at the next
+    /// [`flush`](Self::flush) (the body's island mates report awake from
+    /// now on, see [`is_pending`](Self::is_pending)).
     pub(crate) fn wake_body(&mut self, dynamic: &mut DynamicBodies, i: usize) {
-        let was_asleep = dynamic.sleep[i].is_asleep();
+        if let Some(island) = dynamic.sleep[i].island() {
+            self.pending.insert(island);
+        }
         self.islands.wake_body(dynamic, i);
-        if was_asleep {
+    }
+
+    /// Whether game code woke `island` since the last step.
+    pub(crate) fn is_pending(&self, island: u32) -> bool {
+        self.pending.contains(&island)
+    }
+
+    /// Whether any island waits to wake.
+    pub(crate) fn has_pending(&self) -> bool {
+        !self.pending.is_empty()
+    }
+
+    /// Wakes the islands game code woke since the last step: one pass
+    /// over the bodies and the stored contacts for all of them.
+    pub(crate) fn flush(&mut self, dynamic: &mut DynamicBodies) {
+        if !self.pending.is_empty() {
+            self.pending.clear();
             self.wake_marked(dynamic);
         }
     }
@@ -235,6 +268,7 @@ impl SleepingContacts {
     /// with no rest time and nothing is stored: the step calls this while
     /// sleeping is off and while the stage is idle.
     pub(crate) fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
+        self.pending.clear();
         if self.list.is_empty() && self.tree.len() == 0 && dynamic.all_fresh() {
             return;
         }

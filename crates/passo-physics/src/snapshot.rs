@@ -212,18 +212,29 @@ impl WorldSnapshot {
 impl World {
     /// The world's whole state (see [`WorldSnapshot`]).
     pub fn snapshot(&self) -> WorldSnapshot {
+        let mut dynamic = self.dynamic.clone();
+        let mut contacts = self.contacts.as_ref().map(|c| c.carried_state());
+        // Islands game code woke since the last step wake in the copy, as
+        // they will in this world when it next steps.
+        if let Some(cw) = &self.contacts
+            && cw.has_pending_wakes()
+        {
+            let mut copy = cw.clone();
+            copy.flush_wakes(&mut dynamic);
+            contacts = Some(copy.carried_state());
+        }
         WorldSnapshot {
             settings: *self.settings(),
             slots: self.slots.clone(),
             free: self.free.clone(),
-            dynamic: self.dynamic.clone(),
+            dynamic,
             statics: self.statics.clone(),
             speed_overrides: self.speed_overrides,
             game_friction: self.game_friction,
             shaped_dynamic: self.shaped_dynamic,
             shaped_static: self.shaped_static,
             stats: self.stats(),
-            contacts: self.contacts.as_ref().map(|c| c.carried_state()),
+            contacts,
             custom_force_models: self.custom.len(),
         }
     }

@@ -210,14 +210,24 @@ impl World {
     /// for a stale id. Static bodies never sleep.
     pub fn is_asleep(&self, id: BodyId) -> Option<bool> {
         match self.locate(id)? {
-            Location::Dynamic(i) => Some(self.dynamic.sleep[i as usize].is_asleep()),
+            Location::Dynamic(i) => Some(self.sleeps(i as usize)),
             _ => Some(false),
         }
     }
 
     /// Number of sleeping bodies.
     pub fn sleeping_len(&self) -> usize {
-        self.dynamic.sleep.iter().filter(|s| s.is_asleep()).count()
+        (0..self.dynamic.len()).filter(|&i| self.sleeps(i)).count()
+    }
+
+    /// Whether dynamic body `i` sleeps: its island sleeps and game code
+    /// has not woken it since the last step.
+    fn sleeps(&self, i: usize) -> bool {
+        self.dynamic.sleep[i].island().is_some_and(|island| {
+            self.contacts
+                .as_ref()
+                .is_none_or(|cw| !cw.wakes_pending(island))
+        })
     }
 
     /// Wakes a body and every body sleeping in its island, and restarts its
@@ -361,10 +371,12 @@ impl World {
                 if meta.drop_through > 0.0 {
                     self.dropping -= 1;
                 }
-                // What rested on it must fall.
+                // What rested on it must fall, now: its stored contacts
+                // are dropped before the indices move.
                 self.wake_index(i as usize);
                 let last = self.dynamic.len() as u32 - 1;
                 if let Some(cw) = &mut self.contacts {
+                    cw.flush_wakes(&mut self.dynamic);
                     cw.body_moved(last, i);
                 }
                 self.dynamic.swap_remove(i as usize)
@@ -557,7 +569,11 @@ impl World {
 
     pub(crate) fn view(&self, location: Location) -> Body {
         match location {
-            Location::Dynamic(i) => self.dynamic.view(i as usize),
+            Location::Dynamic(i) => {
+                let mut body = self.dynamic.view(i as usize);
+                body.asleep = self.sleeps(i as usize);
+                body
+            }
             Location::Static(i) => self.statics.view(i as usize),
         }
     }
