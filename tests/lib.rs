@@ -40,6 +40,8 @@ pub fn frame_time(hz: u64) -> Duration {
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, BodyKind, Shape, World, collide};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 /// The deepest overlap between any two shaped bodies (dynamic-dynamic or
 /// dynamic-static, sensors excluded), from exact geometry at the current
@@ -122,4 +124,37 @@ pub fn contacts_seen_from(world: &World, id: BodyId) -> Vec<passo_physics::Conta
             }
         })
         .collect()
+}
+
+/// A global allocator that counts allocations while [`COUNTING`] is on:
+/// a test binary installs it with
+/// `#[global_allocator] static GLOBAL: Counting = Counting;`.
+pub struct Counting;
+
+pub static COUNTING: AtomicBool = AtomicBool::new(false);
+pub static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: every method forwards to `System` with the caller's arguments
+// unchanged, so `System`'s guarantees hold; counting touches only atomics.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // SAFETY: forwarded as is (see the impl).
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: forwarded as is (see the impl).
+        unsafe { System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // SAFETY: forwarded as is (see the impl).
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
 }

@@ -286,6 +286,23 @@ impl DynamicBodies {
         self.meta.get(i).map(|m| m.id)
     }
 
+    /// Makes this a copy of `other`, reusing this one's buffers (no
+    /// allocation when they are large enough).
+    pub(crate) fn copy_from(&mut self, other: &Self) {
+        self.pos.clone_from(&other.pos);
+        self.vel.clone_from(&other.vel);
+        self.force.clone_from(&other.force);
+        self.inv_mass.clone_from(&other.inv_mass);
+        self.drag_area.clone_from(&other.drag_area);
+        self.friction.clone_from(&other.friction);
+        self.friction_force.clone_from(&other.friction_force);
+        self.limits.clone_from(&other.limits);
+        self.prev_pos.clone_from(&other.prev_pos);
+        self.sleep.clone_from(&other.sleep);
+        self.meta.clone_from(&other.meta);
+        self.kinematic.clone_from(&other.kinematic);
+    }
+
     /// Rebuilds the list of kinematic bodies from their metadata.
     pub(crate) fn find_kinematic(&mut self) {
         self.kinematic.clear();
@@ -329,6 +346,13 @@ pub(crate) struct StaticBodies {
 }
 
 impl StaticBodies {
+    /// Makes this a copy of `other`, reusing this one's buffers.
+    pub(crate) fn copy_from(&mut self, other: &Self) {
+        self.pos.clone_from(&other.pos);
+        self.friction.clone_from(&other.friction);
+        self.meta.clone_from(&other.meta);
+    }
+
     pub(crate) fn len(&self) -> usize {
         self.pos.len()
     }

@@ -342,6 +342,34 @@ impl ContactWorld {
         }
     }
 
+    /// Writes what [`carried_state`](Self::carried_state) returns into
+    /// `out`, reusing its buffers.
+    pub(crate) fn carry_into(&self, out: &mut ContactState) {
+        out.cache.clone_from(&self.events.cache);
+        out.touching.clone_from(&self.events.touching_prev);
+        out.sensors.clone_from(&self.events.sensors_prev);
+        out.asleep.clone_from(&self.sleeping.list.rows);
+        out.asleep_infos.clone_from(&self.sleeping.list.infos);
+    }
+
+    /// Puts this contact stage in the state [`resume`](Self::resume) would
+    /// make from `state`, reusing its buffers; with `statics_changed` the
+    /// static tree is built again at the next step, else it is kept.
+    pub(crate) fn restore(&mut self, state: &ContactState, statics_changed: bool) {
+        if statics_changed {
+            self.proxies.statics_changed();
+        }
+        self.solved.clear();
+        self.narrow.sensor_candidates.clear();
+        self.sleeping.restore(&state.asleep, &state.asleep_infos);
+        self.events.cache.clone_from(&state.cache);
+        self.events.touching_prev.clone_from(&state.touching);
+        self.events.sensors_prev.clone_from(&state.sensors);
+        self.events.events.clear();
+        self.events.events.step = 0;
+        self.revision += 1;
+    }
+
     /// A contact stage resuming from a carried state.
     pub(crate) fn resume(state: ContactState) -> Self {
         let mut world = Self::new();

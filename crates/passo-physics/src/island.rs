@@ -40,6 +40,13 @@ impl Islands {
         }
     }
 
+    /// Forgets every mark (and the scratch of the last pass).
+    pub(crate) fn clear(&mut self) {
+        self.parent.clear();
+        self.least_rest.clear();
+        self.to_wake.clear();
+    }
+
     /// Marks the island of sleeping body `i` (and the body itself, at once)
     /// to be woken.
     pub(crate) fn wake_body(&mut self, bodies: &mut DynamicBodies, i: usize) {

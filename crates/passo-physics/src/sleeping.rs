@@ -23,7 +23,7 @@
 
 use crate::Aabb;
 use crate::bodies::DynamicBodies;
-use crate::constraint::{Constraint, ContactList, Merge};
+use crate::constraint::{Constraint, ContactInfo, ContactList, Merge};
 use crate::island::Islands;
 use crate::proxies::{NO_PROXY, ProxyMargin};
 use crate::static_tree::StaticTree;
@@ -75,6 +75,24 @@ impl SleepingContacts {
             list,
             ..Self::default()
         }
+    }
+
+    /// Back to the state [`resume`](Self::resume) makes from these stored
+    /// contacts, reusing the buffers (the sleep tree empties, and is built
+    /// again when the next steps need it).
+    pub(crate) fn restore(&mut self, rows: &[Constraint], infos: &[ContactInfo]) {
+        self.list.rows.clear();
+        self.list.rows.extend_from_slice(rows);
+        self.list.infos.clear();
+        self.list.infos.extend_from_slice(infos);
+        self.scratch.clear();
+        self.tree.rebuild([]);
+        self.tree_bodies.clear();
+        self.tree_member.clear();
+        self.hits.clear();
+        self.changed = false;
+        self.islands.clear();
+        self.pending.clear();
     }
 
     /// Whether any body sleeps or any contact is stored.

@@ -19,7 +19,10 @@ use crate::{BodyKind, PhysicsError, StepStats, World, WorldSettings};
 /// Custom [`ForceModel`](crate::ForceModel)s are code, not data: a snapshot
 /// records how many the world had, and the game adds them again after
 /// [`World::from_snapshot`].
-#[derive(Clone, Debug, PartialEq)]
+///
+/// `WorldSnapshot::default()` is the state of an empty world with default
+/// settings: a buffer for [`World::snapshot_into`] to fill.
+#[derive(Clone, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WorldSnapshot {
     pub(crate) settings: WorldSettings,
@@ -34,6 +37,15 @@ pub struct WorldSnapshot {
     pub(crate) stats: StepStats,
     pub(crate) contacts: Option<ContactState>,
     pub(crate) custom_force_models: usize,
+    /// The world (instance) and version of static bodies these statics
+    /// are a copy of, so restoring into that world as it is skips them.
+    /// Not saved: a snapshot from a file always copies them.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pub(crate) statics_source: Option<(u64, u64)>,
+    /// Made by a world in this process (its fields cannot be changed from
+    /// outside), so it needs no check; a snapshot read from a file is not.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pub(crate) made_here: bool,
 }
 
 impl WorldSnapshot {
@@ -54,6 +66,11 @@ impl WorldSnapshot {
     /// state names bodies that exist. Snapshots from files pass through
     /// this before a world is made from them.
     pub fn validate(&self) -> Result<(), PhysicsError> {
+        self.validate_with(&mut Vec::new())
+    }
+
+    /// [`validate`](Self::validate) with a scratch buffer of the caller's.
+    pub(crate) fn validate_with(&self, seen: &mut Vec<bool>) -> Result<(), PhysicsError> {
         self.settings.validate()?;
         self.check_lengths()?;
         for i in 0..self.dynamic.len() {
@@ -62,7 +79,7 @@ impl WorldSnapshot {
         for i in 0..self.statics.len() {
             self.check_static(i)?;
         }
-        self.check_slots()?;
+        self.check_slots(seen)?;
         self.check_counters()?;
         if let Some(contacts) = &self.contacts {
             contacts
@@ -155,13 +172,14 @@ impl WorldSnapshot {
     }
 
     /// Every body has a live slot, the free list names free slots once each.
-    fn check_slots(&self) -> Result<(), PhysicsError> {
+    fn check_slots(&self, seen: &mut Vec<bool>) -> Result<(), PhysicsError> {
         let bodies = self.dynamic.len() + self.statics.len();
         let live = self.slots.iter().filter(|s| s.location.is_some()).count();
         if live != bodies {
             return bad(format!("{live} live slots for {bodies} bodies"));
         }
-        let mut seen = vec![false; self.slots.len()];
+        seen.clear();
+        seen.resize(self.slots.len(), false);
         for &f in &self.free {
             let free = self
                 .slots
@@ -236,7 +254,99 @@ impl World {
             stats: self.stats(),
             contacts,
             custom_force_models: self.custom.len(),
+            statics_source: Some((self.instance.0, self.static_edits)),
+            made_here: true,
         }
+    }
+
+    /// Writes the world's whole state into `out` (see [`snapshot`](Self::snapshot)),
+    /// reusing its buffers: once `out` has held a world of this size, saving
+    /// allocates nothing. Static bodies are not copied again when `out`
+    /// already holds this world's static bodies as they are now. For
+    /// rollback, which saves every tick.
+    pub fn snapshot_into(&self, out: &mut WorldSnapshot) {
+        if let Some(cw) = &self.contacts
+            && cw.has_pending_wakes()
+        {
+            // Rare: islands woken since the last step (see `snapshot`).
+            *out = self.snapshot();
+            return;
+        }
+        out.settings = *self.settings();
+        out.slots.clone_from(&self.slots);
+        out.free.clone_from(&self.free);
+        out.dynamic.copy_from(&self.dynamic);
+        let source = Some((self.instance.0, self.static_edits));
+        if out.statics_source != source {
+            out.statics.copy_from(&self.statics);
+            out.statics_source = source;
+        }
+        out.speed_overrides = self.speed_overrides;
+        out.game_friction = self.game_friction;
+        out.shaped_dynamic = self.shaped_dynamic;
+        out.shaped_static = self.shaped_static;
+        out.stats = self.stats;
+        match (&self.contacts, &mut out.contacts) {
+            (Some(cw), Some(state)) => cw.carry_into(state),
+            (Some(cw), none) => *none = Some(cw.carried_state()),
+            (None, state) => *state = None,
+        }
+        out.custom_force_models = self.custom.len();
+        out.made_here = true;
+    }
+
+    /// Puts this world back in the state of `snapshot` (a rollback), after
+    /// checking it as [`from_snapshot`](Self::from_snapshot) does when it
+    /// was read from a file (one a world made needs no check), reusing
+    /// the world's buffers: restoring a snapshot of this world allocates
+    /// nothing once warm, and keeps the static tree when the static bodies
+    /// did not change since. Custom force models are kept. Stepping on
+    /// gives the same bits as [`restore`](Self::restore).
+    pub fn restore_from(&mut self, snapshot: &WorldSnapshot) -> Result<(), PhysicsError> {
+        // A snapshot a world made cannot have been edited; one from a file
+        // is checked.
+        if !snapshot.made_here {
+            snapshot.validate_with(&mut self.snapshot_scratch)?;
+        }
+        let same_statics = snapshot.statics_source == Some((self.instance.0, self.static_edits));
+        self.settings = snapshot.settings;
+        self.slots.clone_from(&snapshot.slots);
+        self.free.clone_from(&snapshot.free);
+        self.dynamic.copy_from(&snapshot.dynamic);
+        if !same_statics {
+            self.statics.copy_from(&snapshot.statics);
+            self.statics_dirty = true;
+        }
+        self.speed_overrides = snapshot.speed_overrides;
+        self.game_friction = snapshot.game_friction;
+        self.shaped_dynamic = snapshot.shaped_dynamic;
+        self.shaped_static = snapshot.shaped_static;
+        self.stats = snapshot.stats;
+        match (&snapshot.contacts, &mut self.contacts) {
+            (Some(state), Some(cw)) => cw.restore(state, !same_statics),
+            (Some(state), none) => *none = Some(Box::new(ContactWorld::resume(state.clone()))),
+            (None, cw) => *cw = None,
+        }
+        self.after_restore();
+        self.note_edit(!same_statics);
+        Ok(())
+    }
+
+    /// What a world derives from its arrays rather than saving: kinematic
+    /// bodies, speed limits, counts of bouncy and dropping bodies.
+    fn after_restore(&mut self) {
+        self.dynamic.find_kinematic();
+        for i in 0..self.dynamic.len() {
+            self.dynamic.limits[i] = self.resolve_limits(&self.dynamic.meta[i]);
+        }
+        self.bouncy = (self.dynamic.meta.iter())
+            .chain(&self.statics.meta)
+            .filter(|m| m.restitution > 0.0)
+            .count();
+        self.dropping = (self.dynamic.meta.iter())
+            .filter(|m| m.drop_through > 0.0)
+            .count();
+        self.may_rest = true;
     }
 
     /// A world in the state of `snapshot`, after checking it
@@ -248,26 +358,13 @@ impl World {
         world.slots = snapshot.slots;
         world.free = snapshot.free;
         world.dynamic = snapshot.dynamic;
-        world.dynamic.find_kinematic();
-        world.may_rest = true;
-        // Speed limits are derived from each body's overrides and the
-        // settings: made again, not trusted.
-        for i in 0..world.dynamic.len() {
-            world.dynamic.limits[i] = world.resolve_limits(&world.dynamic.meta[i]);
-        }
-        world.dropping = (world.dynamic.meta.iter())
-            .filter(|m| m.drop_through > 0.0)
-            .count();
         world.statics = snapshot.statics;
         world.speed_overrides = snapshot.speed_overrides;
         world.game_friction = snapshot.game_friction;
         world.shaped_dynamic = snapshot.shaped_dynamic;
         world.shaped_static = snapshot.shaped_static;
         world.stats = snapshot.stats;
-        world.bouncy = (world.dynamic.meta.iter())
-            .chain(&world.statics.meta)
-            .filter(|m| m.restitution > 0.0)
-            .count();
+        world.after_restore();
         world.statics_dirty = true;
         world.contacts = snapshot.contacts.map(|c| Box::new(ContactWorld::resume(c)));
         Ok(world)

@@ -104,6 +104,11 @@ pub struct World {
     pub(crate) static_edits: u64,
     /// Trees and contact lists for queries, built on demand.
     pub(crate) query_cache: QueryCache,
+    /// Which world this is (a clone is another), so a snapshot knows
+    /// whether its static bodies are this world's as they are now.
+    pub(crate) instance: Instance,
+    /// Scratch of snapshot checks, kept so restoring allocates nothing.
+    pub(crate) snapshot_scratch: Vec<bool>,
     /// Position corrections of the multi-stage integrators, with contacts.
     pub(crate) correction: Vec<Vec2>,
     /// Position and velocity of each kinematic body when the step began
@@ -155,6 +160,8 @@ impl World {
             edits: 0,
             static_edits: 0,
             query_cache: QueryCache::default(),
+            instance: Instance::new(),
+            snapshot_scratch: Vec::new(),
             contacts: None,
             correction: Vec::new(),
             held: Vec::new(),
@@ -585,6 +592,23 @@ impl World {
             Some(prev) if !alpha.is_nan() => prev.lerp(current, alpha.clamp(0.0, 1.0)),
             _ => current,
         }
+    }
+}
+
+/// A number no other world of this process has: a clone gets a new one.
+#[derive(Debug, PartialEq, Eq)]
+pub(crate) struct Instance(pub(crate) u64);
+
+impl Instance {
+    fn new() -> Self {
+        static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+        Self(NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+    }
+}
+
+impl Clone for Instance {
+    fn clone(&self) -> Self {
+        Self::new()
     }
 }
 

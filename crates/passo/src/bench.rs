@@ -43,6 +43,19 @@ pub enum BenchWhat {
     Extreme(ExtremeBenchArgs),
     /// A long run of a busy scene: no NaN, and no memory growth.
     Soak(SoakBenchArgs),
+    /// Saving and restoring snapshots into reused buffers, against a step.
+    Rollback(RollbackBenchArgs),
+}
+
+/// Options of `passo bench rollback`.
+#[derive(clap::Args, Debug)]
+pub struct RollbackBenchArgs {
+    /// Rain sizes, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "1000,10000", value_parser = crate::count_in(1, 1_000_000))]
+    pub rain: Vec<usize>,
+    /// Repetitions timed.
+    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub repeats: u32,
 }
 
 /// Options of `passo bench soak`.
@@ -188,6 +201,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         BenchWhat::Platforms(a) => platforms(a),
         BenchWhat::Extreme(a) => extreme(a),
         BenchWhat::Soak(a) => soak(a),
+        BenchWhat::Rollback(a) => rollback(a),
     }
 }
 
@@ -590,6 +604,60 @@ fn soak(args: &SoakBenchArgs) -> Result<()> {
         stats.non_finite_resets,
         stats.crowded_steps
     );
+    Ok(())
+}
+
+fn rollback(args: &RollbackBenchArgs) -> Result<()> {
+    println!(
+        "| bodies | save, µs | load, µs | step, µs | save + load / step | rollback of 8 ticks, ms |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|");
+    for &n in &args.rain {
+        let mut world = rain_world(n);
+        world.set_parallel(false);
+        // Half a second in: the rain falls, awake, in contact.
+        for _ in 0..30 {
+            world.step(1.0 / 60.0);
+        }
+        let mut saved = passo_physics::WorldSnapshot::default();
+        world.snapshot_into(&mut saved);
+        world.restore_from(&saved)?;
+        let reps = args.repeats;
+        let time = |f: &mut dyn FnMut()| {
+            let start = Instant::now();
+            for _ in 0..reps {
+                f();
+            }
+            start.elapsed().as_secs_f64() * 1e6 / f64::from(reps)
+        };
+        let save = time(&mut || world.snapshot_into(&mut saved));
+        let mut result = Ok(());
+        let load = time(&mut || {
+            if let Err(e) = world.restore_from(&saved) {
+                result = Err(e);
+            }
+        });
+        result?;
+        // A step from the saved state, restored each time.
+        let mut step_sum = 0.0;
+        for _ in 0..reps.min(50) {
+            world.restore_from(&saved)?;
+            let start = Instant::now();
+            world.step(1.0 / 60.0);
+            step_sum += start.elapsed().as_secs_f64() * 1e6;
+        }
+        let step = step_sum / f64::from(reps.min(50));
+        let start = Instant::now();
+        world.restore_from(&saved)?;
+        for _ in 0..8 {
+            world.step(1.0 / 60.0);
+        }
+        let roll = start.elapsed().as_secs_f64() * 1e3;
+        println!(
+            "| {n} | {save:.1} | {load:.1} | {step:.0} | {:.1} % | {roll:.2} |",
+            (save + load) / step * 100.0
+        );
+    }
     Ok(())
 }
 
