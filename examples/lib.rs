@@ -1,1 +1,4 @@
 //! Examples of Passo; run one with `cargo run -p passo-examples --example NAME`.
+#![warn(missing_docs)]
+
+pub mod netplay;

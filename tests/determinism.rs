@@ -21,7 +21,7 @@ const EXPECTED_AWAKE: u64 = 0xa76a_ebcf_6b7c_0b7e;
 /// The busy scene with moving, one-way and plain platforms above it (see
 /// `with_platforms`). Added with kinematic bodies and one-way platforms;
 /// the two constants above stay valid for scenes without them.
-const EXPECTED_PLATFORMS: u64 = 0xeaa4_929e_30bb_db46;
+const EXPECTED_PLATFORMS: u64 = 0x580f_c622_34fe_58be;
 const TICKS: usize = 300;
 
 /// Rain (2 000 circles in a box) with a pyramid of boxes beside it and a

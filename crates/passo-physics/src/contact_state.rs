@@ -23,6 +23,15 @@ pub(crate) struct ContactState {
     /// The rest of each sleeping contact.
     #[cfg_attr(feature = "serde", serde(default))]
     pub asleep_infos: Vec<ContactInfo>,
+    /// Contacts with an awake body, as the last step solved them, sorted
+    /// by pair: not needed to step on, but queries after a restore
+    /// ([`World::contacts_of`](crate::World::contacts_of), `is_standing`)
+    /// answer what they answered when the state was saved.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub awake: Vec<Constraint>,
+    /// The rest of each awake contact.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub awake_infos: Vec<ContactInfo>,
 }
 
 impl ContactState {
@@ -31,6 +40,14 @@ impl ContactState {
         ContactList {
             rows: self.asleep.clone(),
             infos: self.asleep_infos.clone(),
+        }
+    }
+
+    /// The awake contacts as a list.
+    pub(crate) fn awake(&self) -> ContactList {
+        ContactList {
+            rows: self.awake.clone(),
+            infos: self.awake_infos.clone(),
         }
     }
 
@@ -43,52 +60,90 @@ impl ContactState {
         dynamic: &DynamicBodies,
         statics: &StaticBodies,
     ) -> Result<(), String> {
-        if self.asleep.len() != self.asleep_infos.len() {
-            return Err("sleeping contact lists of different lengths".into());
-        }
-        if !self.asleep_infos.is_sorted_by_key(ContactInfo::key) {
-            return Err("sleeping contacts out of order".into());
-        }
         if let Some(c) = self.cache.iter().find(|c| !c.is_valid()) {
             return Err(format!(
                 "carried impulses of {:?} are not finite or negative",
                 c.key()
             ));
         }
-        let bodies = Colliders { dynamic, statics };
-        let sleeping = |r: ColliderRef| {
-            r.dynamic_index()
-                .is_none_or(|i| dynamic.sleep.get(i).is_some_and(|s| s.is_asleep()))
-        };
-        let id = |r: ColliderRef| {
-            bodies
-                .get_meta(r)
-                .filter(|m| m.shape.is_some())
-                .map(|m| m.id)
-        };
-        for (c, info) in self.asleep.iter().zip(&self.asleep_infos) {
-            // Body A is dynamic; a damaged index may not even fit a reference.
-            let a_sleeps = dynamic
-                .sleep
-                .get(c.a as usize)
-                .is_some_and(|s| s.is_asleep());
-            let ia = dynamic
-                .meta
-                .get(c.a as usize)
-                .filter(|m| m.shape.is_some())
-                .map(|m| m.id);
-            let ib = id(c.b);
-            let named = ia.is_some()
-                && ib.is_some()
-                && (ia == Some(info.id_a) && ib == Some(info.id_b)
-                    || ia == Some(info.id_b) && ib == Some(info.id_a));
-            if !(named && a_sleeps && sleeping(c.b) && c.is_valid()) {
-                return Err(format!(
-                    "sleeping contact {:?}-{:?} is inconsistent with the bodies",
-                    info.id_a, info.id_b
-                ));
-            }
-        }
+        check_list(
+            "sleeping",
+            &self.asleep,
+            &self.asleep_infos,
+            true,
+            dynamic,
+            statics,
+        )?;
+        check_list(
+            "awake",
+            &self.awake,
+            &self.awake_infos,
+            false,
+            dynamic,
+            statics,
+        )?;
         Ok(())
     }
+}
+
+/// Checks a list of carried contacts: as long as its infos, in key order,
+/// each naming existing shaped bodies (body A dynamic) with finite values;
+/// with `asleep`, both bodies sleep (or B is static).
+fn check_list(
+    what: &str,
+    rows: &[Constraint],
+    infos: &[ContactInfo],
+    asleep: bool,
+    dynamic: &DynamicBodies,
+    statics: &StaticBodies,
+) -> Result<(), String> {
+    if rows.len() != infos.len() {
+        return Err(format!("{what} contact lists of different lengths"));
+    }
+    if !infos.is_sorted_by_key(ContactInfo::key) {
+        return Err(format!("{what} contacts out of order"));
+    }
+    let sleeping = |r: ColliderRef| {
+        r.dynamic_index()
+            .is_none_or(|i| dynamic.sleep.get(i).is_some_and(|s| s.is_asleep()))
+    };
+    for (c, info) in rows.iter().zip(infos) {
+        let a_sleeps = dynamic
+            .sleep
+            .get(c.a as usize)
+            .is_some_and(|s| s.is_asleep());
+        let sleep_ok = !asleep || a_sleeps && sleeping(c.b);
+        if !(names_bodies(c, info, dynamic, statics) && sleep_ok && c.is_valid()) {
+            return Err(format!(
+                "{what} contact {:?}-{:?} is inconsistent with the bodies",
+                info.id_a, info.id_b
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether a contact's bodies (by index, body A dynamic) are the shaped
+/// bodies its info names. Not so once one was removed, or moved by a
+/// removal, since the step; a damaged index may not even fit a reference.
+pub(crate) fn names_bodies(
+    c: &Constraint,
+    info: &ContactInfo,
+    dynamic: &DynamicBodies,
+    statics: &StaticBodies,
+) -> bool {
+    let bodies = Colliders { dynamic, statics };
+    let ia = dynamic
+        .meta
+        .get(c.a as usize)
+        .filter(|m| m.shape.is_some())
+        .map(|m| m.id);
+    let ib = bodies
+        .get_meta(c.b)
+        .filter(|m| m.shape.is_some())
+        .map(|m| m.id);
+    ia.is_some()
+        && ib.is_some()
+        && (ia == Some(info.id_a) && ib == Some(info.id_b)
+            || ia == Some(info.id_b) && ib == Some(info.id_a))
 }

@@ -6,7 +6,7 @@
 use crate::bodies::{Colliders, DynamicBodies, StaticBodies};
 use crate::collider::ColliderRef;
 use crate::constraint::{Constraint, ContactInfo, ContactList, Merge};
-use crate::contact_state::ContactState;
+use crate::contact_state::{ContactState, names_bodies};
 use crate::events::EventTracker;
 use crate::narrow_phase::{Narrow, NarrowPhase, Outcome};
 use crate::proxies::{Proxies, ProxyMargin};
@@ -332,24 +332,51 @@ impl ContactWorld {
     /// What the next step needs from the last one: warm-start impulses,
     /// who touched whom (for begin and end events) and the stored contacts
     /// of sleeping islands.
-    pub(crate) fn carried_state(&self) -> ContactState {
-        ContactState {
+    pub(crate) fn carried_state(
+        &self,
+        dynamic: &DynamicBodies,
+        statics: &StaticBodies,
+    ) -> ContactState {
+        let mut state = ContactState {
             cache: self.events.cache.clone(),
             touching: self.events.touching_prev.clone(),
             sensors: self.events.sensors_prev.clone(),
             asleep: self.sleeping.list.rows.clone(),
             asleep_infos: self.sleeping.list.infos.clone(),
+            awake: Vec::new(),
+            awake_infos: Vec::new(),
+        };
+        self.carry_awake(dynamic, statics, &mut state);
+        state
+    }
+
+    /// The awake contacts into `out`, but those of bodies removed (or
+    /// moved by a removal) since the step.
+    fn carry_awake(&self, dynamic: &DynamicBodies, statics: &StaticBodies, out: &mut ContactState) {
+        out.awake.clear();
+        out.awake_infos.clear();
+        for (c, info) in self.solved.iter() {
+            if names_bodies(c, info, dynamic, statics) {
+                out.awake.push(*c);
+                out.awake_infos.push(*info);
+            }
         }
     }
 
     /// Writes what [`carried_state`](Self::carried_state) returns into
     /// `out`, reusing its buffers.
-    pub(crate) fn carry_into(&self, out: &mut ContactState) {
+    pub(crate) fn carry_into(
+        &self,
+        dynamic: &DynamicBodies,
+        statics: &StaticBodies,
+        out: &mut ContactState,
+    ) {
         out.cache.clone_from(&self.events.cache);
         out.touching.clone_from(&self.events.touching_prev);
         out.sensors.clone_from(&self.events.sensors_prev);
         out.asleep.clone_from(&self.sleeping.list.rows);
         out.asleep_infos.clone_from(&self.sleeping.list.infos);
+        self.carry_awake(dynamic, statics, out);
     }
 
     /// Puts this contact stage in the state [`resume`](Self::resume) would
@@ -359,7 +386,8 @@ impl ContactWorld {
         if statics_changed {
             self.proxies.statics_changed();
         }
-        self.solved.clear();
+        self.solved.rows.clone_from(&state.awake);
+        self.solved.infos.clone_from(&state.awake_infos);
         self.narrow.sensor_candidates.clear();
         self.sleeping.restore(&state.asleep, &state.asleep_infos);
         self.events.cache.clone_from(&state.cache);
@@ -374,6 +402,7 @@ impl ContactWorld {
     pub(crate) fn resume(state: ContactState) -> Self {
         let mut world = Self::new();
         world.sleeping = SleepingContacts::resume(state.sleeping());
+        world.solved = state.awake();
         world.events.cache = state.cache;
         world.events.touching_prev = state.touching;
         world.events.sensors_prev = state.sensors;

@@ -34,10 +34,6 @@ use std::collections::HashSet;
 /// allocation once a world has slept.
 const PENDING_ROOM: usize = 64;
 
-/// Sleeping bodies outside the sleep tree that trigger its rebuild, at the
-/// least (below it they are simply binned with the awake ones).
-const SLEEP_TREE_MIN: usize = 64;
-
 /// The sleeping side of the contact stage: the stored contacts of sleeping
 /// islands, the tree that finds sleeping bodies an awake one reaches, and
 /// the island bookkeeping. Kept between steps.
@@ -48,7 +44,7 @@ pub(crate) struct SleepingContacts {
     pub list: ContactList,
     /// Room for merging contacts, kept between steps.
     scratch: ContactList,
-    /// Sleeping bodies, in a tree rebuilt only now and then (see
+    /// Sleeping bodies, in a tree rebuilt when one falls asleep (see
     /// `update_tree`); items are `tree_bodies` entries.
     tree: StaticTree,
     /// Dynamic index per sleep-tree item (`NO_PROXY` once removed).
@@ -57,8 +53,8 @@ pub(crate) struct SleepingContacts {
     tree_member: Vec<bool>,
     /// Sleeping bodies one proxy reaches (scratch).
     hits: Vec<u32>,
-    /// Some body fell asleep or woke since the sleep tree last looked.
-    changed: bool,
+    /// Entries of the tree whose bodies woke (and left) since it was built.
+    left: usize,
     /// Island bookkeeping.
     islands: Islands,
     /// Islands game code woke since the last step (by their id): they wake
@@ -90,7 +86,7 @@ impl SleepingContacts {
         self.tree_bodies.clear();
         self.tree_member.clear();
         self.hits.clear();
-        self.changed = false;
+        self.left = 0;
         self.islands.clear();
         self.pending.clear();
     }
@@ -117,31 +113,44 @@ impl SleepingContacts {
         self.tree_member.resize(dynamic.len(), false);
         if any_asleep {
             self.update_tree(dynamic, margin);
+        } else if !self.tree_bodies.is_empty() {
+            // Nobody sleeps: every member woke. Forget them now, or one
+            // falling asleep elsewhere later would be looked for at its old
+            // box.
+            self.tree.rebuild([]);
+            self.tree_bodies.clear();
+            self.tree_member.fill(false);
+            self.left = 0;
         }
     }
 
-    /// Rebuilds the sleep tree over every sleeping shaped body when enough
-    /// sleeping bodies are missing from it (they are binned each step until
-    /// then) or enough of its bodies woke (they are skipped until then):
-    /// a tree build costs `O(n log n)`, so it waits for a quarter of the
-    /// tree's size to change.
+    /// Rebuilds the sleep tree over every sleeping shaped body when one is
+    /// missing from it (it fell asleep since the last build) or half of its
+    /// entries woke. Members that woke leave at once (their entries are
+    /// skipped). So the tree holds exactly the sleeping bodies, at the
+    /// places they sleep: what it finds depends on the bodies alone, never
+    /// on when it was built, and a world restored from a snapshot (which
+    /// builds it afresh) steps as the original does. Islands fall asleep
+    /// seldom, so the `O(n log n)` builds are rare.
     fn update_tree(&mut self, dynamic: &DynamicBodies, margin: &ProxyMargin) {
-        let (mut missing, mut woke) = (0, 0);
+        let mut missing = 0;
         for (i, s) in dynamic.sleep.iter().enumerate() {
             let shaped = dynamic.meta[i].shape.is_some();
             missing += usize::from(shaped && s.is_asleep() && !self.tree_member[i]);
-            woke += usize::from(self.tree_member[i] && !s.is_asleep());
+            // A member that woke leaves at once (its entry is skipped until
+            // the next build): should it fall asleep again elsewhere, it is
+            // missing, never found at its old box.
+            if self.tree_member[i] && !s.is_asleep() {
+                self.tree_member[i] = false;
+                self.left += 1;
+            }
         }
-        // A quiet step (nobody fell asleep or woke in the last one) takes
-        // in the stragglers, so a settled world bins nothing.
-        let quiet = !std::mem::take(&mut self.changed);
-        let size = self.tree.len();
-        let stragglers = missing > 0 && quiet;
-        if !stragglers && missing < (size / 4).max(SLEEP_TREE_MIN) && 2 * woke <= size {
+        if missing == 0 && 2 * self.left <= self.tree.len() {
             return;
         }
         self.tree_member.fill(false);
         self.tree_bodies.clear();
+        self.left = 0;
         // Room for every body: later rebuilds allocate nothing.
         let n = dynamic.len();
         self.tree_bodies.reserve(n);
@@ -168,9 +177,11 @@ impl SleepingContacts {
     pub(crate) fn reached(&mut self, aabb: &Aabb, dynamic: &DynamicBodies) -> &[u32] {
         self.hits.clear();
         let (hits, bodies) = (&mut self.hits, &self.tree_bodies);
+        let member = &self.tree_member;
         self.tree.query(aabb, |item| {
             let body = bodies[item as usize];
-            if body != NO_PROXY && dynamic.sleep[body as usize].is_asleep() {
+            let b = body as usize;
+            if body != NO_PROXY && member[b] && dynamic.sleep[b].is_asleep() {
                 hits.push(body);
             }
         });
@@ -209,7 +220,6 @@ impl SleepingContacts {
             .islands
             .fall_asleep(dynamic, &solved.rows, &solved.infos)
         {
-            self.changed = true;
             self.store(solved, dynamic);
         }
     }
@@ -244,7 +254,6 @@ impl SleepingContacts {
     /// (see [`drop_awake`](Self::drop_awake)).
     pub(crate) fn wake_marked_islands(&mut self, dynamic: &mut DynamicBodies) {
         self.islands.wake_marked(dynamic);
-        self.changed = true;
     }
 
     /// Wakes the marked islands and forgets their stored contacts.
@@ -295,7 +304,7 @@ impl SleepingContacts {
         self.tree.rebuild([]);
         self.tree_bodies.clear();
         self.tree_member.fill(false);
-        self.changed = true;
+        self.left = 0;
     }
 
     /// Dynamic body `from` (the last one) now sits at index `to`: a removal

@@ -22,7 +22,10 @@ use crate::{BodyKind, PhysicsError, StepStats, World, WorldSettings};
 ///
 /// `WorldSnapshot::default()` is the state of an empty world with default
 /// settings: a buffer for [`World::snapshot_into`] to fill.
-#[derive(Clone, Debug, Default, PartialEq)]
+///
+/// Two snapshots are equal when they hold the same state, wherever they
+/// came from (a world, a file).
+#[derive(Clone, Debug, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WorldSnapshot {
     pub(crate) settings: WorldSettings,
@@ -46,6 +49,25 @@ pub struct WorldSnapshot {
     /// outside), so it needs no check; a snapshot read from a file is not.
     #[cfg_attr(feature = "serde", serde(skip))]
     pub(crate) made_here: bool,
+}
+
+impl PartialEq for WorldSnapshot {
+    fn eq(&self, other: &Self) -> bool {
+        // Where the snapshot came from (`statics_source`, `made_here`) is
+        // not state.
+        self.settings == other.settings
+            && self.slots == other.slots
+            && self.free == other.free
+            && self.dynamic == other.dynamic
+            && self.statics == other.statics
+            && self.speed_overrides == other.speed_overrides
+            && self.game_friction == other.game_friction
+            && self.shaped_dynamic == other.shaped_dynamic
+            && self.shaped_static == other.shaped_static
+            && self.stats == other.stats
+            && self.contacts == other.contacts
+            && self.custom_force_models == other.custom_force_models
+    }
 }
 
 impl WorldSnapshot {
@@ -231,7 +253,8 @@ impl World {
     /// The world's whole state (see [`WorldSnapshot`]).
     pub fn snapshot(&self) -> WorldSnapshot {
         let mut dynamic = self.dynamic.clone();
-        let mut contacts = self.contacts.as_ref().map(|c| c.carried_state());
+        let mut contacts =
+            (self.contacts.as_ref()).map(|c| c.carried_state(&self.dynamic, &self.statics));
         // Islands game code woke since the last step wake in the copy, as
         // they will in this world when it next steps.
         if let Some(cw) = &self.contacts
@@ -239,7 +262,7 @@ impl World {
         {
             let mut copy = cw.clone();
             copy.flush_wakes(&mut dynamic);
-            contacts = Some(copy.carried_state());
+            contacts = Some(copy.carried_state(&dynamic, &self.statics));
         }
         WorldSnapshot {
             settings: *self.settings(),
@@ -287,8 +310,8 @@ impl World {
         out.shaped_static = self.shaped_static;
         out.stats = self.stats;
         match (&self.contacts, &mut out.contacts) {
-            (Some(cw), Some(state)) => cw.carry_into(state),
-            (Some(cw), none) => *none = Some(cw.carried_state()),
+            (Some(cw), Some(state)) => cw.carry_into(&self.dynamic, &self.statics, state),
+            (Some(cw), none) => *none = Some(cw.carried_state(&self.dynamic, &self.statics)),
             (None, state) => *state = None,
         }
         out.custom_force_models = self.custom.len();

@@ -1,0 +1,324 @@
+//! Rollback netplay with GGRS: a two-player game on Passo whose state is a
+//! world snapshot and a tick, and the GGRS glue that saves, loads and
+//! advances it. GGRS asks for a save every frame, and on a rollback for a
+//! load and several advances within the frame, so the game keeps no state
+//! outside what it saves, and every advance depends only on the state and
+//! the inputs.
+
+use ggrs::{
+    Config, DesyncDetection, GgrsError, GgrsEvent, GgrsRequest, P2PSession, PlayerType,
+    PredictRepeatLast, SessionBuilder, SessionState, UdpNonBlockingSocket,
+};
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, BodyId, Shape, StateHasher, World, WorldSnapshot};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+/// One player's input for a tick: bit 0 left, bit 1 right, bit 2 jump.
+pub type Input = u8;
+
+/// The GGRS configuration of the game.
+pub struct Netplay;
+
+impl Config for Netplay {
+    type Input = Input;
+    type InputPredictor = PredictRepeatLast;
+    /// What a save holds: the world and the game's tick.
+    type State = (WorldSnapshot, u64);
+    type Address = std::net::SocketAddr;
+}
+
+/// The game: a world with a ground, two player boxes, a pile of crates and
+/// a moving platform, and the tick it is at.
+pub struct Game {
+    /// The physics.
+    pub world: World,
+    /// The two players' bodies.
+    pub players: [BodyId; 2],
+    /// The platform, moved along a path by the tick.
+    pub platform: BodyId,
+    /// Ticks simulated.
+    pub tick: u64,
+}
+
+/// The fixed step, seconds.
+pub const DT: f32 = 1.0 / 60.0;
+
+impl Game {
+    /// The game at tick 0.
+    pub fn new() -> Self {
+        let mut world = World::default();
+        world
+            .add_body(BodyDef::new_static(
+                Vec2::new(0.0, -0.5),
+                Shape::rect(30.0, 1.0),
+            ))
+            .expect("valid ground");
+        for x in [-15.5, 15.5] {
+            world
+                .add_body(BodyDef::new_static(
+                    Vec2::new(x, 5.0),
+                    Shape::rect(1.0, 12.0),
+                ))
+                .expect("valid wall");
+        }
+        let players = [-6.0, 6.0].map(|x| {
+            world
+                .add_body(
+                    BodyDef::new_dynamic(Vec2::new(x, 0.8), Shape::rect(0.8, 1.6))
+                        .with_mass(70.0)
+                        .with_friction(0.8),
+                )
+                .expect("valid player")
+        });
+        for i in 0..12 {
+            let p = Vec2::new((i % 4) as f32 * 1.05 - 1.5, 0.5 + (i / 4) as f32);
+            world
+                .add_body(BodyDef::new_dynamic(p, Shape::rect(1.0, 1.0)).with_mass(10.0))
+                .expect("valid crate");
+        }
+        let platform = world
+            .add_body(
+                BodyDef::new_kinematic(Vec2::new(0.0, 4.0), Shape::rect(3.0, 0.3), Vec2::ZERO)
+                    .with_one_way(Vec2::Y),
+            )
+            .expect("valid platform");
+        Self {
+            world,
+            players,
+            platform,
+            tick: 0,
+        }
+    }
+
+    /// One tick with both players' inputs.
+    pub fn advance(&mut self, inputs: [Input; 2]) {
+        for (&player, input) in self.players.iter().zip(inputs) {
+            let left = f32::from(input & 1);
+            let right = f32::from((input >> 1) & 1);
+            self.world
+                .apply_force(player, Vec2::new((right - left) * 1500.0, 0.0));
+            if input & 4 != 0 && self.world.is_standing(player, 0.8) {
+                self.world.apply_impulse(player, Vec2::new(0.0, 70.0 * 6.0));
+            }
+        }
+        // The platform swings on a 4-second triangle wave.
+        let phase = ((self.tick + 1) % 240) as f32 / 240.0;
+        let x = 6.0 * (1.0 - 2.0 * (2.0 * phase - 1.0).abs());
+        self.world
+            .set_kinematic_target(self.platform, Vec2::new(x, 4.0), DT);
+        self.world.step(DT);
+        self.tick += 1;
+    }
+
+    /// A checksum of the whole game state, without allocating.
+    pub fn checksum(&self) -> u128 {
+        let mut h = StateHasher::new();
+        h.write_u64(self.world.state_hash());
+        h.write_u64(self.tick);
+        u128::from(h.finish())
+    }
+
+    /// Carries out GGRS's requests in order.
+    pub fn handle(&mut self, requests: Vec<GgrsRequest<Netplay>>) -> Result<(), String> {
+        requests.into_iter().try_for_each(|r| self.handle_one(r))
+    }
+
+    /// Carries out one GGRS request: save, load or advance.
+    pub fn handle_one(&mut self, request: GgrsRequest<Netplay>) -> Result<(), String> {
+        match request {
+            GgrsRequest::SaveGameState { cell, frame } => {
+                let state = (self.world.snapshot(), self.tick);
+                cell.save(frame, Some(state), Some(self.checksum()));
+            }
+            GgrsRequest::LoadGameState { cell, .. } => {
+                let (snapshot, tick) = cell.load().ok_or("GGRS loaded an empty cell")?;
+                self.world
+                    .restore_from(&snapshot)
+                    .map_err(|e| e.to_string())?;
+                self.tick = tick;
+            }
+            GgrsRequest::AdvanceFrame { inputs } => self.advance([inputs[0].0, inputs[1].0]),
+        }
+        Ok(())
+    }
+}
+
+impl Default for Game {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Player `player`'s scripted input at `frame`: walking, turning, jumping.
+pub fn scripted_input(player: usize, frame: u64) -> Input {
+    let phase = (frame / 40 + player as u64 * 3) % 6;
+    let walk = match phase {
+        0 | 1 => 2, // right
+        3 | 4 => 1, // left
+        _ => 0,
+    };
+    let jump = if (frame + player as u64 * 17).is_multiple_of(55) {
+        4
+    } else {
+        0
+    };
+    walk | jump
+}
+
+/// A force model that is not deterministic: it reads a counter that grows
+/// with every call, so a re-simulated tick pushes differently. For showing
+/// that the sync test catches such a bug.
+pub struct Nondeterministic(pub AtomicU64);
+
+impl passo_physics::ForceModel for Nondeterministic {
+    fn force(&self, _: Vec2, _: Vec2, _: f32) -> Vec2 {
+        let n = self.0.fetch_add(1, Ordering::Relaxed);
+        // Scrambled, so no rollback distance repeats the pattern.
+        let bits = n.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 60;
+        Vec2::new(bits as f32 * 0.01, 0.0)
+    }
+}
+
+/// Runs a GGRS sync test of `frames` frames: every frame GGRS saves, rolls
+/// back `check_distance` frames and simulates them again, comparing
+/// checksums. Returns the final checksum, or GGRS's error (a checksum
+/// mismatch when the game is not deterministic). With `broken`, the game
+/// gets a [`Nondeterministic`] force model.
+pub fn sync_test(frames: u64, check_distance: usize, broken: bool) -> Result<u128, GgrsError> {
+    let mut game = Game::new();
+    if broken {
+        game.world
+            .add_force_model(Arc::new(Nondeterministic(AtomicU64::new(0))));
+    }
+    let mut session = SessionBuilder::<Netplay>::new()
+        .with_num_players(2)?
+        .with_check_distance(check_distance)
+        .start_synctest_session()?;
+    for frame in 0..frames {
+        for player in 0..2 {
+            session.add_local_input(player, scripted_input(player, frame))?;
+        }
+        let requests = session.advance_frame()?;
+        game.handle(requests)
+            .map_err(|info| GgrsError::InvalidRequest { info })?;
+    }
+    Ok(game.checksum())
+}
+
+/// The same inputs run straight, with no rollback: the reference a sync
+/// test and networked peers must reach.
+pub fn straight_run(frames: u64) -> u128 {
+    straight_checksums(frames)
+        .last()
+        .copied()
+        .unwrap_or_else(|| Game::new().checksum())
+}
+
+/// The checksum after each tick of a straight run (`[t]` after `t + 1`
+/// ticks).
+pub fn straight_checksums(frames: u64) -> Vec<u128> {
+    let mut game = Game::new();
+    (0..frames)
+        .map(|frame| {
+            game.advance([scripted_input(0, frame), scripted_input(1, frame)]);
+            game.checksum()
+        })
+        .collect()
+}
+
+/// What one peer of [`p2p_loopback`] saw.
+#[derive(Debug, Default)]
+pub struct PeerReport {
+    /// The checksum after each tick (`[t]` after `t + 1` ticks), as it
+    /// stood at the end: a tick simulated again after a rollback
+    /// overwrites its first checksum.
+    pub checksums: Vec<u128>,
+    /// Rollbacks: GGRS loaded a saved state.
+    pub rollbacks: usize,
+    /// Desyncs GGRS reported (checksums the peers exchanged that differ).
+    pub desyncs: usize,
+}
+
+/// Two peers in this process, each a GGRS peer-to-peer session on its own
+/// UDP port of the loopback interface with one local player, play
+/// `frames` frames of scripted input, exchanging inputs and (every ten
+/// frames) checksums. They advance in turn, each before it has the other's
+/// input for the frame, so GGRS predicts and rolls back. Returns each
+/// peer's report once both have confirmed `frames` frames.
+pub fn p2p_loopback(frames: u64) -> Result<[PeerReport; 2], String> {
+    let ports = [free_port()?, free_port()?];
+    let mut sessions = Vec::new();
+    for me in 0..2 {
+        let other = 1 - me;
+        let remote = std::net::SocketAddr::from(([127, 0, 0, 1], ports[other]));
+        let socket = UdpNonBlockingSocket::bind_to_port(ports[me]).map_err(|e| e.to_string())?;
+        let session = SessionBuilder::<Netplay>::new()
+            .with_num_players(2)
+            .and_then(|b| b.add_player(PlayerType::Local, me))
+            .and_then(|b| b.add_player(PlayerType::Remote(remote), other))
+            .map(|b| b.with_desync_detection_mode(DesyncDetection::On { interval: 10 }))
+            .and_then(|b| b.start_p2p_session(socket))
+            .map_err(|e| e.to_string())?;
+        sessions.push(session);
+    }
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while sessions
+        .iter()
+        .any(|s| s.current_state() != SessionState::Running)
+    {
+        sessions.iter_mut().for_each(|s| s.poll_remote_clients());
+        if Instant::now() > deadline {
+            return Err("the peers did not connect within 30 s".into());
+        }
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    let mut games = [Game::new(), Game::new()];
+    let mut reports = [PeerReport::default(), PeerReport::default()];
+    let confirmed = |s: &P2PSession<Netplay>| u64::try_from(s.confirmed_frame()).unwrap_or(0);
+    while sessions.iter().any(|s| confirmed(s) < frames) {
+        if Instant::now() > deadline {
+            return Err("the peers did not confirm every frame within 30 s".into());
+        }
+        for me in 0..2 {
+            let session = &mut sessions[me];
+            session.poll_remote_clients();
+            for event in session.events() {
+                if let GgrsEvent::DesyncDetected { .. } = event {
+                    reports[me].desyncs += 1;
+                }
+            }
+            let frame = u64::try_from(session.current_frame()).unwrap_or(0);
+            session
+                .add_local_input(me, scripted_input(me, frame))
+                .map_err(|e| e.to_string())?;
+            let requests = match session.advance_frame() {
+                Ok(requests) => requests,
+                // Too far ahead of the other peer: wait for its inputs.
+                Err(GgrsError::PredictionThreshold) => continue,
+                Err(e) => return Err(e.to_string()),
+            };
+            for request in requests {
+                let advance = matches!(request, GgrsRequest::AdvanceFrame { .. });
+                reports[me].rollbacks +=
+                    usize::from(matches!(request, GgrsRequest::LoadGameState { .. }));
+                games[me].handle_one(request)?;
+                if advance {
+                    let t = games[me].tick as usize;
+                    let checksums = &mut reports[me].checksums;
+                    checksums.resize(checksums.len().max(t), 0);
+                    checksums[t - 1] = games[me].checksum();
+                }
+            }
+        }
+        std::thread::sleep(Duration::from_micros(200));
+    }
+    Ok(reports)
+}
+
+/// A UDP port of the loopback interface that is free now.
+fn free_port() -> Result<u16, String> {
+    let socket = std::net::UdpSocket::bind(("127.0.0.1", 0)).map_err(|e| e.to_string())?;
+    Ok(socket.local_addr().map_err(|e| e.to_string())?.port())
+}

@@ -1,0 +1,83 @@
+//! Rollback netplay through GGRS: the example game of `passo-examples`
+//! survives GGRS's sync test (save every frame, roll back, simulate again,
+//! compare checksums), ends where a straight run ends, and a force model
+//! that is not deterministic is caught; two peer-to-peer sessions over the
+//! loopback interface roll back and agree, tick by tick, with a straight
+//! run.
+
+use ggrs::GgrsError;
+use passo_examples::netplay::{
+    Game, p2p_loopback, scripted_input, straight_checksums, straight_run, sync_test,
+};
+
+#[test]
+fn the_sync_test_passes_and_ends_where_a_straight_run_ends() {
+    let frames = 600;
+    let synced = sync_test(frames, 7, false).expect("no checksum mismatch");
+    assert_eq!(synced, straight_run(frames));
+}
+
+#[test]
+fn a_force_model_that_is_not_deterministic_is_caught() {
+    match sync_test(60, 7, true) {
+        Err(GgrsError::MismatchedChecksum { .. }) => {}
+        other => panic!("expected a checksum mismatch, got {other:?}"),
+    }
+}
+
+#[test]
+fn queries_after_a_load_answer_as_when_the_state_was_saved() {
+    // The game decides jumps with `is_standing`, which reads the contacts
+    // of the last step: a load must bring them back.
+    let mut game = Game::new();
+    let mut saved = None;
+    for frame in 0..400 {
+        game.advance([scripted_input(0, frame), scripted_input(1, frame)]);
+        if frame == 300 {
+            saved = Some((game.world.snapshot(), game.tick));
+        }
+    }
+    let (snapshot, tick) = saved.unwrap();
+    let mut original = Game::new();
+    for frame in 0..=300 {
+        original.advance([scripted_input(0, frame), scripted_input(1, frame)]);
+    }
+    game.world.restore_from(&snapshot).unwrap();
+    game.tick = tick;
+    for &player in &game.players {
+        assert_eq!(
+            game.world.contacts_of(player).collect::<Vec<_>>(),
+            original.world.contacts_of(player).collect::<Vec<_>>()
+        );
+        assert_eq!(
+            game.world.is_standing(player, 0.8),
+            original.world.is_standing(player, 0.8)
+        );
+    }
+    assert!(
+        game.players
+            .iter()
+            .any(|&p| game.world.contacts_of(p).next().is_some()),
+        "a player touches something at frame 300"
+    );
+}
+
+#[test]
+fn two_peers_over_loopback_agree_with_a_straight_run_tick_by_tick() {
+    let frames = 300;
+    let reports = p2p_loopback(frames).expect("the peers play");
+    let straight = straight_checksums(frames);
+    for (peer, report) in reports.iter().enumerate() {
+        assert_eq!(
+            &report.checksums[..frames as usize],
+            &straight[..],
+            "peer {peer} differs from the straight run"
+        );
+        assert_eq!(report.desyncs, 0, "peer {peer} saw a desync");
+    }
+    assert!(
+        reports.iter().any(|r| r.rollbacks > 0),
+        "the peers predicted and rolled back: {:?}",
+        reports.iter().map(|r| r.rollbacks).collect::<Vec<_>>()
+    );
+}
