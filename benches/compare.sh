@@ -6,6 +6,8 @@
 # within one run of this script only.
 #
 #   bash benches/compare.sh OLD_COMMIT [NEW_COMMIT (default: the working tree)] [ROUNDS]
+#
+# WHAT picks the probes (default: integration rain pyramid sleep settle rays).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 old="${1:?usage: compare.sh OLD_COMMIT [NEW_COMMIT] [ROUNDS]}"
@@ -45,7 +47,7 @@ done
 
 for round in $(seq "$rounds"); do
     for side in old new; do
-        for what in integration rain pyramid sleep rays; do
+        for what in ${WHAT:-integration rain pyramid sleep settle rays}; do
             "$work/target-$side/release/steps-$side" "$what" | sed "s/^/$side round $round: /"
         done
     done

@@ -115,8 +115,22 @@ fn main() {
                 ms_per_step(w, 900, 300)
             );
         }
+        "settle" => {
+            // Sleeping on, while the rain lands and islands fall asleep
+            // one after another (sleep bookkeeping at its busiest).
+            let w = rain_world(10_000);
+            println!(
+                "rain 10000 settling, sleeping on (ticks 60-900): {:.3} ms/step",
+                ms_per_step(w, 60, 840)
+            );
+            let w = pyramid_world(50);
+            println!(
+                "pyramid 50 settling, sleeping on (ticks 0-300): {:.3} ms/step",
+                ms_per_step(w, 0, 300)
+            );
+        }
         _ => {
-            eprintln!("usage: steps integration|rain|pyramid|sleep|rays");
+            eprintln!("usage: steps integration|rain|pyramid|sleep|settle|rays");
             std::process::exit(2);
         }
     }

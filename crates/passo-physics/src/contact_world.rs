@@ -12,7 +12,7 @@ use crate::narrow_phase::{Narrow, NarrowPhase, Outcome};
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::sleeping::{SleepingContacts, has_awake_body};
 use crate::solver::Motion;
-use crate::{ContactEvents, ContactSettings, SensorPair};
+use crate::{BodyId, ContactEvents, ContactSettings, SensorPair};
 use glam::Vec2;
 
 /// What a step tells the contact stage.
@@ -47,6 +47,9 @@ pub(crate) struct ContactWorld {
     /// stored contacts, a removal), so what is built from them (the
     /// per-body contact index of queries) knows when it is stale.
     revision: u64,
+    /// The revision right after the last step (or restore): while it is
+    /// current, every awake contact names the bodies it was found with.
+    solved_revision: u64,
 }
 
 impl ContactWorld {
@@ -235,6 +238,7 @@ impl ContactWorld {
         }
         self.events.record(&self.solved, &self.sleeping.list, step);
         self.revision += 1;
+        self.solved_revision = self.revision;
     }
 
     /// A step in which the contact stage has nothing to do (its colliders
@@ -284,6 +288,12 @@ impl ContactWorld {
         self.sleeping.has_pending()
     }
 
+    /// The contact lists name bodies that changed (a static body was
+    /// removed): what is built from them is stale.
+    pub(crate) fn lists_changed(&mut self) {
+        self.revision += 1;
+    }
+
     /// Dynamic body `from` now sits at index `to` (a removal moved it).
     pub(crate) fn body_moved(&mut self, from: u32, to: u32) {
         self.sleeping.body_moved(from, to);
@@ -331,36 +341,17 @@ impl ContactWorld {
 
     /// What the next step needs from the last one: warm-start impulses,
     /// who touched whom (for begin and end events) and the stored contacts
-    /// of sleeping islands.
+    /// of sleeping islands; and the awake contacts, for queries until the
+    /// next step. `locate` tells where a live body sits now.
     pub(crate) fn carried_state(
         &self,
         dynamic: &DynamicBodies,
         statics: &StaticBodies,
+        locate: impl Fn(BodyId) -> Option<ColliderRef>,
     ) -> ContactState {
-        let mut state = ContactState {
-            cache: self.events.cache.clone(),
-            touching: self.events.touching_prev.clone(),
-            sensors: self.events.sensors_prev.clone(),
-            asleep: self.sleeping.list.rows.clone(),
-            asleep_infos: self.sleeping.list.infos.clone(),
-            awake: Vec::new(),
-            awake_infos: Vec::new(),
-        };
-        self.carry_awake(dynamic, statics, &mut state);
+        let mut state = ContactState::default();
+        self.carry_into(dynamic, statics, locate, &mut state);
         state
-    }
-
-    /// The awake contacts into `out`, but those of bodies removed (or
-    /// moved by a removal) since the step.
-    fn carry_awake(&self, dynamic: &DynamicBodies, statics: &StaticBodies, out: &mut ContactState) {
-        out.awake.clear();
-        out.awake_infos.clear();
-        for (c, info) in self.solved.iter() {
-            if names_bodies(c, info, dynamic, statics) {
-                out.awake.push(*c);
-                out.awake_infos.push(*info);
-            }
-        }
     }
 
     /// Writes what [`carried_state`](Self::carried_state) returns into
@@ -369,6 +360,7 @@ impl ContactWorld {
         &self,
         dynamic: &DynamicBodies,
         statics: &StaticBodies,
+        locate: impl Fn(BodyId) -> Option<ColliderRef>,
         out: &mut ContactState,
     ) {
         out.cache.clone_from(&self.events.cache);
@@ -376,7 +368,45 @@ impl ContactWorld {
         out.sensors.clone_from(&self.events.sensors_prev);
         out.asleep.clone_from(&self.sleeping.list.rows);
         out.asleep_infos.clone_from(&self.sleeping.list.infos);
-        self.carry_awake(dynamic, statics, out);
+        self.carry_awake(dynamic, statics, locate, out);
+    }
+
+    /// The awake contacts into `out`: a plain copy while the lists did not
+    /// change since the step; after a removal, each contact points at
+    /// where its bodies sit now (`locate`), and those of removed bodies
+    /// are left out.
+    fn carry_awake(
+        &self,
+        dynamic: &DynamicBodies,
+        statics: &StaticBodies,
+        locate: impl Fn(BodyId) -> Option<ColliderRef>,
+        out: &mut ContactState,
+    ) {
+        if self.revision == self.solved_revision {
+            out.awake.clone_from(&self.solved.rows);
+            out.awake_infos.clone_from(&self.solved.infos);
+            return;
+        }
+        out.awake.clear();
+        out.awake_infos.clear();
+        for (c, info) in self.solved.iter() {
+            // Body A of a row is `id_a`, and dynamic.
+            let (Some(a), Some(b)) = (locate(info.id_a), locate(info.id_b)) else {
+                continue;
+            };
+            let Some(a) = a.dynamic_index() else {
+                continue;
+            };
+            let row = Constraint {
+                a: a as u32,
+                b,
+                ..*c
+            };
+            if names_bodies(&row, info, dynamic, statics) {
+                out.awake.push(row);
+                out.awake_infos.push(*info);
+            }
+        }
     }
 
     /// Puts this contact stage in the state [`resume`](Self::resume) would
@@ -396,6 +426,8 @@ impl ContactWorld {
         self.events.events.clear();
         self.events.events.step = 0;
         self.revision += 1;
+        // The awake contacts are those of the snapshot's bodies.
+        self.solved_revision = self.revision;
     }
 
     /// A contact stage resuming from a carried state.

@@ -1,10 +1,11 @@
 //! Snapshots: the whole state of a world, to save, send or roll back to.
 
 use crate::bodies::{DynamicBodies, StaticBodies};
+use crate::collider::ColliderRef;
 use crate::contact_state::ContactState;
 use crate::contact_world::ContactWorld;
 use crate::world::{Location, Slot};
-use crate::{BodyKind, PhysicsError, StepStats, World, WorldSettings};
+use crate::{BodyId, BodyKind, PhysicsError, StepStats, World, WorldSettings};
 
 /// Everything a world needs to continue exactly where it was: settings,
 /// every body (position, velocity, accumulated force, material, ids and
@@ -253,8 +254,8 @@ impl World {
     /// The world's whole state (see [`WorldSnapshot`]).
     pub fn snapshot(&self) -> WorldSnapshot {
         let mut dynamic = self.dynamic.clone();
-        let mut contacts =
-            (self.contacts.as_ref()).map(|c| c.carried_state(&self.dynamic, &self.statics));
+        let mut contacts = (self.contacts.as_ref())
+            .map(|c| c.carried_state(&self.dynamic, &self.statics, |id| self.collider_of(id)));
         // Islands game code woke since the last step wake in the copy, as
         // they will in this world when it next steps.
         if let Some(cw) = &self.contacts
@@ -262,7 +263,7 @@ impl World {
         {
             let mut copy = cw.clone();
             copy.flush_wakes(&mut dynamic);
-            contacts = Some(copy.carried_state(&dynamic, &self.statics));
+            contacts = Some(copy.carried_state(&dynamic, &self.statics, |id| self.collider_of(id)));
         }
         WorldSnapshot {
             settings: *self.settings(),
@@ -310,8 +311,16 @@ impl World {
         out.shaped_static = self.shaped_static;
         out.stats = self.stats;
         match (&self.contacts, &mut out.contacts) {
-            (Some(cw), Some(state)) => cw.carry_into(&self.dynamic, &self.statics, state),
-            (Some(cw), none) => *none = Some(cw.carried_state(&self.dynamic, &self.statics)),
+            (Some(cw), Some(state)) => cw.carry_into(
+                &self.dynamic,
+                &self.statics,
+                |id| self.collider_of(id),
+                state,
+            ),
+            (Some(cw), none) => {
+                *none =
+                    Some(cw.carried_state(&self.dynamic, &self.statics, |id| self.collider_of(id)))
+            }
             (None, state) => *state = None,
         }
         out.custom_force_models = self.custom.len();
@@ -353,6 +362,14 @@ impl World {
         self.after_restore();
         self.note_edit(!same_statics);
         Ok(())
+    }
+
+    /// Where a live body sits, as a collider reference.
+    fn collider_of(&self, id: BodyId) -> Option<ColliderRef> {
+        self.locate(id).map(|l| match l {
+            Location::Dynamic(i) => ColliderRef::dynamic(i),
+            Location::Static(i) => ColliderRef::fixed(i),
+        })
     }
 
     /// What a world derives from its arrays rather than saving: kinematic

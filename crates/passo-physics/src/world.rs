@@ -391,6 +391,10 @@ impl World {
             Location::Static(i) => {
                 self.statics_dirty = true;
                 self.wake_all();
+                if let Some(cw) = &mut self.contacts {
+                    // The last static body moves to `i`.
+                    cw.lists_changed();
+                }
                 self.statics.swap_remove(i as usize)
             }
         };
