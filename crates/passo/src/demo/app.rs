@@ -460,6 +460,7 @@ impl Running {
                 }
             }
             KeyCode::KeyN if down => self.sim.session.timestep.step_once(),
+            KeyCode::Backspace => self.sim.rewinding = down,
             KeyCode::KeyR if down && !repeat => self.act(Actions {
                 commands: vec![Command::Reset],
                 ..Default::default()

@@ -53,6 +53,14 @@ impl Lane {
     }
 
     /// A body's drag area as the scene gave it (dynamic bodies only).
+    /// Forgets the bodies the world no longer has (spawned after the
+    /// state a rewind went back to).
+    pub(crate) fn forget_removed(&mut self) {
+        let world = &self.world;
+        self.bodies.retain(|b| world.contains(b.id));
+        self.base_drag.retain(|&(id, _)| world.contains(id));
+    }
+
     pub(crate) fn base_drag(&self, id: BodyId) -> Option<f32> {
         self.base_drag
             .iter()

@@ -9,8 +9,9 @@ use super::lanes::{Lane, integrator_lanes};
 use crate::scenes::Plot;
 use anyhow::Result;
 use glam::Vec2;
-use passo_physics::{Aabb, BodyId, BodyKind, Integrator};
+use passo_physics::{Aabb, BodyId, BodyKind, Integrator, WorldSnapshot};
 use passo_scene::{BuiltScene, Generator, Platform, Scene, SceneFile};
+use std::collections::VecDeque;
 
 /// A scene being run: everything a reset rebuilds.
 #[derive(Debug)]
@@ -39,7 +40,34 @@ pub struct SceneState {
     /// Ticks this state has stepped: the platforms' clock, which starts
     /// with the scene (a replay or a reset starts it again).
     ticks: u64,
+    /// The states before the last ticks, oldest first, for rewinding.
+    rewind: Rewind,
 }
+
+/// The state of every lane before one tick.
+#[derive(Debug, Default)]
+struct Saved {
+    worlds: Vec<WorldSnapshot>,
+    ticks: u64,
+}
+
+/// The last states of a scene, newest last, in reused buffers: once full,
+/// saving a tick allocates nothing.
+#[derive(Debug, Default)]
+struct Rewind {
+    states: VecDeque<Saved>,
+    /// Buffers of states rewound, to fill again.
+    spare: Vec<Saved>,
+}
+
+/// At most this many ticks are kept for rewinding (10 s at 60 Hz)...
+const REWIND_TICKS: usize = 600;
+/// ...and at least this many (1 s at 60 Hz)...
+const REWIND_MIN_TICKS: usize = 60;
+/// ...within about this many bytes of snapshots (a body's state and its
+/// contacts take a few hundred bytes).
+const REWIND_BYTES: usize = 128 << 20;
+const BYTES_PER_BODY: usize = 512;
 
 impl SceneState {
     /// The state of a scene file, with interpolated drawing on and the
@@ -67,6 +95,7 @@ impl SceneState {
             input: Input::default(),
             platforms,
             ticks: 0,
+            rewind: Rewind::default(),
         };
         state.set_interpolation(true);
         Ok(state)
@@ -93,6 +122,7 @@ impl SceneState {
             input: Input::default(),
             platforms: Vec::new(),
             ticks: 0,
+            rewind: Rewind::default(),
         }
     }
 
@@ -149,6 +179,53 @@ impl SceneState {
             lane.world.step(dt);
         }
         self.history.sample(t, &self.lanes);
+    }
+
+    /// Keeps the state of every lane as it is now, to rewind to: before
+    /// each tick while rewinding is possible. Only the last ticks are kept
+    /// (10 s at 60 Hz, fewer for big scenes: about 128 MB at the most).
+    pub(crate) fn save_for_rewind(&mut self) {
+        let bodies: usize = self.lanes.iter().map(|l| l.world.len()).sum();
+        let keep =
+            (REWIND_BYTES / (bodies.max(1) * BYTES_PER_BODY)).clamp(REWIND_MIN_TICKS, REWIND_TICKS);
+        let r = &mut self.rewind;
+        while r.states.len() >= keep {
+            r.spare.extend(r.states.pop_front());
+        }
+        let mut saved = r.spare.pop().unwrap_or_default();
+        saved
+            .worlds
+            .resize_with(self.lanes.len(), WorldSnapshot::default);
+        for (lane, snapshot) in self.lanes.iter().zip(&mut saved.worlds) {
+            lane.world.snapshot_into(snapshot);
+        }
+        saved.ticks = self.ticks;
+        r.states.push_back(saved);
+    }
+
+    /// Goes back one tick: every lane (and the platforms' clock) as it was
+    /// before the last tick kept. False when no tick is left to rewind.
+    /// The plot keeps its samples.
+    pub(crate) fn step_back(&mut self) -> bool {
+        let Some(saved) = self.rewind.states.pop_back() else {
+            return false;
+        };
+        for (lane, snapshot) in self.lanes.iter_mut().zip(&saved.worlds) {
+            // A snapshot this world made always restores; should it not,
+            // the lane keeps its state rather than stopping the demo.
+            if let Err(e) = lane.world.restore_from(snapshot) {
+                log::warn!("rewind failed: {e}");
+            }
+            lane.forget_removed();
+        }
+        self.ticks = saved.ticks;
+        self.rewind.spare.push(saved);
+        true
+    }
+
+    /// Ticks that can be rewound now.
+    pub fn rewindable(&self) -> usize {
+        self.rewind.states.len()
     }
 
     /// Applies the sliders' settings to every lane.

@@ -22,6 +22,9 @@ pub struct Sim {
     pub session: Session,
     /// What a reset rebuilds: the worlds, the player, the plot.
     pub scene: SceneState,
+    /// Held down (Backspace): ticks run backwards through the kept states
+    /// instead of stepping, while not recording or replaying.
+    pub rewinding: bool,
 }
 
 /// Loads a scene of the list.
@@ -62,6 +65,7 @@ impl Sim {
         Self {
             session: Session::new(timestep, knobs, entry_name),
             scene,
+            rewinding: false,
         }
     }
 
@@ -70,12 +74,20 @@ impl Sim {
     pub fn frame(&mut self, frame_time: Duration) -> Frame {
         let frame = self.session.timestep.advance(frame_time);
         let started = Instant::now();
+        let mut rewound = false;
         for _ in frame.tick_numbers() {
             // A finished playback holds its final state.
             if self.session.playback_finished() {
                 break;
             }
+            if self.rewinding && self.can_rewind() {
+                rewound |= self.scene.step_back();
+                continue;
+            }
             self.tick();
+        }
+        if rewound {
+            self.knobs_from_world();
         }
         self.session.stats = Stats {
             ticks: frame.ticks,
@@ -90,6 +102,9 @@ impl Sim {
     /// the step, a plot sample. The step length is read after replayed
     /// commands, one of which may change the rate.
     pub fn tick(&mut self) {
+        if self.can_rewind() {
+            self.scene.save_for_rewind();
+        }
         self.replay_commands_and_input();
         self.session.record_input(self.scene.input());
         let timestep = &self.session.timestep;
@@ -101,6 +116,26 @@ impl Sim {
             let hash = self.scene.state_hash();
             self.session.end_playback(hash);
         }
+    }
+
+    /// The sliders as the (rewound) worlds are set: a rewind past a slider
+    /// change undoes it. The drag-area multiplier and a calm wind's speed
+    /// are not in the worlds and stay.
+    fn knobs_from_world(&mut self) {
+        let old = self.session.knobs;
+        let mut knobs = Knobs::of(&self.scene.lanes[0].world);
+        knobs.drag_scale = old.drag_scale;
+        if !knobs.wind {
+            knobs.wind_speed = old.wind_speed;
+        }
+        self.session.knobs = knobs;
+        self.scene.update_reference_lines(&knobs);
+    }
+
+    /// Rewinding goes with neither a recording nor a replay: both run
+    /// forward by tick.
+    pub fn can_rewind(&self) -> bool {
+        !self.session.is_recording() && !self.session.is_playing()
     }
 
     /// In playback, applies the commands due and takes the recorded input.

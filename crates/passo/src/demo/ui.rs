@@ -389,6 +389,7 @@ fn help(ui: &mut egui::Ui) {
                 "Space: jump (when standing)",
                 "G (hold): glide, W: wind on/off",
                 "P: pause, N: single step, R: reset",
+                "Backspace (hold): rewind (up to 10 s)",
                 "left click: spawn (Shift: box)",
                 "left drag on a body: fling it",
                 "right drag: pan, wheel: zoom, F: fit",
