@@ -6,11 +6,12 @@
 //! the inputs.
 
 use ggrs::{
-    Config, DesyncDetection, GgrsError, GgrsEvent, GgrsRequest, P2PSession, PlayerType,
-    PredictRepeatLast, SessionBuilder, SessionState, UdpNonBlockingSocket,
+    Config, DesyncDetection, GgrsError, GgrsEvent, GgrsRequest, Message, NonBlockingSocket,
+    P2PSession, PlayerType, PredictRepeatLast, SessionBuilder, SessionState, UdpNonBlockingSocket,
 };
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, Shape, StateHasher, World, WorldSnapshot};
+use std::net::SocketAddr;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -26,7 +27,7 @@ impl Config for Netplay {
     type InputPredictor = PredictRepeatLast;
     /// What a save holds: the world and the game's tick.
     type State = (WorldSnapshot, u64);
-    type Address = std::net::SocketAddr;
+    type Address = SocketAddr;
 }
 
 /// The game: a world with a ground, two player boxes, a pile of crates and
@@ -241,19 +242,74 @@ pub struct PeerReport {
     pub desyncs: usize,
 }
 
+/// A simulated network between the peers of [`p2p_loopback`]: every
+/// packet arrives `latency` late, and `loss_percent` of them never do.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Link {
+    /// One-way delay of every packet.
+    pub latency: Duration,
+    /// Packets dropped, percent (chosen by a seeded generator, so a run
+    /// drops the same share each time).
+    pub loss_percent: u32,
+}
+
+/// A UDP socket of the loopback interface behind a [`Link`]: packets are
+/// held on arrival until their delay is over, and some are dropped.
+struct LinkSocket {
+    socket: UdpNonBlockingSocket,
+    link: Link,
+    /// Packets arrived and not yet delivered, in arrival order.
+    held: std::collections::VecDeque<(Instant, SocketAddr, Message)>,
+    rng: u64,
+}
+
+impl NonBlockingSocket<SocketAddr> for LinkSocket {
+    fn send_to(&mut self, msg: &Message, addr: &SocketAddr) {
+        self.socket.send_to(msg, addr);
+    }
+
+    fn receive_all_messages(&mut self) -> Vec<(SocketAddr, Message)> {
+        let now = Instant::now();
+        for (from, msg) in self.socket.receive_all_messages() {
+            // xorshift64*: the same drops on every run.
+            self.rng ^= self.rng >> 12;
+            self.rng ^= self.rng << 25;
+            self.rng ^= self.rng >> 27;
+            let roll = self.rng.wrapping_mul(0x2545_f491_4f6c_dd1d) % 100;
+            if roll >= u64::from(self.link.loss_percent) {
+                self.held.push_back((now + self.link.latency, from, msg));
+            }
+        }
+        let mut due = Vec::new();
+        while self.held.front().is_some_and(|(at, ..)| *at <= now) {
+            let (_, from, msg) = self.held.pop_front().expect("checked");
+            due.push((from, msg));
+        }
+        due
+    }
+}
+
 /// Two peers in this process, each a GGRS peer-to-peer session on its own
 /// UDP port of the loopback interface with one local player, play
-/// `frames` frames of scripted input, exchanging inputs and (every ten
-/// frames) checksums. They advance in turn, each before it has the other's
-/// input for the frame, so GGRS predicts and rolls back. Returns each
-/// peer's report once both have confirmed `frames` frames.
-pub fn p2p_loopback(frames: u64) -> Result<[PeerReport; 2], String> {
+/// `frames` frames of scripted input through `link`, exchanging inputs and
+/// (every ten frames) checksums. With a latency they run at 60 frames a
+/// second of wall time, as games do, so inputs arrive frames late and GGRS
+/// predicts and rolls back; without one they advance in turn as fast as
+/// they can (each before it has the other's input for the frame, so the
+/// first still rolls back). Returns each peer's report once both have
+/// confirmed `frames` frames.
+pub fn p2p_loopback(frames: u64, link: Link) -> Result<[PeerReport; 2], String> {
     let ports = [free_port()?, free_port()?];
     let mut sessions = Vec::new();
     for me in 0..2 {
         let other = 1 - me;
-        let remote = std::net::SocketAddr::from(([127, 0, 0, 1], ports[other]));
-        let socket = UdpNonBlockingSocket::bind_to_port(ports[me]).map_err(|e| e.to_string())?;
+        let remote = SocketAddr::from(([127, 0, 0, 1], ports[other]));
+        let socket = LinkSocket {
+            socket: UdpNonBlockingSocket::bind_to_port(ports[me]).map_err(|e| e.to_string())?,
+            link,
+            held: Default::default(),
+            rng: 0x9e37_79b9_7f4a_7c15 ^ me as u64,
+        };
         let session = SessionBuilder::<Netplay>::new()
             .with_num_players(2)
             .and_then(|b| b.add_player(PlayerType::Local, me))
@@ -263,7 +319,7 @@ pub fn p2p_loopback(frames: u64) -> Result<[PeerReport; 2], String> {
             .map_err(|e| e.to_string())?;
         sessions.push(session);
     }
-    let deadline = Instant::now() + Duration::from_secs(30);
+    let deadline = Instant::now() + Duration::from_secs(30 + frames / 30);
     while sessions
         .iter()
         .any(|s| s.current_state() != SessionState::Running)
@@ -276,10 +332,11 @@ pub fn p2p_loopback(frames: u64) -> Result<[PeerReport; 2], String> {
     }
     let mut games = [Game::new(), Game::new()];
     let mut reports = [PeerReport::default(), PeerReport::default()];
+    let mut next_frame = Instant::now();
     let confirmed = |s: &P2PSession<Netplay>| u64::try_from(s.confirmed_frame()).unwrap_or(0);
     while sessions.iter().any(|s| confirmed(s) < frames) {
         if Instant::now() > deadline {
-            return Err("the peers did not confirm every frame within 30 s".into());
+            return Err("the peers did not confirm every frame in time".into());
         }
         for me in 0..2 {
             let session = &mut sessions[me];
@@ -312,7 +369,12 @@ pub fn p2p_loopback(frames: u64) -> Result<[PeerReport; 2], String> {
                 }
             }
         }
-        std::thread::sleep(Duration::from_micros(200));
+        if link.latency.is_zero() {
+            std::thread::sleep(Duration::from_micros(200));
+        } else {
+            next_frame += Duration::from_secs_f32(DT);
+            std::thread::sleep(next_frame.saturating_duration_since(Instant::now()));
+        }
     }
     Ok(reports)
 }

@@ -3,12 +3,13 @@
 //! compare checksums), ends where a straight run ends, and a force model
 //! that is not deterministic is caught; two peer-to-peer sessions over the
 //! loopback interface roll back and agree, tick by tick, with a straight
-//! run.
+//! run, also through a link of 80 ms latency and 5 % packet loss.
 
 use ggrs::GgrsError;
 use passo_examples::netplay::{
-    Game, p2p_loopback, scripted_input, straight_checksums, straight_run, sync_test,
+    Game, Link, p2p_loopback, scripted_input, straight_checksums, straight_run, sync_test,
 };
+use std::time::Duration;
 
 #[test]
 fn the_sync_test_passes_and_ends_where_a_straight_run_ends() {
@@ -62,10 +63,8 @@ fn queries_after_a_load_answer_as_when_the_state_was_saved() {
     );
 }
 
-#[test]
-fn two_peers_over_loopback_agree_with_a_straight_run_tick_by_tick() {
-    let frames = 300;
-    let reports = p2p_loopback(frames).expect("the peers play");
+fn two_peers_agree_with_a_straight_run_tick_by_tick(frames: u64, link: Link) {
+    let reports = p2p_loopback(frames, link).expect("the peers play");
     let straight = straight_checksums(frames);
     for (peer, report) in reports.iter().enumerate() {
         assert_eq!(
@@ -80,4 +79,19 @@ fn two_peers_over_loopback_agree_with_a_straight_run_tick_by_tick() {
         "the peers predicted and rolled back: {:?}",
         reports.iter().map(|r| r.rollbacks).collect::<Vec<_>>()
     );
+}
+
+#[test]
+fn two_peers_over_loopback_agree_with_a_straight_run_tick_by_tick() {
+    two_peers_agree_with_a_straight_run_tick_by_tick(300, Link::default());
+}
+
+#[test]
+fn two_peers_80_ms_apart_losing_5_percent_of_packets_agree_for_1000_ticks() {
+    // Runs at 60 frames a second of wall time: about 17 s.
+    let link = Link {
+        latency: Duration::from_millis(80),
+        loss_percent: 5,
+    };
+    two_peers_agree_with_a_straight_run_tick_by_tick(1_000, link);
 }
