@@ -1,5 +1,5 @@
-//! Rollback netplay with GGRS: a two-player game on Passo whose state is a
-//! world snapshot and a tick, and the GGRS glue that saves, loads and
+//! Rollback netplay with GGRS: the playground played by two players, a
+//! game whose state is a world snapshot and a tick, and the GGRS glue that saves, loads and
 //! advances it. GGRS asks for a save every frame, and on a rollback for a
 //! load and several advances within the frame, so the game keeps no state
 //! outside what it saves, and every advance depends only on the state and
@@ -10,7 +10,8 @@ use ggrs::{
     P2PSession, PlayerType, PredictRepeatLast, SessionBuilder, SessionState, UdpNonBlockingSocket,
 };
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, BodyId, Shape, StateHasher, World, WorldSnapshot};
+use passo_physics::{BodyId, StateHasher, World, WorldSnapshot};
+use passo_scene::{BuiltScene, Platform, Scene};
 use std::net::SocketAddr;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -30,15 +31,17 @@ impl Config for Netplay {
     type Address = SocketAddr;
 }
 
-/// The game: a world with a ground, two player boxes, a pile of crates and
-/// a moving platform, and the tick it is at.
+/// The game: the playground scene (`assets/scenes/playground.ron`: ground,
+/// ice, walls, platforms, a moving platform and a one-way lift on paths, a
+/// crate and a ball) with a second player beside the first, and the tick
+/// it is at.
 pub struct Game {
     /// The physics.
     pub world: World,
     /// The two players' bodies.
     pub players: [BodyId; 2],
-    /// The platform, moved along a path by the tick.
-    pub platform: BodyId,
+    /// The kinematic bodies on paths, driven by the tick.
+    pub platforms: Vec<Platform>,
     /// Ticks simulated.
     pub tick: u64,
 }
@@ -49,46 +52,21 @@ pub const DT: f32 = 1.0 / 60.0;
 impl Game {
     /// The game at tick 0.
     pub fn new() -> Self {
-        let mut world = World::default();
-        world
-            .add_body(BodyDef::new_static(
-                Vec2::new(0.0, -0.5),
-                Shape::rect(30.0, 1.0),
-            ))
-            .expect("valid ground");
-        for x in [-15.5, 15.5] {
-            world
-                .add_body(BodyDef::new_static(
-                    Vec2::new(x, 5.0),
-                    Shape::rect(1.0, 12.0),
-                ))
-                .expect("valid wall");
-        }
-        let players = [-6.0, 6.0].map(|x| {
-            world
-                .add_body(
-                    BodyDef::new_dynamic(Vec2::new(x, 0.8), Shape::rect(0.8, 1.6))
-                        .with_mass(70.0)
-                        .with_friction(0.8),
-                )
-                .expect("valid player")
-        });
-        for i in 0..12 {
-            let p = Vec2::new((i % 4) as f32 * 1.05 - 1.5, 0.5 + (i / 4) as f32);
-            world
-                .add_body(BodyDef::new_dynamic(p, Shape::rect(1.0, 1.0)).with_mass(10.0))
-                .expect("valid crate");
-        }
-        let platform = world
-            .add_body(
-                BodyDef::new_kinematic(Vec2::new(0.0, 4.0), Shape::rect(3.0, 0.3), Vec2::ZERO)
-                    .with_one_way(Vec2::Y),
-            )
-            .expect("valid platform");
+        let scene = Scene::parse(
+            include_str!("../assets/scenes/playground.ron"),
+            "playground.ron",
+        )
+        .expect("the shipped playground is valid");
+        let built = scene.build().expect("the shipped playground builds");
+        let first = built.body_named("player").expect("the playground has a player");
+        let mut world = built.world;
+        let mut second = world.body(first).expect("the player exists").to_def();
+        second.position = Vec2::new(0.0, 0.8);
+        let second = world.add_body(second).expect("valid second player");
         Self {
             world,
-            players,
-            platform,
+            players: [first, second],
+            platforms: built.platforms,
             tick: 0,
         }
     }
@@ -104,11 +82,10 @@ impl Game {
                 self.world.apply_impulse(player, Vec2::new(0.0, 70.0 * 6.0));
             }
         }
-        // The platform swings on a 4-second triangle wave.
-        let phase = ((self.tick + 1) % 240) as f32 / 240.0;
-        let x = 6.0 * (1.0 - 2.0 * (2.0 * phase - 1.0).abs());
-        self.world
-            .set_kinematic_target(self.platform, Vec2::new(x, 4.0), DT);
+        // The platforms' clock is the tick: saved with it, so a rollback
+        // puts them back too.
+        let t_end = (self.tick + 1) as f64 * f64::from(DT);
+        BuiltScene::drive_platforms(&self.platforms, &mut self.world, t_end, DT);
         self.world.step(DT);
         self.tick += 1;
     }
