@@ -58,7 +58,9 @@ impl Game {
         )
         .expect("the shipped playground is valid");
         let built = scene.build().expect("the shipped playground builds");
-        let first = built.body_named("player").expect("the playground has a player");
+        let first = built
+            .body_named("player")
+            .expect("the playground has a player");
         let mut world = built.world;
         let mut second = world.body(first).expect("the player exists").to_def();
         second.position = Vec2::new(0.0, 0.8);
