@@ -430,3 +430,33 @@ impl<'a> Colliders<'a> {
         x.min(y) << 32 | x.max(y)
     }
 }
+
+/// Bytes a vector holds on the heap.
+pub(crate) fn heap<T>(v: &Vec<T>) -> usize {
+    v.capacity() * std::mem::size_of::<T>()
+}
+
+impl DynamicBodies {
+    /// Bytes the arrays hold on the heap.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        heap(&self.pos)
+            + heap(&self.vel)
+            + heap(&self.force)
+            + heap(&self.inv_mass)
+            + heap(&self.drag_area)
+            + heap(&self.friction)
+            + heap(&self.friction_force)
+            + heap(&self.limits)
+            + heap(&self.prev_pos)
+            + heap(&self.sleep)
+            + heap(&self.meta)
+            + heap(&self.kinematic)
+    }
+}
+
+impl StaticBodies {
+    /// Bytes the arrays hold on the heap.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        heap(&self.pos) + heap(&self.friction) + heap(&self.meta)
+    }
+}

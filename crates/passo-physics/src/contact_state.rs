@@ -1,7 +1,7 @@
 //! The contact state a snapshot carries: what the next step needs from the
 //! last one, and the checks a restored state must pass.
 
-use crate::bodies::{Colliders, DynamicBodies, StaticBodies};
+use crate::bodies::{Colliders, DynamicBodies, StaticBodies, heap};
 use crate::collider::ColliderRef;
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::events::Cached;
@@ -35,6 +35,17 @@ pub(crate) struct ContactState {
 }
 
 impl ContactState {
+    /// Bytes the lists hold on the heap.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        heap(&self.cache)
+            + heap(&self.touching)
+            + heap(&self.sensors)
+            + heap(&self.asleep)
+            + heap(&self.asleep_infos)
+            + heap(&self.awake)
+            + heap(&self.awake_infos)
+    }
+
     /// The sleeping contacts as a list.
     pub(crate) fn sleeping(&self) -> ContactList {
         ContactList {

@@ -1,6 +1,6 @@
 //! Snapshots: the whole state of a world, to save, send or roll back to.
 
-use crate::bodies::{DynamicBodies, StaticBodies};
+use crate::bodies::{DynamicBodies, StaticBodies, heap};
 use crate::collider::ColliderRef;
 use crate::contact_state::ContactState;
 use crate::contact_world::ContactWorld;
@@ -75,6 +75,16 @@ impl WorldSnapshot {
     /// Custom force models the world had (to add again after a restore).
     pub fn custom_force_models(&self) -> usize {
         self.custom_force_models
+    }
+
+    /// Bytes the snapshot holds on the heap (its arrays, with the room
+    /// they keep for reuse): what a ring of snapshots costs.
+    pub fn heap_bytes(&self) -> usize {
+        heap(&self.slots)
+            + heap(&self.free)
+            + self.dynamic.heap_bytes()
+            + self.statics.heap_bytes()
+            + self.contacts.as_ref().map_or(0, ContactState::heap_bytes)
     }
 
     /// Steps the world had taken.

@@ -359,8 +359,81 @@ fn rewind_is_off_while_recording() {
     sim.start_recording().unwrap();
     run(&mut sim, 20, Input::default());
     let hash = sim.scene.state_hash();
+    let kept = sim.scene.rewindable();
     sim.rewinding = true;
     run(&mut sim, 1, Input::default());
     assert_ne!(sim.scene.state_hash(), hash, "the scene stepped forward");
-    assert_eq!(sim.scene.rewindable(), 0);
+    assert_eq!(sim.scene.rewindable(), kept + 1, "and kept one more state");
+    sim.scrub_to(0);
+    assert_eq!(sim.scene.scrubbing(), None, "the timeline is off too");
+}
+
+#[test]
+fn the_timeline_shows_any_kept_state_and_resuming_discards_the_later_ones() {
+    let mut sim = playground();
+    let walk = Input {
+        right: true,
+        ..Input::default()
+    };
+    let mut hashes = Vec::new();
+    for _ in 0..40 {
+        hashes.push(sim.scene.state_hash());
+        run(&mut sim, 1, walk);
+    }
+    let present = sim.scene.state_hash();
+    assert!(sim.scene.rewind_bytes() > 0);
+    // Drag back to tick 10, forward to 25, and to the present: nothing is
+    // lost while scrubbing, and the loop holds still.
+    sim.scrub_to(10);
+    assert_eq!(sim.scene.state_hash(), hashes[10]);
+    run(&mut sim, 5, walk);
+    assert_eq!(sim.scene.state_hash(), hashes[10], "held on the timeline");
+    sim.scrub_to(25);
+    assert_eq!(sim.scene.state_hash(), hashes[25]);
+    sim.scrub_to(40);
+    assert_eq!(sim.scene.state_hash(), present);
+    // Resume from tick 20: the run goes on from there as it first did,
+    // and the states after it are gone.
+    sim.scrub_to(20);
+    sim.resume_from_timeline();
+    assert_eq!(sim.scene.rewindable(), 20);
+    run(&mut sim, 20, walk);
+    assert_eq!(sim.scene.state_hash(), present);
+}
+
+#[test]
+fn a_recorded_session_rewound_to_a_tick_shows_the_state_recorded_at_that_tick() {
+    // Record a session with a spawn and a slider change.
+    let mut sim = playground();
+    sim.start_recording().unwrap();
+    let mut at_tick = Vec::new();
+    for frame in 0..90 {
+        if frame == 30 {
+            sim.command(Command::Spawn {
+                at: [2.0, 6.0],
+                round: true,
+            })
+            .unwrap();
+        }
+        at_tick.push(sim.scene.state_hash());
+        run(
+            &mut sim,
+            1,
+            Input {
+                right: frame < 50,
+                ..Input::default()
+            },
+        );
+    }
+    let replay = sim.stop_recording().unwrap();
+    // Play it back, then rewind the played session to tick 45.
+    let mut played = playground();
+    played.start_playback(replay).unwrap();
+    run(&mut played, 95, Input::default());
+    assert_eq!(played.scene.state_hash(), sim.scene.state_hash());
+    // A finished replay can be rewound.
+    played.scrub_to(45);
+    assert_eq!(played.scene.state_hash(), at_tick[45]);
+    played.scrub_to(29);
+    assert_eq!(played.scene.state_hash(), at_tick[29], "before the spawn");
 }

@@ -58,6 +58,9 @@ struct Rewind {
     states: VecDeque<Saved>,
     /// Buffers of states rewound, to fill again.
     spare: Vec<Saved>,
+    /// On the timeline: the kept state shown (the newest is the present
+    /// when the scrubbing began).
+    cursor: Option<usize>,
 }
 
 /// At most this many ticks are kept for rewinding (10 s at 60 Hz)...
@@ -184,13 +187,16 @@ impl SceneState {
     /// Keeps the state of every lane as it is now, to rewind to: before
     /// each tick while rewinding is possible. Only the last ticks are kept
     /// (10 s at 60 Hz, fewer for big scenes: about 128 MB at the most).
-    pub(crate) fn save_for_rewind(&mut self) {
+    /// Returns how many of the oldest states made room.
+    pub(crate) fn save_for_rewind(&mut self) -> usize {
         let bodies: usize = self.lanes.iter().map(|l| l.world.len()).sum();
         let keep =
             (REWIND_BYTES / (bodies.max(1) * BYTES_PER_BODY)).clamp(REWIND_MIN_TICKS, REWIND_TICKS);
         let r = &mut self.rewind;
+        let mut dropped = 0;
         while r.states.len() >= keep {
             r.spare.extend(r.states.pop_front());
+            dropped += 1;
         }
         let mut saved = r.spare.pop().unwrap_or_default();
         saved
@@ -201,12 +207,14 @@ impl SceneState {
         }
         saved.ticks = self.ticks;
         r.states.push_back(saved);
+        dropped
     }
 
     /// Goes back one tick: every lane (and the platforms' clock) as it was
     /// before the last tick kept. False when no tick is left to rewind.
     /// The plot keeps its samples.
     pub(crate) fn step_back(&mut self) -> bool {
+        self.resume();
         let Some(saved) = self.rewind.states.pop_back() else {
             return false;
         };
@@ -226,6 +234,50 @@ impl SceneState {
     /// Ticks that can be rewound now.
     pub fn rewindable(&self) -> usize {
         self.rewind.states.len()
+    }
+
+    /// Bytes the kept states hold.
+    pub fn rewind_bytes(&self) -> usize {
+        let r = &self.rewind;
+        (r.states.iter().chain(&r.spare))
+            .flat_map(|saved| &saved.worlds)
+            .map(WorldSnapshot::heap_bytes)
+            .sum()
+    }
+
+    /// Shows kept state `i` (0: the oldest) without discarding any, for
+    /// the timeline; the first call keeps the present as the newest.
+    /// [`resume`](Self::resume) runs on from the state shown.
+    pub fn scrub_to(&mut self, i: usize) {
+        let mut i = i;
+        if self.rewind.cursor.is_none() {
+            i = i.saturating_sub(self.save_for_rewind());
+        }
+        let i = i.min(self.rewind.states.len() - 1);
+        let saved = &self.rewind.states[i];
+        for (lane, snapshot) in self.lanes.iter_mut().zip(&saved.worlds) {
+            if let Err(e) = lane.world.restore_from(snapshot) {
+                log::warn!("rewind failed: {e}");
+            }
+            lane.forget_removed();
+        }
+        self.ticks = saved.ticks;
+        self.rewind.cursor = Some(i);
+    }
+
+    /// The kept state the timeline shows, if scrubbing.
+    pub fn scrubbing(&self) -> Option<usize> {
+        self.rewind.cursor
+    }
+
+    /// Leaves the timeline at the state shown: the states after it (its
+    /// future) are discarded, as a rollback does, and ticks run on from it.
+    pub fn resume(&mut self) {
+        if let Some(i) = self.rewind.cursor.take() {
+            let r = &mut self.rewind;
+            // The state shown is the present again; the next tick keeps it.
+            r.spare.extend(r.states.drain(i..));
+        }
     }
 
     /// Applies the sliders' settings to every lane.

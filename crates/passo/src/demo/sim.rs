@@ -25,6 +25,8 @@ pub struct Sim {
     /// Held down (Backspace): ticks run backwards through the kept states
     /// instead of stepping, while not recording or replaying.
     pub rewinding: bool,
+    /// Whether the loop was paused when the timeline was first dragged.
+    paused_before_scrub: bool,
 }
 
 /// Loads a scene of the list.
@@ -66,18 +68,27 @@ impl Sim {
             session: Session::new(timestep, knobs, entry_name),
             scene,
             rewinding: false,
+            paused_before_scrub: false,
         }
     }
 
     /// Advances by one rendered frame of `frame_time`: the loop decides how
     /// many fixed ticks run.
     pub fn frame(&mut self, frame_time: Duration) -> Frame {
+        if self.rewinding {
+            // Backspace leaves the timeline and rewinds from where it was.
+            self.resume_from_timeline();
+        }
         let frame = self.session.timestep.advance(frame_time);
         let started = Instant::now();
         let mut rewound = false;
         for _ in frame.tick_numbers() {
             // A finished playback holds its final state.
             if self.session.playback_finished() {
+                break;
+            }
+            // On the timeline the scene holds still until it resumes.
+            if self.scene.scrubbing().is_some() {
                 break;
             }
             if self.rewinding && self.can_rewind() {
@@ -102,9 +113,9 @@ impl Sim {
     /// the step, a plot sample. The step length is read after replayed
     /// commands, one of which may change the rate.
     pub fn tick(&mut self) {
-        if self.can_rewind() {
-            self.scene.save_for_rewind();
-        }
+        // Kept while recording and replaying too: a finished replay can be
+        // rewound.
+        self.scene.save_for_rewind();
         self.replay_commands_and_input();
         self.session.record_input(self.scene.input());
         let timestep = &self.session.timestep;
@@ -132,10 +143,37 @@ impl Sim {
         self.scene.update_reference_lines(&knobs);
     }
 
-    /// Rewinding goes with neither a recording nor a replay: both run
-    /// forward by tick.
+    /// Shows kept state `i` of the timeline (0: the oldest), when rewinding
+    /// is possible; the sliders follow the worlds.
+    pub fn scrub_to(&mut self, i: usize) {
+        if !self.can_rewind() {
+            return;
+        }
+        if self.scene.scrubbing().is_none() {
+            // The loop holds still on the timeline.
+            self.paused_before_scrub = self.session.timestep.is_paused();
+            self.session.timestep.pause();
+        }
+        self.scene.scrub_to(i);
+        self.knobs_from_world();
+    }
+
+    /// Leaves the timeline and runs on from the state it shows, discarding
+    /// the states after it.
+    pub fn resume_from_timeline(&mut self) {
+        if self.scene.scrubbing().is_some() {
+            self.scene.resume();
+            if !self.paused_before_scrub {
+                self.session.timestep.resume();
+            }
+        }
+    }
+
+    /// Rewinding goes with neither a recording nor a running replay: both
+    /// run forward by tick. A finished replay can be rewound.
     pub fn can_rewind(&self) -> bool {
-        !self.session.is_recording() && !self.session.is_playing()
+        !self.session.is_recording()
+            && (!self.session.is_playing() || self.session.playback_finished())
     }
 
     /// In playback, applies the commands due and takes the recorded input.
@@ -252,6 +290,9 @@ impl Sim {
     /// Replaces the scene state with a fresh one (from `file`, or from the
     /// scene's own source); the partial tick in the loop is dropped.
     fn rebuild(&mut self, file: Option<SceneFile>) -> Result<()> {
+        // A fresh scene has no timeline: the loop runs again if it held
+        // still for one.
+        self.resume_from_timeline();
         self.scene = self.scene.rebuilt(file, &self.session.knobs)?;
         self.session.timestep.reset_accumulator();
         Ok(())

@@ -66,6 +66,8 @@ pub(crate) fn panel(
                 ui.separator();
                 loop_section(ui, sim, actions);
                 ui.separator();
+                rewind_section(ui, sim);
+                ui.separator();
                 forces_section(ui, sim, actions);
                 ui.separator();
                 stats_section(ui, sim, input.fps);
@@ -140,6 +142,58 @@ fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actio
     }
     if let Some(message) = input.message {
         ui.colored_label(Color32::from_rgb(240, 120, 120), message);
+    }
+}
+
+/// The timeline of kept states: drag back to rewind, step with the
+/// arrows, resume from any point (which discards the states after it).
+fn rewind_section(ui: &mut egui::Ui, sim: &mut Sim) {
+    ui.label(egui::RichText::new("Rewind").strong());
+    let kept = sim.scene.rewindable();
+    let scrubbing = sim.scene.scrubbing();
+    // Scrubbing keeps the present as the newest state; before, the present
+    // is one past the kept ones.
+    let newest = if scrubbing.is_some() {
+        kept.saturating_sub(1)
+    } else {
+        kept
+    };
+    let dt = sim.session.timestep.dt();
+    ui.label(format!(
+        "{} ticks kept ({:.1} s), {:.1} MB",
+        newest,
+        newest as f32 * dt,
+        sim.scene.rewind_bytes() as f64 / 1e6
+    ));
+    if !sim.can_rewind() {
+        ui.label("off while recording or replaying");
+        return;
+    }
+    let mut at = scrubbing.unwrap_or(newest);
+    let before = at;
+    ui.add_enabled(newest > 0, Slider::new(&mut at, 0..=newest).text("tick"));
+    ui.horizontal(|ui| {
+        if ui.add_enabled(at > 0, egui::Button::new("◀")).clicked() {
+            at -= 1;
+        }
+        if ui
+            .add_enabled(at < newest, egui::Button::new("▶"))
+            .clicked()
+        {
+            at += 1;
+        }
+        if ui
+            .add_enabled(scrubbing.is_some(), egui::Button::new("resume here"))
+            .clicked()
+        {
+            sim.resume_from_timeline();
+        }
+    });
+    if at != before {
+        sim.scrub_to(at);
+    }
+    if scrubbing.is_some() {
+        ui.label("held on the timeline: resume to run on from here (the later states go)");
     }
 }
 
@@ -389,7 +443,7 @@ fn help(ui: &mut egui::Ui) {
                 "Space: jump (when standing)",
                 "G (hold): glide, W: wind on/off",
                 "P: pause, N: single step, R: reset",
-                "Backspace (hold): rewind (up to 10 s)",
+                "Backspace (hold): rewind (up to 10 s); or drag the timeline",
                 "left click: spawn (Shift: box)",
                 "left drag on a body: fling it",
                 "right drag: pan, wheel: zoom, F: fit",
