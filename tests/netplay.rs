@@ -13,7 +13,7 @@ use std::time::Duration;
 
 #[test]
 fn the_sync_test_passes_and_ends_where_a_straight_run_ends() {
-    let frames = 600;
+    let frames = 1_000;
     let synced = sync_test(frames, 7, false).expect("no checksum mismatch");
     assert_eq!(synced, straight_run(frames));
 }
