@@ -298,17 +298,36 @@ fn a_reset_rebuilds_the_scene_and_keeps_the_session() {
     }
 }
 
+fn walk() -> Input {
+    Input {
+        right: true,
+        ..Input::default()
+    }
+}
+
+/// Walks right for `frames` frames, calling `before` ahead of each, and
+/// returns the state hash before each frame.
+fn walk_keeping_hashes(
+    sim: &mut Sim,
+    frames: usize,
+    mut before: impl FnMut(&mut Sim, usize),
+) -> Vec<u64> {
+    (0..frames)
+        .map(|frame| {
+            let hash = sim.scene.state_hash();
+            before(sim, frame);
+            run(sim, 1, walk());
+            hash
+        })
+        .collect()
+}
+
 #[test]
 fn holding_rewind_runs_the_scene_back_to_the_exact_states_it_passed() {
     let mut sim = playground();
-    let walk = Input {
-        right: true,
-        ..Input::default()
-    };
+    let walk = walk();
     // 60 frames of walking, a spawn and a slider change on the way.
-    let mut hashes = Vec::new();
-    for frame in 0..60 {
-        hashes.push(sim.scene.state_hash());
+    let hashes = walk_keeping_hashes(&mut sim, 60, |sim, frame| {
         if frame == 20 {
             sim.spawn(Vec2::new(0.0, 8.0), true).unwrap();
         }
@@ -323,8 +342,7 @@ fn holding_rewind_runs_the_scene_back_to_the_exact_states_it_passed() {
             })
             .unwrap();
         }
-        run(&mut sim, 1, walk);
-    }
+    });
     let bodies_at_end = sim.scene.body_count();
     assert_eq!(sim.scene.rewindable(), 60);
     // Rewind 30 frames (one tick each at 60 Hz): back before the slider.
@@ -371,15 +389,8 @@ fn rewind_is_off_while_recording() {
 #[test]
 fn the_timeline_shows_any_kept_state_and_resuming_discards_the_later_ones() {
     let mut sim = playground();
-    let walk = Input {
-        right: true,
-        ..Input::default()
-    };
-    let mut hashes = Vec::new();
-    for _ in 0..40 {
-        hashes.push(sim.scene.state_hash());
-        run(&mut sim, 1, walk);
-    }
+    let walk = walk();
+    let hashes = walk_keeping_hashes(&mut sim, 40, |_, _| {});
     let present = sim.scene.state_hash();
     assert!(sim.scene.rewind_bytes() > 0);
     // Drag back to tick 10, forward to 25, and to the present: nothing is
