@@ -188,7 +188,7 @@ impl SceneState {
     /// each tick while rewinding is possible. Only the last ticks are kept
     /// (10 s at 60 Hz, fewer for big scenes: about 128 MB at the most).
     /// Returns how many of the oldest states made room.
-    pub(crate) fn save_for_rewind(&mut self) -> usize {
+    pub fn save_for_rewind(&mut self) -> usize {
         let bodies: usize = self.lanes.iter().map(|l| l.world.len()).sum();
         let keep =
             (REWIND_BYTES / (bodies.max(1) * BYTES_PER_BODY)).clamp(REWIND_MIN_TICKS, REWIND_TICKS);
