@@ -65,8 +65,8 @@ struct Rewind {
 
 /// At most this many ticks are kept for rewinding (10 s at 60 Hz)...
 const REWIND_TICKS: usize = 600;
-/// ...and at least this many (1 s at 60 Hz)...
-const REWIND_MIN_TICKS: usize = 60;
+/// ...and at least this many, whatever the size...
+const REWIND_MIN_TICKS: usize = 10;
 /// ...within about this many bytes of snapshots (a body's state and its
 /// contacts take a few hundred bytes).
 const REWIND_BYTES: usize = 128 << 20;
