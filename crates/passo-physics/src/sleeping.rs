@@ -55,6 +55,9 @@ pub(crate) struct SleepingContacts {
     hits: Vec<u32>,
     /// Entries of the tree whose bodies woke (and left) since it was built.
     left: usize,
+    /// The margin the tree's boxes were grown by (it follows gravity, the
+    /// step and continuous collision: a change rebuilds the tree).
+    built_margin: f32,
     /// Island bookkeeping.
     islands: Islands,
     /// Islands game code woke since the last step (by their id): they wake
@@ -125,11 +128,13 @@ impl SleepingContacts {
     }
 
     /// Rebuilds the sleep tree over every sleeping shaped body when one is
-    /// missing from it (it fell asleep since the last build) or half of its
-    /// entries woke. Members that woke leave at once (their entries are
-    /// skipped). So the tree holds exactly the sleeping bodies, at the
-    /// places they sleep: what it finds depends on the bodies alone, never
-    /// on when it was built, and a world restored from a snapshot (which
+    /// missing from it (it fell asleep since the last build), half of its
+    /// entries woke, or the margin its boxes are grown by changed (with
+    /// gravity, the step or continuous collision). Members that woke leave
+    /// at once (their entries are skipped). So the tree holds exactly the
+    /// sleeping bodies, at the places they sleep, grown by today's margin:
+    /// what it finds depends on the bodies and settings alone, never on
+    /// when it was built, and a world restored from a snapshot (which
     /// builds it afresh) steps as the original does. Islands fall asleep
     /// seldom, so the `O(n log n)` builds are rare.
     fn update_tree(&mut self, dynamic: &DynamicBodies, margin: &ProxyMargin) {
@@ -145,9 +150,11 @@ impl SleepingContacts {
                 self.left += 1;
             }
         }
-        if missing == 0 && 2 * self.left <= self.tree.len() {
+        let grown = margin.of(Vec2::ZERO);
+        if missing == 0 && 2 * self.left <= self.tree.len() && grown == self.built_margin {
             return;
         }
+        self.built_margin = grown;
         self.tree_member.fill(false);
         self.tree_bodies.clear();
         self.left = 0;
@@ -162,13 +169,12 @@ impl SleepingContacts {
                 self.tree_member[i] = true;
             }
         }
-        let margin = margin.of(Vec2::ZERO);
         let boxes = self.tree_bodies.iter().map(|&i| {
             let half = dynamic.meta[i as usize]
                 .shape
                 .expect("shaped")
                 .half_extents();
-            Aabb::from_centre(dynamic.pos[i as usize], half).grown(margin)
+            Aabb::from_centre(dynamic.pos[i as usize], half).grown(grown)
         });
         self.tree.rebuild(boxes);
     }

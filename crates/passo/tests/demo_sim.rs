@@ -447,4 +447,52 @@ fn a_recorded_session_rewound_to_a_tick_shows_the_state_recorded_at_that_tick() 
     assert_eq!(played.scene.state_hash(), at_tick[45]);
     played.scrub_to(29);
     assert_eq!(played.scene.state_hash(), at_tick[29], "before the spawn");
+    // Forward again past the spawn: the spawned ball keeps its colour.
+    played.scrub_to(45);
+    let lane = &played.scene.lanes[0];
+    assert_eq!(lane.bodies.len(), lane.world.len());
+    // Resumed, the replay is over and the scene runs live from tick 45.
+    played.resume_from_timeline();
+    run(&mut played, 10, Input::default());
+    assert_eq!(played.scene.rewindable(), 45 + 10);
+    assert!(!played.session.is_playing());
+}
+
+#[test]
+fn holding_rewind_after_a_replay_runs_it_back() {
+    let mut sim = playground();
+    sim.start_recording().unwrap();
+    let hashes = walk_keeping_hashes(&mut sim, 60, |_, _| {});
+    let replay = sim.stop_recording().unwrap();
+    let mut played = playground();
+    played.start_playback(replay).unwrap();
+    run(&mut played, 65, Input::default());
+    assert!(played.session.playback_finished());
+    played.rewinding = true;
+    // The first frame ends the replay and resumes the loop; every frame
+    // runs back a tick.
+    run(&mut played, 20, Input::default());
+    assert_eq!(played.scene.state_hash(), hashes[40]);
+    assert!(!played.session.is_playing());
+}
+
+#[test]
+fn rewinding_past_a_drag_slider_change_puts_the_slider_back() {
+    let mut sim = load(&Entry::File("drag_race".into())).unwrap();
+    let before = sim.session.knobs.drag_scale;
+    run(&mut sim, 10, Input::default());
+    let mut knobs = sim.session.knobs;
+    knobs.drag_scale = 3.0;
+    sim.command(Command::Knobs {
+        knobs,
+        friction: false,
+        restitution: false,
+        drag: true,
+    })
+    .unwrap();
+    run(&mut sim, 10, Input::default());
+    assert_eq!(sim.session.knobs.drag_scale, 3.0);
+    sim.rewinding = true;
+    run(&mut sim, 15, Input::default());
+    assert!((sim.session.knobs.drag_scale - before).abs() < 1e-6);
 }

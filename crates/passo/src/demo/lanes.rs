@@ -61,6 +61,15 @@ impl Lane {
         self.base_drag.retain(|&(id, _)| world.contains(id));
     }
 
+    /// The drag-area multiplier the world's bodies show: a body's area
+    /// against the scene's (not `skip`'s, whose area the glide changes).
+    pub(crate) fn drag_scale_in_world(&self, skip: Option<BodyId>) -> Option<f32> {
+        self.base_drag
+            .iter()
+            .filter(|&&(id, base)| Some(id) != skip && base > 0.0)
+            .find_map(|&(id, base)| Some(self.world.body(id)?.drag_area / base))
+    }
+
     pub(crate) fn base_drag(&self, id: BodyId) -> Option<f32> {
         self.base_drag
             .iter()

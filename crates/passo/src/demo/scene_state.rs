@@ -259,7 +259,8 @@ impl SceneState {
             if let Err(e) = lane.world.restore_from(snapshot) {
                 log::warn!("rewind failed: {e}");
             }
-            lane.forget_removed();
+            // The lanes keep the names and colours of bodies the state
+            // shown does not have yet: scrubbing forward brings them back.
         }
         self.ticks = saved.ticks;
         self.rewind.cursor = Some(i);
@@ -277,6 +278,9 @@ impl SceneState {
             let r = &mut self.rewind;
             // The state shown is the present again; the next tick keeps it.
             r.spare.extend(r.states.drain(i..));
+            for lane in &mut self.lanes {
+                lane.forget_removed();
+            }
         }
     }
 

@@ -75,9 +75,14 @@ impl Sim {
     /// Advances by one rendered frame of `frame_time`: the loop decides how
     /// many fixed ticks run.
     pub fn frame(&mut self, frame_time: Duration) -> Frame {
-        if self.rewinding {
-            // Backspace leaves the timeline and rewinds from where it was.
-            self.resume_from_timeline();
+        if self.rewinding && self.can_rewind() {
+            // A finished replay goes live: it can run back and on.
+            self.leave_finished_replay();
+            // Backspace leaves the timeline and rewinds from where it was,
+            // when the loop will run (paused, the timeline is the way).
+            if !self.paused_before_scrub {
+                self.resume_from_timeline();
+            }
         }
         let frame = self.session.timestep.advance(frame_time);
         let started = Instant::now();
@@ -130,12 +135,15 @@ impl Sim {
     }
 
     /// The sliders as the (rewound) worlds are set: a rewind past a slider
-    /// change undoes it. The drag-area multiplier and a calm wind's speed
-    /// are not in the worlds and stay.
+    /// change undoes it. The drag-area multiplier is read from the bodies'
+    /// areas against the scene's; a calm wind's speed is not in the worlds
+    /// and stays.
     fn knobs_from_world(&mut self) {
         let old = self.session.knobs;
         let mut knobs = Knobs::of(&self.scene.lanes[0].world);
-        knobs.drag_scale = old.drag_scale;
+        knobs.drag_scale = (self.scene.lanes[0])
+            .drag_scale_in_world(self.scene.player)
+            .unwrap_or(old.drag_scale);
         if !knobs.wind {
             knobs.wind_speed = old.wind_speed;
         }
@@ -150,12 +158,26 @@ impl Sim {
             return;
         }
         if self.scene.scrubbing().is_none() {
+            // A finished replay (whose loop is paused) goes live, and runs
+            // on from the state shown when resumed.
+            let replay_done = self.leave_finished_replay();
             // The loop holds still on the timeline.
-            self.paused_before_scrub = self.session.timestep.is_paused();
+            self.paused_before_scrub = self.session.timestep.is_paused() && !replay_done;
             self.session.timestep.pause();
         }
         self.scene.scrub_to(i);
         self.knobs_from_world();
+    }
+
+    /// Ends a finished replay so the scene runs live again (the loop runs);
+    /// returns whether there was one.
+    fn leave_finished_replay(&mut self) -> bool {
+        if !self.session.playback_finished() {
+            return false;
+        }
+        self.session.stop_replays();
+        self.session.timestep.resume();
+        true
     }
 
     /// Leaves the timeline and runs on from the state it shows, discarding
