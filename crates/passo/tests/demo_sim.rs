@@ -1,7 +1,7 @@
 //! The demo's movements, driven without a window: walk, run, jump only
 //! when standing, slide on ice, glide, wind.
 
-use passo::demo::{Command, Entry, Input, Sim, catalogue, load};
+use passo::demo::{Command, Entry, Input, Knobs, Sim, catalogue, load};
 use passo_physics::glam::Vec2;
 use std::time::Duration;
 
@@ -239,15 +239,7 @@ fn a_settled_scene_sleeps_in_the_demo_and_a_slider_wakes_it() {
     assert_eq!(solved, 0);
     assert!(contacts >= bodies);
     // A slider (new settings) wakes them all.
-    let mut knobs = sim.session.knobs;
-    knobs.gravity = -5.0;
-    sim.command(Command::Knobs {
-        knobs,
-        friction: false,
-        restitution: false,
-        drag: false,
-    })
-    .unwrap();
+    move_slider(&mut sim, |k| k.gravity = -5.0, false);
     run(&mut sim, 1, Input::default());
     assert_eq!(sim.scene.sleep_counts().0, 0);
 }
@@ -257,15 +249,8 @@ fn a_reset_rebuilds_the_scene_and_keeps_the_session() {
     for entry in [Entry::File("playground".into()), Entry::Integrators] {
         let fresh = load(&entry).unwrap();
         let mut sim = load(&entry).unwrap();
-        let mut knobs = sim.session.knobs;
-        knobs.gravity = -5.0;
-        sim.command(Command::Knobs {
-            knobs,
-            friction: false,
-            restitution: false,
-            drag: false,
-        })
-        .unwrap();
+        move_slider(&mut sim, |k| k.gravity = -5.0, false);
+        let knobs = sim.session.knobs;
         sim.command(Command::Spawn {
             at: [1.0, 4.0],
             round: true,
@@ -296,6 +281,19 @@ fn a_reset_rebuilds_the_scene_and_keeps_the_session() {
         }
         assert!(!sim.scene.interpolation(), "{entry:?}: switch kept");
     }
+}
+
+/// Moves a slider of the panel (`drag`: the drag-area one).
+fn move_slider(sim: &mut Sim, change: impl FnOnce(&mut Knobs), drag: bool) {
+    let mut knobs = sim.session.knobs;
+    change(&mut knobs);
+    sim.command(Command::Knobs {
+        knobs,
+        friction: false,
+        restitution: false,
+        drag,
+    })
+    .unwrap();
 }
 
 fn walk() -> Input {
@@ -332,15 +330,7 @@ fn holding_rewind_runs_the_scene_back_to_the_exact_states_it_passed() {
             sim.spawn(Vec2::new(0.0, 8.0), true).unwrap();
         }
         if frame == 40 {
-            let mut knobs = sim.session.knobs;
-            knobs.gravity = -3.0;
-            sim.command(Command::Knobs {
-                knobs,
-                friction: false,
-                restitution: false,
-                drag: false,
-            })
-            .unwrap();
+            move_slider(sim, |k| k.gravity = -3.0, false);
         }
     });
     let bodies_at_end = sim.scene.body_count();
@@ -481,15 +471,7 @@ fn rewinding_past_a_drag_slider_change_puts_the_slider_back() {
     let mut sim = load(&Entry::File("drag_race".into())).unwrap();
     let before = sim.session.knobs.drag_scale;
     run(&mut sim, 10, Input::default());
-    let mut knobs = sim.session.knobs;
-    knobs.drag_scale = 3.0;
-    sim.command(Command::Knobs {
-        knobs,
-        friction: false,
-        restitution: false,
-        drag: true,
-    })
-    .unwrap();
+    move_slider(&mut sim, |k| k.drag_scale = 3.0, true);
     run(&mut sim, 10, Input::default());
     assert_eq!(sim.session.knobs.drag_scale, 3.0);
     sim.rewinding = true;
