@@ -339,23 +339,11 @@ impl ContactWorld {
         &self.events.events
     }
 
-    /// What the next step needs from the last one: warm-start impulses,
-    /// who touched whom (for begin and end events) and the stored contacts
-    /// of sleeping islands; and the awake contacts, for queries until the
-    /// next step. `locate` tells where a live body sits now.
-    pub(crate) fn carried_state(
-        &self,
-        dynamic: &DynamicBodies,
-        statics: &StaticBodies,
-        locate: impl Fn(BodyId) -> Option<ColliderRef>,
-    ) -> ContactState {
-        let mut state = ContactState::default();
-        self.carry_into(dynamic, statics, locate, &mut state);
-        state
-    }
-
-    /// Writes what [`carried_state`](Self::carried_state) returns into
-    /// `out`, reusing its buffers.
+    /// Writes what the next step needs from the last one into `out`,
+    /// reusing its buffers: warm-start impulses, who touched whom (for
+    /// begin and end events) and the stored contacts of sleeping islands;
+    /// and the awake contacts, for queries until the next step. `locate`
+    /// tells where a live body sits now.
     pub(crate) fn carry_into(
         &self,
         dynamic: &DynamicBodies,

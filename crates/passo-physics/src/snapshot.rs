@@ -263,34 +263,9 @@ impl WorldSnapshot {
 impl World {
     /// The world's whole state (see [`WorldSnapshot`]).
     pub fn snapshot(&self) -> WorldSnapshot {
-        let mut dynamic = self.dynamic.clone();
-        let mut contacts = (self.contacts.as_ref())
-            .map(|c| c.carried_state(&self.dynamic, &self.statics, |id| self.collider_of(id)));
-        // Islands game code woke since the last step wake in the copy, as
-        // they will in this world when it next steps.
-        if let Some(cw) = &self.contacts
-            && cw.has_pending_wakes()
-        {
-            let mut copy = cw.clone();
-            copy.flush_wakes(&mut dynamic);
-            contacts = Some(copy.carried_state(&dynamic, &self.statics, |id| self.collider_of(id)));
-        }
-        WorldSnapshot {
-            settings: *self.settings(),
-            slots: self.slots.clone(),
-            free: self.free.clone(),
-            dynamic,
-            statics: self.statics.clone(),
-            speed_overrides: self.speed_overrides,
-            game_friction: self.game_friction,
-            shaped_dynamic: self.shaped_dynamic,
-            shaped_static: self.shaped_static,
-            stats: self.stats(),
-            contacts,
-            custom_force_models: self.custom.len(),
-            statics_source: Some((self.instance.0, self.static_edits)),
-            made_here: true,
-        }
+        let mut out = WorldSnapshot::default();
+        self.snapshot_into(&mut out);
+        out
     }
 
     /// Writes the world's whole state into `out` (see [`snapshot`](Self::snapshot)),
@@ -299,13 +274,6 @@ impl World {
     /// already holds this world's static bodies as they are now. For
     /// rollback, which saves every tick.
     pub fn snapshot_into(&self, out: &mut WorldSnapshot) {
-        if let Some(cw) = &self.contacts
-            && cw.has_pending_wakes()
-        {
-            // Rare: islands woken since the last step (see `snapshot`).
-            *out = self.snapshot();
-            return;
-        }
         out.settings = *self.settings();
         out.slots.clone_from(&self.slots);
         out.free.clone_from(&self.free);
@@ -320,18 +288,25 @@ impl World {
         out.shaped_dynamic = self.shaped_dynamic;
         out.shaped_static = self.shaped_static;
         out.stats = self.stats;
-        match (&self.contacts, &mut out.contacts) {
-            (Some(cw), Some(state)) => cw.carry_into(
-                &self.dynamic,
-                &self.statics,
-                |id| self.collider_of(id),
-                state,
-            ),
-            (Some(cw), none) => {
-                *none =
-                    Some(cw.carried_state(&self.dynamic, &self.statics, |id| self.collider_of(id)))
+        let WorldSnapshot {
+            dynamic, contacts, ..
+        } = out;
+        match &self.contacts {
+            Some(cw) => {
+                let state = contacts.get_or_insert_with(ContactState::default);
+                let locate = |id| self.collider_of(id);
+                if cw.has_pending_wakes() {
+                    // Rare: islands game code woke since the last step wake
+                    // in the copy, as they will in this world when it next
+                    // steps.
+                    let mut copy = cw.clone();
+                    copy.flush_wakes(dynamic);
+                    copy.carry_into(dynamic, &self.statics, locate, state);
+                } else {
+                    cw.carry_into(&self.dynamic, &self.statics, locate, state);
+                }
             }
-            (None, state) => *state = None,
+            None => *contacts = None,
         }
         out.custom_force_models = self.custom.len();
         out.made_here = true;
@@ -350,6 +325,12 @@ impl World {
         if !snapshot.made_here {
             snapshot.validate_with(&mut self.snapshot_scratch)?;
         }
+        self.restore_checked(snapshot);
+        Ok(())
+    }
+
+    /// Puts this world back in the state of `snapshot`, which was checked.
+    fn restore_checked(&mut self, snapshot: &WorldSnapshot) {
         let same_statics = snapshot.statics_source == Some((self.instance.0, self.static_edits));
         self.settings = snapshot.settings;
         self.slots.clone_from(&snapshot.slots);
@@ -371,7 +352,6 @@ impl World {
         }
         self.after_restore();
         self.note_edit(!same_statics);
-        Ok(())
     }
 
     /// Where a live body sits, as a collider reference.
@@ -405,18 +385,7 @@ impl World {
     pub fn from_snapshot(snapshot: WorldSnapshot) -> Result<World, PhysicsError> {
         snapshot.validate()?;
         let mut world = World::new(snapshot.settings)?;
-        world.slots = snapshot.slots;
-        world.free = snapshot.free;
-        world.dynamic = snapshot.dynamic;
-        world.statics = snapshot.statics;
-        world.speed_overrides = snapshot.speed_overrides;
-        world.game_friction = snapshot.game_friction;
-        world.shaped_dynamic = snapshot.shaped_dynamic;
-        world.shaped_static = snapshot.shaped_static;
-        world.stats = snapshot.stats;
-        world.after_restore();
-        world.statics_dirty = true;
-        world.contacts = snapshot.contacts.map(|c| Box::new(ContactWorld::resume(c)));
+        world.restore_checked(&snapshot);
         Ok(world)
     }
 
