@@ -215,20 +215,28 @@ impl SceneState {
     /// The plot keeps its samples.
     pub(crate) fn step_back(&mut self) -> bool {
         self.resume();
-        let Some(saved) = self.rewind.states.pop_back() else {
+        let Some(last) = self.rewind.states.len().checked_sub(1) else {
             return false;
         };
+        self.show(last);
+        self.rewind.spare.extend(self.rewind.states.pop_back());
+        for lane in &mut self.lanes {
+            lane.forget_removed();
+        }
+        true
+    }
+
+    /// Puts every lane (and the platforms' clock) in kept state `i`.
+    fn show(&mut self, i: usize) {
+        let saved = &self.rewind.states[i];
         for (lane, snapshot) in self.lanes.iter_mut().zip(&saved.worlds) {
             // A snapshot this world made always restores; should it not,
             // the lane keeps its state rather than stopping the demo.
             if let Err(e) = lane.world.restore_from(snapshot) {
                 log::warn!("rewind failed: {e}");
             }
-            lane.forget_removed();
         }
         self.ticks = saved.ticks;
-        self.rewind.spare.push(saved);
-        true
     }
 
     /// Ticks that can be rewound now.
@@ -254,15 +262,9 @@ impl SceneState {
             i = i.saturating_sub(self.save_for_rewind());
         }
         let i = i.min(self.rewind.states.len() - 1);
-        let saved = &self.rewind.states[i];
-        for (lane, snapshot) in self.lanes.iter_mut().zip(&saved.worlds) {
-            if let Err(e) = lane.world.restore_from(snapshot) {
-                log::warn!("rewind failed: {e}");
-            }
-            // The lanes keep the names and colours of bodies the state
-            // shown does not have yet: scrubbing forward brings them back.
-        }
-        self.ticks = saved.ticks;
+        // The lanes keep the names and colours of bodies the state shown
+        // does not have yet: scrubbing forward brings them back.
+        self.show(i);
         self.rewind.cursor = Some(i);
     }
 
