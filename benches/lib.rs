@@ -227,6 +227,42 @@ pub fn spawned_on_one_spot(n: usize) -> World {
     world
 }
 
+/// The deepest overlap of any two shaped bodies (one of them dynamic,
+/// sensors left out), metres, from exact geometry: a sweep along x over
+/// every body, with no bound on pairs (unlike the broad phase's crowded
+/// buckets, which [`World::max_penetration`] shares), so a pile spawned on
+/// one spot costs `n²` here until it spreads.
+pub fn exact_max_overlap(world: &World) -> f32 {
+    let mut bodies: Vec<_> = world
+        .bodies()
+        .filter(|b| b.shape.is_some() && !b.sensor)
+        .map(|b| {
+            let shape = b.shape.expect("shaped");
+            let h = shape.half_extents();
+            (b.position.x - h.x, b.position.x + h.x, b)
+        })
+        .collect();
+    bodies.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut deepest = 0.0f32;
+    for (i, (_, max_x, a)) in bodies.iter().enumerate() {
+        for (min_x, _, b) in &bodies[i + 1..] {
+            if min_x > max_x {
+                break;
+            }
+            let dynamic = a.kind == passo_physics::BodyKind::Dynamic
+                || b.kind == passo_physics::BodyKind::Dynamic;
+            if !dynamic || !a.filter.allows(&b.filter) {
+                continue;
+            }
+            let (sa, sb) = (a.shape.expect("shaped"), b.shape.expect("shaped"));
+            if let Some(m) = passo_physics::collide(&sa, a.position, &sb, b.position, 0.0) {
+                deepest = deepest.max(-m.separation);
+            }
+        }
+    }
+    deepest
+}
+
 /// `n` circles of radius 0.1 m flying at 100 to 500 m/s in pseudo-random
 /// directions inside a closed 60 m × 30 m box, no gravity.
 pub fn fast_circles_in_a_box(n: usize) -> World {

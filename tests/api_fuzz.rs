@@ -80,6 +80,7 @@ enum Op {
     SetFilter(usize, u32, u32),
     SetOneWay(usize, Option<Vec2>),
     SetSensor(usize, bool),
+    SetBullet(usize, bool),
     SetFrictionMix(usize, u8),
     DropThrough(usize, f32),
     KinematicTarget(usize, Vec2, f32),
@@ -116,6 +117,7 @@ fn op() -> impl Strategy<Value = Op> {
         1 => (body.clone(), 0u32..4, 0u32..4).prop_map(|(b, l, m)| Op::SetFilter(b, l, m)),
         1 => (body.clone(), prop::option::of(any_vec())).prop_map(|(b, n)| Op::SetOneWay(b, n)),
         1 => (body.clone(), any::<bool>()).prop_map(|(b, s)| Op::SetSensor(b, s)),
+        1 => (body.clone(), any::<bool>()).prop_map(|(b, s)| Op::SetBullet(b, s)),
         1 => (body.clone(), 0u8..5).prop_map(|(b, m)| Op::SetFrictionMix(b, m)),
         1 => (body.clone(), any_value()).prop_map(|(b, s)| Op::DropThrough(b, s)),
         1 => (body.clone(), any_vec(), any_value()).prop_map(|(b, t, dt)| Op::KinematicTarget(b, t, dt)),
@@ -252,6 +254,12 @@ fn run(ops: &[Op]) -> Result<(), TestCaseError> {
             Op::SetSensor(i, s) => {
                 if let Some(id) = pick(&ids, i) {
                     world.set_sensor(id, s).unwrap();
+                }
+            }
+            Op::SetBullet(i, s) => {
+                if let Some(id) = pick(&ids, i) {
+                    let dynamic = world.body(id).unwrap().kind == BodyKind::Dynamic;
+                    prop_assert_eq!(world.set_bullet(id, s).is_ok(), dynamic || !s);
                 }
             }
             Op::SetFrictionMix(i, m) => {

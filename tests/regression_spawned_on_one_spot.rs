@@ -2,7 +2,11 @@
 //! circles took over 2 s per step and 14 GB. Now a crowded grid cell
 //! bounds each body's pairs (`CROWDED_CELL`), and bodies on exactly the
 //! same spot are pushed apart each pair its own way, so the pile spreads
-//! in every direction instead of along one line.
+//! in every direction instead of along one line. While some contact
+//! overlaps by more than `DEEP_OVERLAP`, the push out of overlap carries on
+//! from substep to substep, so it spreads through the whole pile: 10 000
+//! circles were still overlapping by 19 cm after 10 s, and are now apart
+//! in about 5 s (`passo bench extreme`).
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, ForceModels, Shape, World, WorldSettings};
@@ -10,7 +14,7 @@ use passo_tests::max_penetration;
 
 #[test]
 fn a_pile_spawned_on_one_spot_spreads_out_calmly_with_bounded_contacts() {
-    let n = 400;
+    let n = 2_000;
     let mut world = World::new(WorldSettings {
         forces: ForceModels::none(),
         ..Default::default()
@@ -22,7 +26,7 @@ fn a_pile_spawned_on_one_spot_spreads_out_calmly_with_bounded_contacts() {
             .unwrap();
     }
     let mut fastest = 0.0f32;
-    for _ in 0..600 {
+    for _ in 0..240 {
         world.step(1.0 / 60.0);
         // At most 64 pairs per body from the grid (plus none from the
         // static tree: there is no static body).
@@ -36,7 +40,7 @@ fn a_pile_spawned_on_one_spot_spreads_out_calmly_with_bounded_contacts() {
         "the first steps were crowded"
     );
     let overlap = max_penetration(&world);
-    assert!(overlap <= 0.01, "apart within 10 s: {overlap} m left");
+    assert!(overlap <= 0.01, "apart within 4 s: {overlap} m left");
     // Split impulses push without turning overlap into speed.
     assert!(
         fastest < 1.0,

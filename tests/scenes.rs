@@ -246,7 +246,7 @@ fn path_platforms_follow_their_path_and_carry_what_stands_on_them() {
 }
 
 #[test]
-fn a_path_or_a_one_way_on_a_dynamic_body_is_refused_with_the_field_named() {
+fn a_path_or_a_one_way_on_a_dynamic_body_or_a_static_bullet_is_refused_with_the_field_named() {
     for (text, field) in [
         (
             "(name: \"x\", bodies: [(path: (by: (1, 0), period: 2))])",
@@ -260,8 +260,23 @@ fn a_path_or_a_one_way_on_a_dynamic_body_is_refused_with_the_field_named() {
             "(name: \"x\", bodies: [(one_way: (0, 1))])",
             "bodies[0].one_way",
         ),
+        (
+            "(name: \"x\", bodies: [(kind: Static, shape: Circle(radius: 1), bullet: true)])",
+            "bodies[0].bullet",
+        ),
     ] {
         let err = Scene::parse(text, "t.ron").unwrap_err().to_string();
         assert!(err.contains(field), "{err}");
     }
+}
+
+#[test]
+fn a_bullet_in_a_scene_file_is_a_bullet_in_the_world_and_is_saved_again() {
+    let text = "(name: \"x\", bodies: [(shape: Circle(radius: 0.05), velocity: (400, 0), bullet: true), (shape: Circle(radius: 0.05))])";
+    let scene = Scene::parse(text, "t.ron").unwrap();
+    let built = scene.build().unwrap();
+    let flags: Vec<bool> = built.world.bodies().map(|b| b.bullet).collect();
+    assert_eq!(flags, [true, false]);
+    let saved = scene_from_world(&built.world, &scene.file, &built.bodies);
+    assert!(saved.bodies[0].bullet && !saved.bodies[1].bullet);
 }

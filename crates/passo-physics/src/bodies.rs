@@ -82,6 +82,9 @@ pub(crate) struct BodyMeta {
     /// (see `World::drop_through`).
     #[cfg_attr(feature = "serde", serde(default))]
     pub drop_through: f32,
+    /// Swept against every body when it moves fast (see `BodyDef::bullet`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub bullet: bool,
     pub min_speed: Option<f32>,
     pub max_speed: Option<f32>,
     pub user_data: u64,
@@ -107,6 +110,7 @@ impl BodyMeta {
             filter: self.filter,
             sensor: self.sensor,
             one_way: self.one_way,
+            bullet: self.bullet,
             min_speed: self.min_speed,
             max_speed: self.max_speed,
             user_data: self.user_data,

@@ -77,6 +77,15 @@ pub struct BodyDef {
     /// with their velocity unchanged, and so does a body already partly
     /// inside it. Default `None` (solid from every side).
     pub one_way: Option<Vec2>,
+    /// A bullet: a dynamic body swept against every other body when it
+    /// moves farther in a step than its speculative contacts reach, so it
+    /// never passes through a thin dynamic body either (a projectile
+    /// through a crate). Every fast body is swept against static and
+    /// kinematic bodies; bullets cost a pass over the bodies each step
+    /// they move that fast, so keep them few. Ignored for static and
+    /// kinematic bodies. Default `false`. See
+    /// [`SPECULATIVE_REACH`](crate::constants::SPECULATIVE_REACH).
+    pub bullet: bool,
     /// Minimum speed override, metres per second, >= 0; `None` (the default)
     /// uses the world's.
     pub min_speed: Option<f32>,
@@ -103,6 +112,7 @@ impl Default for BodyDef {
             filter: CollisionFilter::default(),
             sensor: false,
             one_way: None,
+            bullet: false,
             min_speed: None,
             max_speed: None,
             user_data: 0,
@@ -335,6 +345,8 @@ pub struct Body {
     pub sensor: bool,
     /// The solid side of a one-way platform (unit), if it is one.
     pub one_way: Option<Vec2>,
+    /// Whether the body is a bullet (see [`BodyDef::bullet`]).
+    pub bullet: bool,
     /// Minimum speed override, if any.
     pub min_speed: Option<f32>,
     /// Maximum speed override, if any.
@@ -369,6 +381,7 @@ impl Body {
             filter: self.filter,
             sensor: self.sensor,
             one_way: self.one_way,
+            bullet: self.bullet,
             min_speed: self.min_speed,
             max_speed: self.max_speed,
             user_data: self.user_data,

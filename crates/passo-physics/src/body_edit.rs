@@ -304,6 +304,25 @@ impl World {
         Ok(())
     }
 
+    /// Makes a dynamic body a bullet, or an ordinary body again (see
+    /// [`BodyDef::bullet`](crate::BodyDef::bullet)).
+    ///
+    /// # Errors
+    /// A stale id, or `true` for a static or kinematic body.
+    pub fn set_bullet(&mut self, id: BodyId, bullet: bool) -> Result<(), PhysicsError> {
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        let meta = self.meta_mut(location);
+        if bullet && (matches!(location, Location::Static(_)) || meta.kinematic) {
+            return Err(PhysicsError::OutOfRange {
+                what: "bullet",
+                value: 1.0,
+                allowed: "set only on dynamic bodies",
+            });
+        }
+        meta.bullet = bullet;
+        Ok(())
+    }
+
     /// Makes a static or kinematic body a one-way platform with the given
     /// solid side (see [`BodyDef::one_way`](crate::BodyDef::one_way)), or
     /// solid from every side again with `None`.

@@ -5,6 +5,7 @@
 //! each is skipped when the plan does not need it.
 
 use crate::bodies::SpeedLimits;
+use crate::constants::DEEP_OVERLAP;
 use crate::contact_world::{ContactWorld, StepParams};
 use crate::integrator::integrate_velocity;
 use crate::kernel::PointMassKernel;
@@ -15,7 +16,7 @@ use crate::{ContactSettings, Integrator};
 use glam::Vec2;
 
 /// One stage of the contact step, in the order [`World::contact_stages`]
-/// lists them: the first six run in every substep, the last three once
+/// lists them: the first seven run in every substep, the last four once
 /// after the substeps.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ContactStage {
@@ -33,6 +34,10 @@ pub enum ContactStage {
     IntegratePositions,
     /// Velocity passes at the new positions.
     Relax,
+    /// Bodies that moved farther than their speculative contacts reach
+    /// swept along their paths and stopped at their first impact (only
+    /// with continuous collision).
+    SweepFastBodies,
     /// Contacts hit fast enough bounce (only while some body bounces).
     Restitution,
     /// Each contact's separation at the end of the step, for queries.
@@ -59,6 +64,8 @@ struct SubstepPlan {
     solver: SolverParams,
     /// Some body bounces.
     restitution: bool,
+    /// Continuous collision: fast bodies are swept.
+    sweep: bool,
 }
 
 impl SubstepPlan {
@@ -80,8 +87,10 @@ impl SubstepPlan {
                 push_out_speed: settings.push_out_speed,
                 slop: settings.slop,
                 restitution_threshold: settings.restitution_threshold,
+                carry_push: false,
             },
             restitution: world.bouncy > 0,
+            sweep: settings.continuous,
         }
     }
 
@@ -96,6 +105,7 @@ impl SubstepPlan {
             (self.substeps > 0, Solve),
             (self.substeps > 0, IntegratePositions),
             (self.substeps > 0 && s.relax_iterations > 0, Relax),
+            (self.substeps > 0 && self.sweep, SweepFastBodies),
             (self.restitution, Restitution),
             (true, StoreSeparations),
             (self.limits.is_some(), ClampSpeeds),
@@ -146,7 +156,9 @@ impl World {
         if cw.crowded() > 0 {
             self.stats.crowded_steps = self.stats.crowded_steps.saturating_add(1);
         }
-        let plan = SubstepPlan::new(self, settings, dt, cw.sleeping.any(&self.dynamic));
+        let mut plan = SubstepPlan::new(self, settings, dt, cw.sleeping.any(&self.dynamic));
+        plan.solver.carry_push =
+            settings.warm_starting && solver::is_deep_pile(&cw.solved.rows, DEEP_OVERLAP);
         if plan.hold_kinematic {
             self.hold_kinematic();
         }
@@ -167,6 +179,10 @@ impl World {
             self.solve(&mut cw, &plan);
             self.integrate_positions(&mut cw.motion, &plan, &correction);
             self.relax(&mut cw, &plan);
+        }
+        if plan.substeps > 0 && plan.sweep {
+            let stops = cw.sweep_fast_bodies(&mut self.dynamic, &self.statics);
+            self.stats.swept_stops = self.stats.swept_stops.saturating_add(stops as u64);
         }
         self.finish_contacts(&mut cw, &plan);
         self.may_rest |= settings.sleeping;
@@ -251,7 +267,7 @@ impl World {
         let ContactWorld { solved, motion, .. } = cw;
         motion.push.fill(Vec2::ZERO);
         let mut bodies = motion.bodies(&mut self.dynamic.vel);
-        solver::begin_substep(&mut solved.rows, &mut bodies, plan.solver.warm_starting);
+        solver::begin_substep(&mut solved.rows, &mut bodies, &plan.solver);
         for _ in 0..plan.solver.iterations {
             solver::solve(&mut solved.rows, &mut bodies, &plan.solver, true);
         }
@@ -296,7 +312,7 @@ impl World {
         }
     }
 
-    /// After the substeps: restitution, each contact's final separation,
+    /// After the substeps and sweeps: restitution, each contact's final separation,
     /// and the speed limits of the final velocities.
     fn finish_contacts(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
         let ContactWorld { solved, motion, .. } = cw;

@@ -7,6 +7,7 @@ use crate::bodies::{Colliders, DynamicBodies, StaticBodies};
 use crate::collider::ColliderRef;
 use crate::constraint::{Constraint, ContactInfo, ContactList, Merge};
 use crate::contact_state::{ContactState, names_bodies};
+use crate::continuous::Sweeps;
 use crate::events::EventTracker;
 use crate::narrow_phase::{Narrow, NarrowPhase, Outcome};
 use crate::proxies::{Proxies, ProxyMargin};
@@ -40,6 +41,7 @@ pub(crate) struct ContactWorld {
     pub sleeping: SleepingContacts,
     /// Per-body buffers of the substeps.
     pub motion: Motion,
+    sweeps: Sweeps,
     events: EventTracker,
     /// Room for merging contacts found again, kept between steps.
     scratch: ContactList,
@@ -102,6 +104,18 @@ impl ContactWorld {
         if settings.warm_starting {
             self.events.warm_start(&mut self.solved);
         }
+    }
+
+    /// After the substeps: sweeps the bodies that moved beyond their reach
+    /// and moves back those that hit something (see [`Sweeps`]). Returns
+    /// how many were stopped.
+    pub(crate) fn sweep_fast_bodies(
+        &mut self,
+        dynamic: &mut DynamicBodies,
+        statics: &StaticBodies,
+    ) -> usize {
+        self.sweeps
+            .run(dynamic, statics, &self.proxies, &mut self.motion)
     }
 
     /// Proxies for the shaped dynamic bodies, grown by their possible

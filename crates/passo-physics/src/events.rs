@@ -15,6 +15,9 @@ pub(crate) struct Cached {
     key: (BodyId, BodyId),
     normal_impulse: f32,
     tangent_impulse: f32,
+    /// The push out of overlap (split impulse) of the last substep.
+    #[cfg_attr(feature = "serde", serde(default))]
+    push_impulse: f32,
 }
 
 impl Cached {
@@ -24,6 +27,8 @@ impl Cached {
         self.normal_impulse.is_finite()
             && self.normal_impulse >= 0.0
             && self.tangent_impulse.is_finite()
+            && self.push_impulse.is_finite()
+            && self.push_impulse >= 0.0
     }
 
     /// The pair's order key.
@@ -63,6 +68,7 @@ impl EventTracker {
             if j < cache.len() && cache[j].key == k {
                 c.normal_impulse = cache[j].normal_impulse;
                 c.tangent_impulse = cache[j].tangent_impulse;
+                c.push_impulse = cache[j].push_impulse;
             }
         }
     }
@@ -104,6 +110,7 @@ impl EventTracker {
                 key: k,
                 normal_impulse: c.normal_impulse,
                 tangent_impulse: c.tangent_impulse,
+                push_impulse: c.push_impulse,
             });
             if info.is_touching(c) {
                 self.touching.push(k);

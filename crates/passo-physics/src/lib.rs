@@ -80,6 +80,8 @@ mod constraint;
 mod narrow_phase;
 mod solver;
 
+mod continuous;
+
 mod island;
 
 mod sleeping;

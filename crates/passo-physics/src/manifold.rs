@@ -95,6 +95,13 @@ impl Faces {
         self.0 & bit != 0
     }
 
+    /// Whether `normal` (out of the box) leaves through a covered face:
+    /// anything arriving along it came through the neighbour first.
+    pub(crate) fn covers(self, normal: Vec2) -> bool {
+        (normal.x != 0.0 && self.covered(0, normal.x))
+            || (normal.y != 0.0 && self.covered(1, normal.y))
+    }
+
     /// The faces of box `a` that box `b` covers: `b` lies flush against (or
     /// across) the face, within `tolerance` metres, along all of it.
     pub(crate) fn covered_by(a: &crate::Aabb, b: &crate::Aabb, tolerance: f32) -> u8 {

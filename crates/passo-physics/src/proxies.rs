@@ -6,7 +6,7 @@
 use crate::bodies::{BodyMeta, DynamicBodies, StaticBodies};
 use crate::broad_phase::BroadPhase;
 use crate::collider::ColliderRef;
-use crate::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE};
+use crate::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE, SPECULATIVE_REACH};
 use crate::manifold::Faces;
 use crate::static_tree::StaticTree;
 use crate::{Aabb, Shape};
@@ -16,8 +16,9 @@ use glam::Vec2;
 pub(crate) const NO_PROXY: u32 = u32::MAX;
 
 /// How far a proxy is grown: half the speculative distance, plus the
-/// body's possible travel this step with continuous collision.
-#[derive(Clone, Copy, Debug, Default)]
+/// body's possible travel this step with continuous collision, up to its
+/// reach ([`SPECULATIVE_REACH`] of its smallest half extent).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct ProxyMargin {
     /// Speed gravity can add this step, m/s.
     pub fall: f32,
@@ -26,18 +27,29 @@ pub(crate) struct ProxyMargin {
 }
 
 impl ProxyMargin {
-    /// The margin of a body moving at `velocity`, metres.
-    pub(crate) fn of(&self, velocity: Vec2) -> f32 {
-        let travel = if self.continuous {
+    /// The margin of a body of `shape` moving at `velocity`, metres.
+    pub(crate) fn of(&self, velocity: Vec2, shape: &Shape) -> f32 {
+        0.5 * SPECULATIVE_DISTANCE + self.travel(velocity).min(reach(shape))
+    }
+
+    /// How far a body moving at `velocity` can travel this step, metres
+    /// (zero without continuous collision).
+    fn travel(&self, velocity: Vec2) -> f32 {
+        if self.continuous {
             (velocity.length() + self.fall) * self.dt
         } else {
             0.0
-        };
-        0.5 * SPECULATIVE_DISTANCE + travel
+        }
     }
 
     /// The margin a static body adds to a pair.
     pub(crate) const STATIC: f32 = 0.5 * SPECULATIVE_DISTANCE;
+}
+
+/// How far the speculative contacts of a body of `shape` reach along its
+/// travel, metres.
+pub(crate) fn reach(shape: &Shape) -> f32 {
+    SPECULATIVE_REACH * shape.half_extents().min_element()
 }
 
 /// The proxies of one step and the pairs found among them, with the static
@@ -221,11 +233,18 @@ impl Proxies {
         }
     }
 
+    /// Calls `f` with the index of each static body whose box overlaps
+    /// `aabb`.
+    pub(crate) fn statics_in(&self, aabb: &Aabb, mut f: impl FnMut(u32)) {
+        let items = &self.tree_items;
+        self.tree.query(aabb, |item| f(items[item as usize]));
+    }
+
     /// Adds a proxy for dynamic body `i` (which has a shape); `track_sleep`
     /// records whether it sleeps.
     pub(crate) fn add(&mut self, dynamic: &DynamicBodies, i: usize, track_sleep: bool) -> u32 {
         let shape = dynamic.meta[i].shape.expect("a proxy's body has a shape");
-        let margin = self.margin.of(dynamic.vel[i]);
+        let margin = self.margin.of(dynamic.vel[i], &shape);
         let p = self.boxes.len() as u32;
         self.of_body[i] = p;
         self.body.push(i as u32);

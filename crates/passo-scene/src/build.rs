@@ -138,6 +138,7 @@ fn body_def(spec: &BodySpec, position: Vec2) -> BodyDef {
         filter: spec.filter.unwrap_or_default(),
         sensor: spec.sensor,
         one_way: spec.one_way,
+        bullet: spec.bullet,
         min_speed: spec.min_speed,
         max_speed: spec.max_speed,
         user_data: 0,

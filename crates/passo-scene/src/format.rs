@@ -246,6 +246,10 @@ pub struct BodySpec {
     /// solid side, e.g. `(0, 1)`. Default none (solid from every side).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub one_way: Option<Vec2>,
+    /// A dynamic body swept against every other body when it moves faster
+    /// than its contacts reach (a projectile). Default false.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub bullet: bool,
     /// A kinematic body's back-and-forth path (a moving platform, a lift).
     /// Default none (it keeps its `velocity`).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -652,6 +656,9 @@ impl BodySpec {
                     "must be a non-zero direction on a Static or Kinematic body".to_owned(),
                 ));
             }
+        }
+        if self.bullet && self.kind != BodyKind::Dynamic {
+            return Err(c.fail(&at("bullet"), "is for `kind: Dynamic` bodies".to_owned()));
         }
         if let Some(path) = &self.path {
             c.finite_vec(&at("path.by"), path.by)?;
