@@ -27,30 +27,86 @@ pub fn rain_strip(n: usize) -> World {
 
 /// `n` circles in `columns` columns above a floor between two walls.
 pub fn rain_grid(n: usize, columns: usize) -> World {
+    rain_in(n, columns, box_container)
+}
+
+/// The rain's box: a floor and two walls, three static boxes.
+fn box_container(world: &mut World, width: f32, height: f32) {
+    let fixed = |w: &mut World, centre: Vec2, size: Vec2| {
+        w.add_body(BodyDef::new_static(centre, Shape::rect(size.x, size.y)))
+            .expect("valid wall");
+    };
+    fixed(world, Vec2::new(0.0, -0.5), Vec2::new(width + 2.0, 1.0));
+    fixed(
+        world,
+        Vec2::new(-width * 0.5 - 0.5, height * 0.5),
+        Vec2::new(1.0, height),
+    );
+    fixed(
+        world,
+        Vec2::new(width * 0.5 + 0.5, height * 0.5),
+        Vec2::new(1.0, height),
+    );
+}
+
+/// The same rain in a box drawn on a 1000 × 1000 tile map of 0.25 m cells
+/// (250 m square): the floor and walls are cells, and one cell in ten of
+/// the rest of the map is solid (scattered blocks of a level), so the map
+/// is tens of thousands of boxes.
+pub fn rain_on_tile_map(n: usize) -> World {
+    let columns = ((2.0 * (n as f32).sqrt()).ceil() as usize).max(1);
+    rain_in(n, columns, tile_container)
+}
+
+fn tile_container(world: &mut World, width: f32, height: f32) {
+    use passo_physics::{BodyKind, TileKind, TileMap};
+    let cell = 0.25;
+    let cells = 1000u32;
+    let origin = Vec2::splat(-0.5 * cells as f32 * cell) + Vec2::new(0.0, 100.0);
+    let mut map = TileMap::new(cells, cells, Vec2::splat(cell), origin).expect("valid map");
+    let solid = map.add_kind(TileKind::SOLID).expect("valid kind");
+    let at = |p: Vec2| map.cell_at(p).expect("inside the map");
+    // The box: floor 1 m thick, walls 1 m thick, as in `box_container`.
+    let (lo, hi) = (
+        at(Vec2::new(-width * 0.5 - 1.0 + 0.01, -1.0 + 0.01)),
+        at(Vec2::new(width * 0.5 + 1.0 - 0.01, height - 0.01)),
+    );
+    let (inner_lo, inner_hi) = (
+        at(Vec2::new(-width * 0.5 + 0.01, 0.01)),
+        at(Vec2::new(width * 0.5 - 0.01, height)),
+    );
+    let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+    for y in 0..cells {
+        for x in 0..cells {
+            let in_box = (lo.0..=hi.0).contains(&x) && (lo.1..=hi.1).contains(&y);
+            let hollow = (inner_lo.0..=inner_hi.0).contains(&x) && y >= inner_lo.1;
+            let solid_cell = if in_box {
+                !hollow
+            } else {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                seed.is_multiple_of(10) && !(lo.0.saturating_sub(8)..=hi.0 + 8).contains(&x)
+            };
+            if solid_cell {
+                map.set(x, y, Some(solid)).expect("inside");
+            }
+        }
+    }
+    world
+        .add_tile_map(&map, BodyKind::Static)
+        .expect("valid map");
+}
+
+/// `n` circles in `columns` columns in a box made by `container(world,
+/// width, height)`.
+fn rain_in(n: usize, columns: usize, container: fn(&mut World, f32, f32)) -> World {
     let mut world = World::default();
     let rows = n.div_ceil(columns);
     let spacing = 0.25;
     let width = columns as f32 * spacing + 1.0;
     let height = rows as f32 * spacing + 5.0;
-    let fixed = |w: &mut World, centre: Vec2, size: Vec2| {
-        w.add_body(BodyDef::new_static(centre, Shape::rect(size.x, size.y)))
-            .expect("valid wall");
-    };
-    fixed(
-        &mut world,
-        Vec2::new(0.0, -0.5),
-        Vec2::new(width + 2.0, 1.0),
-    );
-    fixed(
-        &mut world,
-        Vec2::new(-width * 0.5 - 0.5, height * 0.5),
-        Vec2::new(1.0, height),
-    );
-    fixed(
-        &mut world,
-        Vec2::new(width * 0.5 + 0.5, height * 0.5),
-        Vec2::new(1.0, height),
-    );
+    container(&mut world, width, height);
     let mut seed = 0x2545_F491_4F6C_DD1Du64;
     let mut jitter = move || {
         seed ^= seed << 13;

@@ -28,6 +28,9 @@ pub enum PhysicsError {
     StaleBody(BodyId),
     /// A snapshot that no world could have produced (a damaged file).
     InvalidSnapshot(String),
+    /// A tile map that cannot be built: a character not in the legend, a
+    /// cell outside the map, an unknown kind.
+    InvalidTileMap(String),
 }
 
 impl fmt::Display for PhysicsError {
@@ -41,6 +44,7 @@ impl fmt::Display for PhysicsError {
             } => write!(f, "{what} must be {allowed}, got {value}"),
             Self::StaleBody(id) => write!(f, "{id:?} does not name a body in this world"),
             Self::InvalidSnapshot(why) => write!(f, "invalid world snapshot: {why}"),
+            Self::InvalidTileMap(why) => write!(f, "invalid tile map: {why}"),
         }
     }
 }

@@ -52,6 +52,8 @@ mod material;
 
 mod body;
 
+mod tile_map;
+
 mod forces;
 
 mod bodies;
@@ -131,4 +133,5 @@ pub use settings::WorldSettings;
 pub use shape::Shape;
 pub use snapshot::WorldSnapshot;
 pub use step::Stage;
+pub use tile_map::{ASCII_LEGEND, MAX_TILE_CELLS, TileKind, TileMap, TileRect};
 pub use world::{StepStats, World};

@@ -102,6 +102,70 @@ impl Faces {
             || (normal.y != 0.0 && self.covered(1, normal.y))
     }
 
+    /// The faces of box `a` that the boxes `neighbours` cover together:
+    /// each face that some of them lie flush against (or across), within
+    /// `tolerance` metres, and whose whole length their spans cover with
+    /// no gap wider than the tolerance. A face of a tall tile whose
+    /// neighbour is two shorter tiles, one on the other, is covered as if
+    /// by one. `spans` is scratch space.
+    pub(crate) fn covered_by_all(
+        a: &crate::Aabb,
+        neighbours: &[crate::Aabb],
+        tolerance: f32,
+        spans: &mut Vec<(f32, f32)>,
+    ) -> u8 {
+        let t = tolerance;
+        // (face, whether `b` lies flush against or across it, the axis
+        // along the face)
+        type Against = fn(&crate::Aabb, &crate::Aabb, f32) -> bool;
+        let faces: [(u8, Against, usize); 4] = [
+            (
+                Self::RIGHT,
+                |a, b, t| b.min.x <= a.max.x + t && b.max.x >= a.max.x + 2.0 * t,
+                1,
+            ),
+            (
+                Self::LEFT,
+                |a, b, t| b.max.x >= a.min.x - t && b.min.x <= a.min.x - 2.0 * t,
+                1,
+            ),
+            (
+                Self::TOP,
+                |a, b, t| b.min.y <= a.max.y + t && b.max.y >= a.max.y + 2.0 * t,
+                0,
+            ),
+            (
+                Self::BOTTOM,
+                |a, b, t| b.max.y >= a.min.y - t && b.min.y <= a.min.y - 2.0 * t,
+                0,
+            ),
+        ];
+        let mut covered = 0;
+        for (bit, against, axis) in faces {
+            spans.clear();
+            spans.extend(
+                neighbours
+                    .iter()
+                    .filter(|b| against(a, b, t))
+                    .map(|b| (b.min[axis], b.max[axis])),
+            );
+            spans.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+            // Walk the spans in order: how far along the face is covered
+            // without a gap.
+            let mut reach = a.min[axis] + t;
+            for &(lo, hi) in spans.iter() {
+                if lo > reach + t {
+                    break;
+                }
+                reach = reach.max(hi);
+            }
+            if reach >= a.max[axis] - t {
+                covered |= bit;
+            }
+        }
+        covered
+    }
+
     /// The faces of box `a` that box `b` covers: `b` lies flush against (or
     /// across) the face, within `tolerance` metres, along all of it.
     pub(crate) fn covered_by(a: &crate::Aabb, b: &crate::Aabb, tolerance: f32) -> u8 {
@@ -511,6 +575,34 @@ mod tests {
         // A gap wider than the slop covers nothing.
         let apart = Aabb::from_centre(Vec2::new(1.02, 0.0), Vec2::splat(0.5));
         assert_eq!(Faces::covered_by(&a, &apart, t), 0);
+    }
+
+    #[test]
+    fn neighbours_cover_a_face_together_but_not_across_a_gap() {
+        use crate::Aabb;
+        let t = crate::constants::LINEAR_SLOP;
+        let mut spans = Vec::new();
+        // A tile two cells tall with two one-cell tiles stacked on its right.
+        let tall = Aabb::from_centre(Vec2::ZERO, Vec2::new(0.5, 1.0));
+        let low = Aabb::from_centre(Vec2::new(1.0, -0.5), Vec2::splat(0.5));
+        let high = Aabb::from_centre(Vec2::new(1.0, 0.5), Vec2::splat(0.5));
+        assert_eq!(Faces::covered_by(&tall, &low, t), 0, "neither alone");
+        assert_eq!(
+            Faces::covered_by_all(&tall, &[high, low], t, &mut spans),
+            Faces::RIGHT
+        );
+        // A 1 cm gap between them is wider than the slop: the face is open.
+        let high_up = Aabb::from_centre(Vec2::new(1.0, 0.51), Vec2::splat(0.49));
+        assert_eq!(
+            Faces::covered_by_all(&tall, &[low, high_up], t, &mut spans),
+            0
+        );
+        // One neighbour alone gives what covered_by gives.
+        let right = Aabb::from_centre(Vec2::new(1.0, 0.0), Vec2::splat(1.0));
+        assert_eq!(
+            Faces::covered_by_all(&tall, &[right], t, &mut spans),
+            Faces::covered_by(&tall, &right, t)
+        );
     }
 
     #[test]

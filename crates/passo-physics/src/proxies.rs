@@ -12,6 +12,10 @@ use crate::static_tree::StaticTree;
 use crate::{Aabb, Shape};
 use glam::Vec2;
 
+/// The step searches a tree of the static bodies near its awake proxies
+/// when they are fewer than one in this many of the whole level.
+const NARROWED_TREE: usize = 8;
+
 /// No proxy (or no body) here.
 pub(crate) const NO_PROXY: u32 = u32::MAX;
 
@@ -71,6 +75,12 @@ pub(crate) struct Proxies {
     /// kinematic box covers; sorted.
     faces_by_kinematic: Vec<(u32, Faces)>,
     tree_dirty: bool,
+    /// Per static body: its box (for the narrowed tree).
+    static_boxes: Vec<Aabb>,
+    /// This step: the static bodies near the awake proxies, and a tree of
+    /// them (see `find_pairs`).
+    near_items: Vec<u32>,
+    near_tree: StaticTree,
     /// Proxy -> dynamic index.
     pub body: Vec<u32>,
     /// Proxy boxes, grown by their margins.
@@ -126,11 +136,15 @@ impl Proxies {
 
     fn rebuild_tree(&mut self, statics: &StaticBodies) {
         self.tree_items.clear();
+        self.static_boxes.clear();
         let mut boxes = Vec::new();
         for (i, meta) in statics.meta.iter().enumerate() {
-            if let Some(shape) = &meta.shape {
+            let half = meta.shape.map_or(Vec2::ZERO, |s| s.half_extents());
+            self.static_boxes
+                .push(Aabb::from_centre(statics.pos[i], half));
+            if meta.shape.is_some() {
                 self.tree_items.push(i as u32);
-                boxes.push(Aabb::from_centre(statics.pos[i], shape.half_extents()));
+                boxes.push(self.static_boxes[i]);
             }
         }
         self.tree = StaticTree::build(boxes);
@@ -138,8 +152,9 @@ impl Proxies {
         self.tree_dirty = false;
     }
 
-    /// Which faces of each static box other static boxes cover, found with
-    /// the static tree: `O(n log n)` for `n` static bodies, once per change.
+    /// Which faces of each static box other static boxes cover, together
+    /// (see [`Faces::covered_by_all`]), found with the static tree:
+    /// `O(n log n)` for `n` static bodies, once per change.
     fn find_covered_faces(&mut self, statics: &StaticBodies) {
         let aabb = |i: usize| match statics.meta[i].shape {
             Some(Shape::Box { half_extents }) => {
@@ -149,17 +164,19 @@ impl Proxies {
         };
         self.static_faces.clear();
         self.static_faces.resize(statics.len(), Faces::default());
+        let (mut neighbours, mut spans) = (Vec::new(), Vec::new());
         for i in 0..statics.len() {
             let Some(a) = aabb(i) else { continue };
-            let mut faces = 0;
+            neighbours.clear();
             let items = &self.tree_items;
             self.tree.query(&a.grown(2.0 * LINEAR_SLOP), |item| {
                 let j = items[item as usize] as usize;
                 let covers = j != i && can_cover(&statics.meta[j], &statics.meta[i]);
                 if let (true, Some(b)) = (covers, aabb(j)) {
-                    faces |= Faces::covered_by(&a, &b, LINEAR_SLOP);
+                    neighbours.push(b);
                 }
             });
+            let faces = Faces::covered_by_all(&a, &neighbours, LINEAR_SLOP, &mut spans);
             self.static_faces[i] = Faces(faces);
         }
     }
@@ -282,12 +299,39 @@ impl Proxies {
         self.grid
             .find_pairs(&self.boxes, &self.asleep, parallel, &mut self.pairs);
         self.static_pairs.clear();
+        // The static bodies near the awake proxies, when they are few of a
+        // large level (a rain in one room of a 1000 × 1000 tile map): each
+        // proxy then searches a small tree of them, not the whole level.
+        let mut region: Option<Aabb> = None;
+        for p in 0..self.boxes.len() {
+            if !self.is_asleep(p) {
+                region = Some(region.map_or(self.boxes[p], |r| r.union(&self.boxes[p])));
+            }
+        }
+        let Some(region) = region else { return };
+        self.near_items.clear();
+        let (near, items) = (&mut self.near_items, &self.tree_items);
+        self.tree
+            .query(&region, |item| near.push(items[item as usize]));
+        let narrowed = self.near_items.len() * NARROWED_TREE < self.tree.len();
+        if narrowed {
+            let boxes = self
+                .near_items
+                .iter()
+                .map(|&s| self.static_boxes[s as usize]);
+            self.near_tree.rebuild(boxes);
+        }
+        let (tree, items) = if narrowed {
+            (&self.near_tree, &self.near_items)
+        } else {
+            (&self.tree, &self.tree_items)
+        };
         for p in 0..self.boxes.len() {
             if self.is_asleep(p) {
                 continue;
             }
-            let (pairs, items) = (&mut self.static_pairs, &self.tree_items);
-            self.tree.query(&self.boxes[p], |item| {
+            let pairs = &mut self.static_pairs;
+            tree.query(&self.boxes[p], |item| {
                 pairs.push((p as u32, items[item as usize]))
             });
         }

@@ -3,9 +3,9 @@
 use anyhow::Result;
 use glam::Vec2;
 use passo_benches::{
-    drive_sweepers, exact_max_overlap, fast_circles_in_a_box, pyramid_world, rain_strip,
-    rain_with_platforms, rain_world, rays, spawned_on_one_spot, time_steps, time_steps_with,
-    with_sleeping,
+    drive_sweepers, exact_max_overlap, fast_circles_in_a_box, pyramid_world, rain_on_tile_map,
+    rain_strip, rain_with_platforms, rain_world, rays, spawned_on_one_spot, time_steps,
+    time_steps_with, with_sleeping,
 };
 use passo_physics::constants::LINEAR_SLOP;
 use passo_physics::{BodyKind, QueryFilter, World};
@@ -40,6 +40,9 @@ pub enum BenchWhat {
     Queries(QueriesBenchArgs),
     /// A rain with kinematic platforms sweeping through it.
     Platforms(PlatformsBenchArgs),
+    /// A rain in a box drawn on a 1000 × 1000 tile map, against the same
+    /// rain in a box of three static boxes.
+    Tiles(TilesBenchArgs),
     /// Scenes that make work grow faster than the bodies: circles spawned
     /// on one spot, and fast circles in a closed box.
     Extreme(ExtremeBenchArgs),
@@ -100,6 +103,21 @@ pub struct QueriesBenchArgs {
     /// Rays per batch.
     #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
     pub rays: u32,
+}
+
+/// Options of `passo bench platforms`.
+#[derive(clap::Args, Debug)]
+pub struct TilesBenchArgs {
+    /// Rain size (bodies).
+    #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub bodies: u32,
+    /// Ticks to run at 60 Hz, each world in turn, this many rounds.
+    #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub ticks: u32,
+    /// Rounds: the two worlds run alternately, so both meet the same
+    /// machine.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub rounds: u32,
 }
 
 /// Options of `passo bench platforms`.
@@ -207,6 +225,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         BenchWhat::Sleep(a) => sleep(a),
         BenchWhat::Queries(a) => queries(a),
         BenchWhat::Platforms(a) => platforms(a),
+        BenchWhat::Tiles(a) => tiles(a),
         BenchWhat::Extreme(a) => extreme(a),
         BenchWhat::Soak(a) => soak(a),
         BenchWhat::Rollback(a) => rollback(a),
@@ -515,6 +534,36 @@ fn platforms(args: &PlatformsBenchArgs) -> Result<()> {
 
 /// A benchmark scene of `n` bodies.
 type MakeWorld = fn(usize) -> World;
+
+fn tiles(args: &TilesBenchArgs) -> Result<()> {
+    println!(
+        "| ground | static boxes | bodies | ticks | ms per step (mean) | ms per step (last fifth) | max penetration (mm) |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    let scenes: [(&str, MakeWorld); 2] = [
+        ("three static boxes", rain_world),
+        ("1000 × 1000 tile map", rain_on_tile_map),
+    ];
+    for _ in 0..args.rounds {
+        for (name, make) in scenes {
+            let mut world = make(args.bodies as usize);
+            let statics = world
+                .bodies()
+                .filter(|b| b.kind == BodyKind::Static)
+                .count();
+            let t = time_steps(args.ticks, || world.step(1.0 / 60.0));
+            println!(
+                "| {name} | {statics} | {} | {} | {:.2} | {:.2} | {:.1} |",
+                args.bodies,
+                args.ticks,
+                t.mean_ms,
+                t.last_ms,
+                world.max_penetration() * 1e3
+            );
+        }
+    }
+    Ok(())
+}
 
 fn extreme(args: &ExtremeBenchArgs) -> Result<()> {
     println!(
