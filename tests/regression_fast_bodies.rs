@@ -7,7 +7,7 @@
 //! against static and kinematic bodies, and as a bullet against every body.
 //! Nothing tunnels, and pairs stay bounded.
 
-use passo_physics::constants::{LINEAR_SLOP, SPECULATIVE_REACH};
+use passo_physics::constants::{DEEP_OVERLAP, LINEAR_SLOP, SPECULATIVE_REACH};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyKind, ForceModels, Shape, World, WorldSettings};
 use passo_tests::{Rng, max_penetration};
@@ -273,4 +273,152 @@ fn a_fast_body_lands_on_a_one_way_platform_from_above_and_passes_from_below() {
     );
     assert!(y(rising) > 10.0, "passed through to {}", y(rising));
     assert_eq!(world.body(rising).unwrap().velocity, Vec2::new(0.0, 200.0));
+}
+
+#[test]
+fn a_fast_kinematic_wall_pushes_a_resting_ball_instead_of_passing_it() {
+    // A wall 10 cm thick at 50 m/s moves 0.83 m a step, far beyond its
+    // own reach (4 × 5 cm): it is never swept, so its proxy covers its
+    // whole travel and it meets the ball in its way.
+    let mut world = weightless();
+    let wall = world
+        .add_body(BodyDef::new_kinematic(
+            Vec2::new(-5.0, 0.0),
+            Shape::rect(0.1, 2.0),
+            Vec2::new(50.0, 0.0),
+        ))
+        .unwrap();
+    let ball = world
+        .add_body(BodyDef::new_dynamic(Vec2::ZERO, Shape::circle(0.1)))
+        .unwrap();
+    for _ in 0..12 {
+        world.step(1.0 / 60.0);
+        let (w, b) = (world.body(wall).unwrap(), world.body(ball).unwrap());
+        assert!(
+            b.position.x > w.position.x,
+            "the ball stays ahead of the wall: {} vs {}",
+            b.position.x,
+            w.position.x
+        );
+    }
+    assert!(world.body(ball).unwrap().velocity.x >= 50.0 - 1e-3);
+}
+
+#[test]
+fn a_bullet_is_not_carried_through_a_wall_by_the_body_it_hits() {
+    // A crate moving fast at a wall stops at the wall; a bullet behind it
+    // meets the crate before the crate meets the wall. It must end where
+    // the crate ended, not where the crate would have gone.
+    let mut world = weightless();
+    wall(&mut world, Vec2::new(10.0, 0.0), Vec2::new(1.0, 4.0));
+    let crate_ = world
+        .add_body(
+            BodyDef::new_dynamic(Vec2::new(0.0, 0.0), Shape::rect(0.4, 0.4))
+                .with_velocity(Vec2::new(540.0, 0.0)),
+        )
+        .unwrap();
+    let bullet = world
+        .add_body(BodyDef {
+            bullet: true,
+            ..BodyDef::new_dynamic(Vec2::new(-3.0, 0.0), Shape::circle(0.05))
+                .with_velocity(Vec2::new(800.0, 0.0))
+        })
+        .unwrap();
+    for _ in 0..3 {
+        world.step(1.0 / 60.0);
+        let x = |id| world.body(id).unwrap().position.x;
+        assert!(
+            x(crate_) < 9.5 - 0.2 + LINEAR_SLOP,
+            "crate at {}",
+            x(crate_)
+        );
+        assert!(
+            x(bullet) < x(crate_),
+            "bullet at {}, crate at {}",
+            x(bullet),
+            x(crate_)
+        );
+    }
+}
+
+#[test]
+fn a_fast_body_that_ends_inside_a_sensor_beyond_its_reach_is_reported() {
+    let mut world = weightless();
+    let zone = world
+        .add_body(BodyDef {
+            sensor: true,
+            ..BodyDef::new_static(Vec2::new(6.0, 0.0), Shape::rect(1.0, 1.0))
+        })
+        .unwrap();
+    // 330 m/s: 5.5 m a step, ending inside the zone after one step.
+    let ball = world
+        .add_body(
+            BodyDef::new_dynamic(Vec2::new(0.5, 0.0), Shape::circle(0.05))
+                .with_velocity(Vec2::new(330.0, 0.0)),
+        )
+        .unwrap();
+    world.step(1.0 / 60.0);
+    let x = world.body(ball).unwrap().position.x;
+    assert!((x - 6.0).abs() < 0.5, "inside the zone: {x}");
+    let inside: Vec<_> = world.sensor_overlaps().to_vec();
+    assert_eq!(inside.len(), 1, "{inside:?}");
+    assert_eq!((inside[0].sensor, inside[0].visitor), (zone, ball));
+}
+
+#[test]
+fn a_deep_pile_carries_its_push_without_stirring_a_pile_elsewhere() {
+    // The rain scene's heavy pile (its lowest contacts sit a little deeper
+    // than the slop, so they push every substep), and far from it, on
+    // another layer, a deep pile: the rain moves exactly as it does alone.
+    let path =
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
+    let rain = || {
+        passo_scene::Scene::load(&path)
+            .unwrap()
+            .build()
+            .unwrap()
+            .world
+    };
+    let (mut alone, mut beside) = (rain(), rain());
+    let ids: Vec<_> = alone.bodies().map(|b| b.id).collect();
+    // Fifty circles crammed into a closed box a tenth of their area: the
+    // pile stays deep for good.
+    let layer = passo_physics::CollisionFilter { layers: 2, mask: 2 };
+    for (centre, size) in [
+        (Vec2::new(500.0, -0.5), Vec2::new(2.0, 1.0)),
+        (Vec2::new(500.0, 1.5), Vec2::new(2.0, 1.0)),
+        (Vec2::new(499.25, 0.5), Vec2::new(0.5, 1.0)),
+        (Vec2::new(500.75, 0.5), Vec2::new(0.5, 1.0)),
+    ] {
+        let def = BodyDef::new_static(centre, Shape::rect(size.x, size.y));
+        beside
+            .add_body(BodyDef {
+                filter: layer,
+                ..def
+            })
+            .unwrap();
+    }
+    for _ in 0..50 {
+        let def = BodyDef::new_dynamic(Vec2::new(500.0, 0.5), Shape::circle(0.1));
+        beside
+            .add_body(BodyDef {
+                filter: layer,
+                ..def
+            })
+            .unwrap();
+    }
+    for _ in 0..240 {
+        alone.step(1.0 / 60.0);
+        beside.step(1.0 / 60.0);
+    }
+    assert!(
+        max_penetration(&beside) > DEEP_OVERLAP,
+        "the pile is still deep"
+    );
+    for id in ids {
+        assert_eq!(
+            alone.body(id).unwrap().position,
+            beside.body(id).unwrap().position
+        );
+    }
 }

@@ -96,6 +96,17 @@ fn each_untrusted_edit_is_refused_with_a_message() {
             ],
         ),
         ("a slot freed twice", &[("free:[1]", "free:[1,1]")]),
+        (
+            "a negative carried push",
+            &[("push_impulse:0.0", "push_impulse:-1.0")],
+        ),
+        (
+            "a static bullet",
+            &[(
+                "bullet:false,min_speed:None,max_speed:None,user_data:0)]),speed_overrides",
+                "bullet:true,min_speed:None,max_speed:None,user_data:0)]),speed_overrides",
+            )],
+        ),
     ];
     for (what, edits) in cases {
         let text = edited(&text, edits);

@@ -82,8 +82,8 @@ pub struct BodyDef {
     /// never passes through a thin dynamic body either (a projectile
     /// through a crate). Every fast body is swept against static and
     /// kinematic bodies; bullets cost a pass over the bodies each step
-    /// they move that fast, so keep them few. Ignored for static and
-    /// kinematic bodies. Default `false`. See
+    /// they move that fast, so keep them few. Dynamic bodies only. Default
+    /// `false`. See
     /// [`SPECULATIVE_REACH`](crate::constants::SPECULATIVE_REACH).
     pub bullet: bool,
     /// Minimum speed override, metres per second, >= 0; `None` (the default)
@@ -270,6 +270,13 @@ impl BodyDef {
                     allowed: "set only on static and kinematic bodies",
                 });
             }
+        }
+        if self.bullet && self.kind != BodyKind::Dynamic {
+            return Err(PhysicsError::OutOfRange {
+                what: "BodyDef::bullet",
+                value: 1.0,
+                allowed: "set only on dynamic bodies",
+            });
         }
         if let Some(min) = self.min_speed {
             non_negative("BodyDef::min_speed", min)?;

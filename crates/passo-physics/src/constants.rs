@@ -105,15 +105,16 @@ pub const SPECULATIVE_REACH: f32 = 4.0;
 /// jumped nearly through snap up onto the platform.
 pub const ONE_WAY_DEPTH: f32 = 2.0 * LINEAR_SLOP;
 
-/// Overlap, metres, beyond which a step solves a deep pile: 6 ×
-/// [`LINEAR_SLOP`] = 3 cm, deeper than a resting pile or an ordinary
-/// impact gets (a rain of 10 000 circles landing peaks at 18 mm).
+/// Overlap, metres, that makes a pile deep: 6 × [`LINEAR_SLOP`] = 3 cm,
+/// deeper than a resting pile or an ordinary impact gets (a rain of 10 000
+/// circles landing peaks at 18 mm).
 ///
-/// In such a step each contact's push out of overlap carries on from one
-/// substep and step to the next, so the push spreads through the whole
-/// pile: 10 000 circles spawned on one spot are apart (no overlap over 1
-/// cm) in about 5 s instead of over 15 s. Elsewhere the push starts from
-/// nothing each substep, which lets piles come to rest.
+/// In a pile (bodies joined by contacts) holding a contact this deep, each
+/// contact's push out of overlap carries on from one substep and step to
+/// the next, so the push spreads through the whole pile: 10 000 circles
+/// spawned on one spot are apart (no overlap over 1 cm) in about 5 s
+/// instead of over 15 s. In every other pile the push starts from nothing
+/// each substep, which lets piles come to rest.
 pub const DEEP_OVERLAP: f32 = 6.0 * LINEAR_SLOP;
 
 /// Default substeps of a step when contacts are solved: 4. Each substep

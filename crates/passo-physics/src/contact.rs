@@ -32,8 +32,13 @@ pub struct ContactSettings {
     /// Impacts slower than this do not bounce, metres per second, >= 0. Default 1.
     pub restitution_threshold: f32,
     /// Continuous collision: contacts are created ahead of time from each
-    /// body's travel this step (speculative contacts), so fast bodies cannot
-    /// pass through thin walls. Default `true`.
+    /// body's travel this step (speculative contacts), up to its reach
+    /// ([`SPECULATIVE_REACH`](crate::constants::SPECULATIVE_REACH)), and a
+    /// body that moves farther is swept against static and kinematic
+    /// bodies (a bullet against every body) and stopped at its first
+    /// impact. So fast bodies cannot pass through thin walls; an ordinary
+    /// fast body may pass a thin dynamic body beyond its reach, a bullet
+    /// cannot ([`BodyDef::bullet`](crate::BodyDef::bullet)). Default `true`.
     pub continuous: bool,
     /// Start each step from the last step's impulses. Default `true`.
     pub warm_starting: bool,

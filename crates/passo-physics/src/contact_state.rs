@@ -65,7 +65,7 @@ impl ContactState {
     /// Checks the state against the bodies: the sleeping contacts each name
     /// a sleeping shaped dynamic body and a sleeping or static shaped one
     /// that exist, in key order, with finite values; the carried impulses
-    /// are finite, the normal ones never negative.
+    /// are finite, the normal and push ones never negative.
     pub(crate) fn validate(
         &self,
         dynamic: &DynamicBodies,

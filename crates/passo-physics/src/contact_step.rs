@@ -157,8 +157,11 @@ impl World {
             self.stats.crowded_steps = self.stats.crowded_steps.saturating_add(1);
         }
         let mut plan = SubstepPlan::new(self, settings, dt, cw.sleeping.any(&self.dynamic));
-        plan.solver.carry_push =
-            settings.warm_starting && solver::is_deep_pile(&cw.solved.rows, DEEP_OVERLAP);
+        plan.solver.carry_push = settings.warm_starting
+            && cw
+                .motion
+                .piles
+                .find(&cw.solved.rows, self.dynamic.len(), DEEP_OVERLAP);
         if plan.hold_kinematic {
             self.hold_kinematic();
         }

@@ -114,8 +114,13 @@ impl ContactWorld {
         dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
     ) -> usize {
+        let stops = self
+            .sweeps
+            .run(dynamic, statics, &self.proxies, &mut self.motion);
+        let candidates = &mut self.narrow.sensor_candidates;
         self.sweeps
-            .run(dynamic, statics, &self.proxies, &mut self.motion)
+            .far_sensor_candidates(dynamic, statics, &self.proxies, candidates);
+        stops
     }
 
     /// Proxies for the shaped dynamic bodies, grown by their possible

@@ -9,8 +9,10 @@
 //! carry it past anything), is swept along its path:
 //! - against static and kinematic bodies, each with its own motion this
 //!   step;
-//! - as a bullet ([`BodyDef::bullet`](crate::BodyDef::bullet)), against
-//!   every dynamic body too, fast ones included.
+//! - as a bullet ([`BodyDef::bullet`](crate::BodyDef::bullet)), then
+//!   against every dynamic body too, fast ones included, each on the path
+//!   the first pass left it (a target stopped by a wall carries the bullet
+//!   no farther than the wall).
 //!
 //! Shapes do not rotate, so each sweep is exact ([`cast_shape`]). The body
 //! is put back to just before its first impact with its velocity kept: at
@@ -27,12 +29,15 @@
 //! - a target the core already overlaps at the start (the contacts deal
 //!   with it).
 //!
-//! Every sweep reads the positions at the start of the step and the
-//! displacements of the substeps, and no body is moved until all are done,
-//! so the result does not depend on the order of the bodies.
+//! Every sweep of a pass reads the positions at the start of the step and
+//! the displacements as the pass found them, and no body is moved until
+//! the pass is done, so the result does not depend on the order of the
+//! bodies. A body that moved beyond its reach is also looked for in the
+//! sensors where it ended (the narrow phase could not pair it with them).
 //!
 //! [`SPECULATIVE_REACH`]: crate::constants::SPECULATIVE_REACH
 
+use crate::SensorPair;
 use crate::Shape;
 use crate::aabb::Aabb;
 use crate::bodies::{BodyMeta, DynamicBodies, StaticBodies};
@@ -40,15 +45,23 @@ use crate::cast::cast_shape;
 use crate::collider::ColliderRef;
 use crate::constants::LINEAR_SLOP;
 use crate::manifold::Faces;
+use crate::narrow_phase::SensorCandidate;
 use crate::proxies::{NO_PROXY, Proxies, ProxyMargin};
 use crate::solver::Motion;
 use glam::Vec2;
 
-/// The sweeps of one step, with their buffer kept between steps.
+/// The sweeps of one step, with their buffers kept between steps.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Sweeps {
     /// Bodies to move back, with their displacement this step.
     stops: Vec<(u32, Vec2)>,
+    /// Fast bullets, for the second pass.
+    bullets: Vec<u32>,
+    /// Bodies that moved farther than their contacts reached this step
+    /// (their sensor overlaps are looked for at their final places).
+    far: Vec<u32>,
+    /// The dynamic and kinematic sensors (scratch).
+    moving_sensors: Vec<u32>,
 }
 
 /// A body being swept.
@@ -63,7 +76,10 @@ struct Mover<'a> {
 
 impl Sweeps {
     /// Sweeps every body that moved beyond its reach this step and moves
-    /// back those that hit something. Returns how many were stopped.
+    /// back those that hit something, in two passes: every fast body
+    /// against static and kinematic bodies, then fast bullets against the
+    /// dynamic bodies on the paths the first pass left them. Returns how
+    /// many stops were made.
     pub(crate) fn run(
         &mut self,
         dynamic: &mut DynamicBodies,
@@ -72,39 +88,140 @@ impl Sweeps {
         motion: &mut Motion,
     ) -> usize {
         self.stops.clear();
+        self.bullets.clear();
+        self.far.clear();
         let bodies = &*dynamic;
         for i in 0..bodies.len() {
-            let meta = &bodies.meta[i];
-            let Some(shape) = meta.shape else { continue };
-            if meta.kinematic || meta.sensor || bodies.sleep[i].is_asleep() {
+            let Some(mover) = self.fast_body(i, bodies, proxies, motion) else {
                 continue;
-            }
-            let travel = motion.delta[i];
-            let covered = match proxies.of_body.get(i) {
-                Some(&p) if p != NO_PROXY => proxies.margins[p as usize] - ProxyMargin::STATIC,
-                _ => 0.0,
             };
-            let distance = travel.length();
-            if distance <= covered.max(shape.half_extents().min_element()) {
-                continue;
+            if let Some(hit) = first_impact(&mover, bodies, statics, proxies, motion) {
+                self.stops.push((i as u32, hit.displacement(&mover)));
             }
+            if mover.meta.bullet {
+                self.bullets.push(i as u32);
+            }
+        }
+        let mut stopped = self.apply(dynamic, motion);
+        let bodies = &*dynamic;
+        for &i in &self.bullets {
+            let i = i as usize;
             let mover = Mover {
-                shape,
-                core: shrunk(shape),
-                start: motion.start[i],
-                travel,
-                meta,
+                travel: motion.delta[i],
+                ..mover_of(bodies, i, motion)
             };
-            if let Some(hit) = first_impact(&mover, i, bodies, statics, proxies, motion) {
+            if let Some(hit) = bullet_impact(&mover, i, bodies, motion) {
                 self.stops.push((i as u32, hit.displacement(&mover)));
             }
         }
+        stopped += self.apply(dynamic, motion);
+        stopped
+    }
+
+    /// Body `i` as a mover if it moved farther this step than its contacts
+    /// reached and than its own smallest half extent (less could not carry
+    /// it past anything); notes it in `far` if it moved farther than its
+    /// contacts reached.
+    fn fast_body<'a>(
+        &mut self,
+        i: usize,
+        bodies: &'a DynamicBodies,
+        proxies: &Proxies,
+        motion: &Motion,
+    ) -> Option<Mover<'a>> {
+        let meta = &bodies.meta[i];
+        let shape = meta.shape?;
+        if meta.kinematic || meta.sensor || bodies.sleep[i].is_asleep() {
+            return None;
+        }
+        let covered = match proxies.of_body.get(i) {
+            Some(&p) if p != NO_PROXY => proxies.margins[p as usize] - ProxyMargin::STATIC,
+            _ => 0.0,
+        };
+        let distance = motion.delta[i].length();
+        if distance <= covered {
+            return None;
+        }
+        self.far.push(i as u32);
+        (distance > shape.half_extents().min_element()).then(|| mover_of(bodies, i, motion))
+    }
+
+    /// Sensor candidates for the bodies that moved farther than their
+    /// contacts reached (the narrow phase did not pair them with what lies
+    /// beyond): every sensor their boxes overlap where they ended.
+    pub(crate) fn far_sensor_candidates(
+        &mut self,
+        dynamic: &DynamicBodies,
+        statics: &StaticBodies,
+        proxies: &Proxies,
+        out: &mut Vec<SensorCandidate>,
+    ) {
+        if self.far.is_empty() {
+            return;
+        }
+        self.moving_sensors.clear();
+        let sensors = (0..dynamic.len() as u32).filter(|&k| dynamic.meta[k as usize].sensor);
+        self.moving_sensors.extend(sensors);
+        let box_of = |shape: &Shape, at: Vec2| Aabb::from_centre(at, shape.half_extents());
+        for &i in &self.far {
+            let i = i as usize;
+            let visitor = &dynamic.meta[i];
+            let Some(shape) = visitor.shape else { continue };
+            let area = box_of(&shape, dynamic.pos[i]);
+            let mut meet = |sensor: &BodyMeta, at: ColliderRef| {
+                if sensor.filter.allows(&visitor.filter) {
+                    out.push(SensorCandidate {
+                        pair: SensorPair {
+                            sensor: sensor.id,
+                            visitor: visitor.id,
+                        },
+                        sensor: at,
+                        visitor: ColliderRef::dynamic(i as u32),
+                    });
+                }
+            };
+            proxies.statics_in(&area, |s| {
+                let meta = &statics.meta[s as usize];
+                if meta.sensor {
+                    meet(meta, ColliderRef::fixed(s));
+                }
+            });
+            for &k in &self.moving_sensors {
+                let k = k as usize;
+                let meta = &dynamic.meta[k];
+                let Some(sensor_shape) = meta.shape else {
+                    continue;
+                };
+                if box_of(&sensor_shape, dynamic.pos[k]).overlaps(&area) {
+                    meet(meta, ColliderRef::dynamic(k as u32));
+                }
+            }
+        }
+    }
+
+    /// Moves the stopped bodies; returns how many there were.
+    fn apply(&mut self, dynamic: &mut DynamicBodies, motion: &mut Motion) -> usize {
         for &(i, displacement) in &self.stops {
             let i = i as usize;
             motion.delta[i] = displacement;
             dynamic.pos[i] = motion.start[i] + displacement;
         }
-        self.stops.len()
+        let n = self.stops.len();
+        self.stops.clear();
+        n
+    }
+}
+
+/// Shaped body `i` as a mover along its displacement this step.
+fn mover_of<'a>(bodies: &'a DynamicBodies, i: usize, motion: &Motion) -> Mover<'a> {
+    let meta = &bodies.meta[i];
+    let shape = meta.shape.expect("a swept body has a shape");
+    Mover {
+        shape,
+        core: shrunk(shape),
+        start: motion.start[i],
+        travel: motion.delta[i],
+        meta,
     }
 }
 
@@ -130,52 +247,70 @@ impl Impact {
     }
 }
 
-/// The first impact of `mover` (body `i`) with a static or kinematic body,
-/// or as a bullet with any body; `None` if it hits nothing.
+/// Keeps the earliest of the impacts it is given.
+#[derive(Default)]
+struct Earliest(Option<Impact>);
+
+impl Earliest {
+    fn meet(&mut self, fraction: Option<f32>, carried: Vec2) {
+        if let Some(fraction) = fraction
+            && self.0.is_none_or(|f| fraction < f.fraction)
+        {
+            self.0 = Some(Impact { fraction, carried });
+        }
+    }
+}
+
+/// The first impact of `mover` with a static or kinematic body, each on
+/// its own path this step; `None` if it hits none.
 fn first_impact(
     mover: &Mover<'_>,
-    i: usize,
     bodies: &DynamicBodies,
     statics: &StaticBodies,
     proxies: &Proxies,
     motion: &Motion,
 ) -> Option<Impact> {
-    let mut first: Option<Impact> = None;
-    let mut meet = |fraction: Option<f32>, carried: Vec2| {
-        if let Some(fraction) = fraction
-            && first.is_none_or(|f| fraction < f.fraction)
-        {
-            first = Some(Impact { fraction, carried });
-        }
-    };
+    let mut first = Earliest::default();
     let swept = swept_box(&mover.shape, mover.start, mover.travel);
     proxies.statics_in(&swept, |s| {
         let (meta, pos) = (&statics.meta[s as usize], statics.pos[s as usize]);
         let faces = proxies.covered_faces(ColliderRef::fixed(s));
-        meet(impact(mover, meta, pos, Vec2::ZERO, faces), Vec2::ZERO);
+        first.meet(impact(mover, meta, pos, Vec2::ZERO, faces), Vec2::ZERO);
     });
     for &k in &bodies.kinematic {
         let k = k as usize;
         let faces = proxies.covered_faces(ColliderRef::dynamic(k as u32));
         let (start, travel) = (motion.start[k], motion.delta[k]);
-        meet(impact(mover, &bodies.meta[k], start, travel, faces), travel);
+        first.meet(impact(mover, &bodies.meta[k], start, travel, faces), travel);
     }
-    if mover.meta.bullet {
-        for j in 0..bodies.len() {
-            let meta = &bodies.meta[j];
-            let Some(shape) = meta.shape else { continue };
-            if j == i || meta.kinematic {
-                continue;
-            }
-            // The cheap test first: do the two swept boxes meet at all?
-            if !swept.overlaps(&swept_box(&shape, motion.start[j], motion.delta[j])) {
-                continue;
-            }
-            let (start, travel) = (motion.start[j], motion.delta[j]);
-            meet(impact(mover, meta, start, travel, Faces::default()), travel);
+    first.0
+}
+
+/// The first impact of bullet `mover` (body `i`) with another dynamic
+/// body, each on the path the first pass left it (so a target stopped by
+/// a wall carries the bullet no farther than the wall); `None` if none.
+/// A pass over every body: bullets are meant to be few.
+fn bullet_impact(
+    mover: &Mover<'_>,
+    i: usize,
+    bodies: &DynamicBodies,
+    motion: &Motion,
+) -> Option<Impact> {
+    let mut first = Earliest::default();
+    let swept = swept_box(&mover.shape, mover.start, mover.travel);
+    for j in 0..bodies.len() {
+        let meta = &bodies.meta[j];
+        let Some(shape) = meta.shape else { continue };
+        if j == i || meta.kinematic {
+            continue;
+        }
+        // The cheap test first: do the two swept boxes meet at all?
+        let (start, travel) = (motion.start[j], motion.delta[j]);
+        if swept.overlaps(&swept_box(&shape, start, travel)) {
+            first.meet(impact(mover, meta, start, travel, Faces::default()), travel);
         }
     }
-    first
+    first.0
 }
 
 /// The fraction of `mover`'s travel at which it first hits the body of

@@ -22,7 +22,7 @@ pub(crate) struct Cached {
 
 impl Cached {
     /// Whether the impulses are ones a step can produce (for snapshots):
-    /// finite, and the normal impulse never negative.
+    /// finite, and the normal and push impulses never negative.
     pub(crate) fn is_valid(&self) -> bool {
         self.normal_impulse.is_finite()
             && self.normal_impulse >= 0.0

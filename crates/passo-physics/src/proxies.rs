@@ -21,7 +21,8 @@ pub(crate) const NO_PROXY: u32 = u32::MAX;
 
 /// How far a proxy is grown: half the speculative distance, plus the
 /// body's possible travel this step with continuous collision, up to its
-/// reach ([`SPECULATIVE_REACH`] of its smallest half extent).
+/// reach ([`SPECULATIVE_REACH`] of its smallest half extent; a kinematic
+/// body's whole travel).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct ProxyMargin {
     /// Speed gravity can add this step, m/s.
@@ -44,6 +45,12 @@ impl ProxyMargin {
         } else {
             0.0
         }
+    }
+
+    /// Whether every body's margin is the same with `other` (without
+    /// continuous collision the step and gravity do not matter).
+    pub(crate) fn grows_like(&self, other: &Self) -> bool {
+        self.continuous == other.continuous && (!self.continuous || self == other)
     }
 
     /// The margin a static body adds to a pair.
@@ -261,7 +268,14 @@ impl Proxies {
     /// records whether it sleeps.
     pub(crate) fn add(&mut self, dynamic: &DynamicBodies, i: usize, track_sleep: bool) -> u32 {
         let shape = dynamic.meta[i].shape.expect("a proxy's body has a shape");
-        let margin = self.margin.of(dynamic.vel[i], &shape);
+        // A kinematic body is never swept (it goes where it is told), so
+        // its proxy covers its whole travel: a fast wall meets the resting
+        // bodies in its way. A level has few of them.
+        let margin = if dynamic.meta[i].kinematic {
+            0.5 * SPECULATIVE_DISTANCE + self.margin.travel(dynamic.vel[i])
+        } else {
+            self.margin.of(dynamic.vel[i], &shape)
+        };
         let p = self.boxes.len() as u32;
         self.of_body[i] = p;
         self.body.push(i as u32);

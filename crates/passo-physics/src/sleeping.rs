@@ -150,7 +150,8 @@ impl SleepingContacts {
                 self.left += 1;
             }
         }
-        if missing == 0 && 2 * self.left <= self.tree.len() && *margin == self.built_margin {
+        if missing == 0 && 2 * self.left <= self.tree.len() && margin.grows_like(&self.built_margin)
+        {
             return;
         }
         self.built_margin = *margin;

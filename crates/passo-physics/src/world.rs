@@ -342,7 +342,7 @@ impl World {
             sensor: def.sensor,
             one_way: def.one_way.and_then(Vec2::try_normalize),
             drop_through: 0.0,
-            bullet: def.bullet && def.kind == BodyKind::Dynamic,
+            bullet: def.bullet,
             min_speed: def.min_speed,
             max_speed: def.max_speed,
             user_data: def.user_data,
