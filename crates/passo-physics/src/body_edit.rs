@@ -261,13 +261,15 @@ impl World {
     /// Lets a dynamic body pass through one-way platforms for `seconds`
     /// (the player pressing down): contacts with them are ignored until the
     /// time runs out, and a body then still inside one goes on through.
-    /// `0` ends it. Ignored for static and kinematic bodies.
+    /// `0` ends it. On a kinematic body it is for
+    /// [`move_character`](Self::move_character), which then lets the
+    /// character through. Ignored for static bodies.
     ///
     /// # Errors
     /// A stale id, or `seconds` not finite and >= 0.
     pub fn try_drop_through(&mut self, id: BodyId, seconds: f32) -> Result<(), PhysicsError> {
         non_negative("drop_through seconds", seconds)?;
-        if let Some(i) = self.movable_index(id)? {
+        if let Some(i) = self.dynamic_index(id)? {
             let meta = &mut self.dynamic.meta[i];
             let was = meta.drop_through > 0.0;
             meta.drop_through = seconds;

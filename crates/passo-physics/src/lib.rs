@@ -109,6 +109,8 @@ mod step;
 // What a game asks and saves.
 mod diagnostics;
 mod query;
+
+mod mover;
 mod snapshot;
 
 pub use aabb::Aabb;
@@ -128,6 +130,7 @@ pub use integrator::Integrator;
 #[doc(hidden)]
 pub use manifold::{Manifold, collide};
 pub use material::FrictionMix;
+pub use mover::{CharacterMover, MoveOutcome};
 pub use query::{QueryFilter, RayHit, ShapeHit};
 pub use settings::WorldSettings;
 pub use shape::Shape;

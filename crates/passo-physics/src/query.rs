@@ -99,12 +99,15 @@ static NO_EVENTS: ContactEvents = ContactEvents {
     sensor_end: Vec::new(),
 };
 
-/// A shaped body a query found: its id, shape and position.
+/// A shaped body a query found: its id, shape and position, its cold data,
+/// and its index in the dynamic arrays (`None` for a static body).
 #[derive(Clone, Copy)]
-struct Found {
-    id: BodyId,
-    shape: Shape,
-    position: Vec2,
+pub(crate) struct Found<'a> {
+    pub id: BodyId,
+    pub shape: Shape,
+    pub position: Vec2,
+    pub meta: &'a BodyMeta,
+    pub dynamic: Option<usize>,
 }
 
 impl World {
@@ -372,7 +375,12 @@ impl World {
 
     /// Calls `f` with every shaped body the filter admits whose bounding
     /// box overlaps `area`.
-    fn candidates(&self, area: &Aabb, filter: &QueryFilter, mut f: impl FnMut(Found)) {
+    pub(crate) fn candidates(
+        &self,
+        area: &Aabb,
+        filter: &QueryFilter,
+        mut f: impl FnMut(Found<'_>),
+    ) {
         let index = self.trees();
         for (tree, statics) in [(&index.statics, true), (&index.moving, false)] {
             tree.query(area, |item| {
@@ -390,18 +398,20 @@ impl World {
         item: u32,
         statics: bool,
         filter: &QueryFilter,
-    ) -> Option<Found> {
-        let (meta, position) = if statics {
+    ) -> Option<Found<'_>> {
+        let (meta, position, dynamic) = if statics {
             let i = index.static_item(item);
-            (&self.statics.meta[i], self.statics.pos[i])
+            (&self.statics.meta[i], self.statics.pos[i], None)
         } else {
             let i = index.moving_item(item);
-            (&self.dynamic.meta[i], self.dynamic.pos[i])
+            (&self.dynamic.meta[i], self.dynamic.pos[i], Some(i))
         };
         filter.admits(meta).then(|| Found {
             id: meta.id,
             shape: meta.shape.expect("tree items have shapes"),
             position,
+            meta,
+            dynamic,
         })
     }
 

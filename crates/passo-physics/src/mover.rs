@@ -1,0 +1,379 @@
+//! A character mover: moves a kinematic body the way a platformer's player
+//! moves, by shape casts rather than forces (as Rapier's character
+//! controller and Box2D's mover do, for shapes that do not rotate).
+//!
+//! Each call of [`World::move_character`] takes the translation the game
+//! wants this tick and:
+//! 1. pushes the character out of anything it overlaps (a platform that
+//!    moved into it);
+//! 2. adds the travel of the kinematic body it stands on (riding);
+//! 3. moves and slides: casts the shape along what is left of the
+//!    translation, stops a skin width short of the first hit, and keeps
+//!    the part of the motion along the surface; up to four times;
+//! 4. climbs a step no higher than `max_step` that blocks it while on the
+//!    ground;
+//! 5. snaps down onto ground up to `snap_down` below, when it was on the
+//!    ground and is not moving up, so it follows small drops instead of
+//!    flying off them;
+//! 6. reports the ground (and the body it stands on), walls and ceilings.
+//!
+//! The body is then steered to the place found with
+//! [`set_kinematic_target`](World::set_kinematic_target), so the next
+//! step moves it there and dynamic bodies it touches meet a moving body.
+//! One-way platforms stop it only from their solid side, and not while it
+//! drops through ([`World::drop_through`]). Dynamic bodies block it like
+//! walls and are pushed with an impulse of at most `push_mass` times the
+//! speed it was stopped from.
+
+use crate::constants::LINEAR_SLOP;
+use crate::manifold::collide;
+use crate::query::Found;
+use crate::{BodyId, PhysicsError, QueryFilter, Shape, World};
+use glam::Vec2;
+
+/// How a character moves: see [`World::move_character`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CharacterMover {
+    /// Gap kept between the character and what it touches, metres, > 0.
+    /// Default 0.01 (2 × the slop).
+    pub skin: f32,
+    /// Highest step climbed while walking on the ground, metres, >= 0.
+    /// Default 0.3.
+    pub max_step: f32,
+    /// Farthest drop followed while walking instead of leaving the ground,
+    /// metres, >= 0. Default 0.3.
+    pub snap_down: f32,
+    /// Smallest upward part of a surface's normal for the surface to count
+    /// as ground, in `[0, 1]`. Default 0.7 (about 45°).
+    pub ground_normal: f32,
+    /// How hard the character pushes dynamic bodies it walks into: the mass,
+    /// kilograms, >= 0, of the impulse per metre per second of motion
+    /// stopped. 0 pushes nothing. Default 20.
+    pub push_mass: f32,
+    /// Which bodies block it (sensors never do; the character itself is
+    /// left out).
+    pub filter: QueryFilter,
+}
+
+impl Default for CharacterMover {
+    fn default() -> Self {
+        Self {
+            skin: 2.0 * LINEAR_SLOP,
+            max_step: 0.3,
+            snap_down: 0.3,
+            ground_normal: 0.7,
+            push_mass: 20.0,
+            filter: QueryFilter::solid(),
+        }
+    }
+}
+
+impl CharacterMover {
+    fn validate(&self) -> Result<(), PhysicsError> {
+        crate::error::positive("CharacterMover::skin", self.skin)?;
+        crate::error::non_negative("CharacterMover::max_step", self.max_step)?;
+        crate::error::non_negative("CharacterMover::snap_down", self.snap_down)?;
+        crate::error::unit_interval("CharacterMover::ground_normal", self.ground_normal)?;
+        crate::error::non_negative("CharacterMover::push_mass", self.push_mass)?;
+        Ok(())
+    }
+}
+
+/// What a move did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MoveOutcome {
+    /// Where the character will be after the next step, metres.
+    pub position: Vec2,
+    /// The translation it will make (the wanted one, slid, stepped,
+    /// snapped and carried by its platform).
+    pub translation: Vec2,
+    /// It stands on ground after the move.
+    pub on_ground: bool,
+    /// The body it stands on.
+    pub ground: Option<BodyId>,
+    /// A wall stopped part of the motion: the body.
+    pub wall: Option<BodyId>,
+    /// A ceiling stopped part of the motion: the body.
+    pub ceiling: Option<BodyId>,
+    /// How far it climbed a step, metres (0 if it did not).
+    pub stepped: f32,
+    /// Dynamic bodies it pushed.
+    pub pushed: u32,
+}
+
+/// The first thing a cast meets.
+#[derive(Clone, Copy, Debug)]
+struct Hit {
+    fraction: f32,
+    normal: Vec2,
+    body: BodyId,
+    /// The body's index in the dynamic arrays, if it is dynamic (not
+    /// kinematic): it can be pushed.
+    pushable: Option<usize>,
+}
+
+/// The character during one move.
+struct Walker<'a> {
+    world: &'a World,
+    shape: Shape,
+    mover: &'a CharacterMover,
+    filter: QueryFilter,
+    dropping: bool,
+}
+
+impl Walker<'_> {
+    /// The first body `shape` meets moving from `from` by `by`: one-way
+    /// platforms only from their solid side (and not while dropping
+    /// through), and nothing it overlaps at the start (the push out deals
+    /// with those).
+    fn cast(&self, from: Vec2, by: Vec2) -> Option<Hit> {
+        if by == Vec2::ZERO {
+            return None;
+        }
+        let half = self.shape.half_extents();
+        let swept =
+            crate::Aabb::from_centre(from, half).union(&crate::Aabb::from_centre(from + by, half));
+        let mut best: Option<Hit> = None;
+        self.world.candidates(&swept, &self.filter, |f: Found<'_>| {
+            let Some(hit) = crate::cast::cast_shape(&self.shape, from, by, &f.shape, f.position)
+            else {
+                return;
+            };
+            if hit.fraction == 0.0 && self.overlaps(from, &f) {
+                return;
+            }
+            if let Some(solid) = f.meta.one_way
+                && (self.dropping || hit.normal.dot(solid) <= 0.0 || hit.fraction == 0.0)
+            {
+                return;
+            }
+            let pushable = f.dynamic.filter(|_| !f.meta.kinematic);
+            let candidate = Hit {
+                fraction: hit.fraction,
+                normal: hit.normal,
+                body: f.id,
+                pushable,
+            };
+            if best.is_none_or(|b| (hit.fraction, f.id) < (b.fraction, b.body)) {
+                best = Some(candidate);
+            }
+        });
+        best
+    }
+
+    /// Whether the character at `at` overlaps `f` (deeper than touching).
+    fn overlaps(&self, at: Vec2, f: &Found<'_>) -> bool {
+        collide(&self.shape, at, &f.shape, f.position, 0.0).is_some_and(|m| m.separation < 0.0)
+    }
+
+    /// Moves from `from` by `by` as far as the first hit allows, a skin
+    /// short of it. Returns where it got and the hit.
+    fn advance(&self, from: Vec2, by: Vec2) -> (Vec2, Option<Hit>) {
+        match self.cast(from, by) {
+            None => (from + by, None),
+            Some(hit) => {
+                let length = by.length();
+                // The skin measured along the normal: moving at a slant
+                // to the surface, back off more along the motion.
+                let along = (-by.dot(hit.normal) / length).max(0.1);
+                let fraction = (hit.fraction - self.mover.skin / (length * along)).max(0.0);
+                (from + by * fraction, Some(hit))
+            }
+        }
+    }
+
+    /// Pushes the character at `at` out of every solid body it overlaps
+    /// (one-way platforms excepted), a few rounds.
+    fn push_out(&self, mut at: Vec2) -> Vec2 {
+        for _ in 0..4 {
+            let mut deepest: Option<(f32, Vec2)> = None;
+            let area = crate::Aabb::from_centre(at, self.shape.half_extents());
+            self.world.candidates(&area, &self.filter, |f: Found<'_>| {
+                if f.meta.one_way.is_some() {
+                    return;
+                }
+                if let Some(m) = collide(&self.shape, at, &f.shape, f.position, 0.0)
+                    && m.separation < 0.0
+                    && deepest.is_none_or(|(s, _)| m.separation < s)
+                {
+                    // `m.normal` points from the character to the body.
+                    deepest = Some((m.separation, -m.normal));
+                }
+            });
+            let Some((separation, normal)) = deepest else {
+                break;
+            };
+            at += normal * (-separation + self.mover.skin);
+        }
+        at
+    }
+
+    /// The ground within `reach` below `at`: the hit, if its normal is
+    /// ground enough.
+    fn ground(&self, at: Vec2, reach: f32) -> Option<Hit> {
+        self.cast(at, Vec2::new(0.0, -reach))
+            .filter(|h| h.normal.y >= self.mover.ground_normal)
+    }
+}
+
+impl World {
+    /// Moves character `id` (a kinematic body with a shape) by `translation`
+    /// over the next step of `dt` seconds, sliding along what it meets,
+    /// climbing steps, following small drops and riding platforms (see
+    /// the [`mover`](crate::CharacterMover) settings), and steers it
+    /// there with [`set_kinematic_target`](Self::set_kinematic_target).
+    /// Call it once per tick before [`step`](Self::step).
+    ///
+    /// ```
+    /// use passo_physics::{BodyDef, CharacterMover, Shape, TileMap, BodyKind, World, glam::Vec2};
+    /// let mut world = World::default();
+    /// let level = TileMap::from_ascii("
+    ///     ..........
+    ///     .......###
+    ///     ##########", Vec2::splat(0.25), Vec2::ZERO).unwrap();
+    /// world.add_tile_map(&level, BodyKind::Static).unwrap();
+    /// let player = world
+    ///     .add_body(BodyDef::new_kinematic(Vec2::new(0.5, 0.5 + 0.01), Shape::rect(0.3, 0.5), Vec2::ZERO))
+    ///     .unwrap();
+    /// let mover = CharacterMover::default();
+    /// for _ in 0..30 {
+    ///     // Walk right at 3 m/s and fall at 5 m/s.
+    ///     world.move_character(player, Vec2::new(3.0, -5.0) / 60.0, &mover, 1.0 / 60.0).unwrap();
+    ///     world.step(1.0 / 60.0);
+    /// }
+    /// // In half a second it walked 1.5 m and climbed the 0.25 m step.
+    /// let p = world.body(player).unwrap().position;
+    /// assert!((p.x - 2.0).abs() < 0.05, "{p}");
+    /// assert!((p.y - (0.5 + 0.25 + 0.01)).abs() < 0.02, "{p}");
+    /// ```
+    ///
+    /// # Errors
+    /// A stale id, a body that is not kinematic or has no shape, a
+    /// non-finite translation, `dt` not > 0, or settings out of range.
+    pub fn move_character(
+        &mut self,
+        id: BodyId,
+        translation: Vec2,
+        mover: &CharacterMover,
+        dt: f32,
+    ) -> Result<MoveOutcome, PhysicsError> {
+        mover.validate()?;
+        crate::error::finite_vec("translation", translation)?;
+        crate::error::positive("dt", dt)?;
+        let body = self.body(id).ok_or(PhysicsError::StaleBody(id))?;
+        let (Some(shape), crate::BodyKind::Kinematic) = (body.shape, body.kind) else {
+            return Err(PhysicsError::OutOfRange {
+                what: "move_character body",
+                value: 0.0,
+                allowed: "a kinematic body with a shape",
+            });
+        };
+        let i = self
+            .dynamic_index(id)?
+            .expect("a kinematic body is in the dynamic arrays");
+        let walker = Walker {
+            world: self,
+            shape,
+            mover,
+            filter: mover.filter.excluding(id),
+            dropping: self.dynamic.meta[i].drop_through > 0.0,
+        };
+        let mut out = MoveOutcome::default();
+        let mut at = walker.push_out(body.position);
+        // Riding: the platform under it carries it.
+        let under = walker.ground(at, 2.0 * mover.skin);
+        let mut wanted = translation;
+        if let Some(ground) = under
+            && let Some(b) = self.body(ground.body)
+            && b.kind == crate::BodyKind::Kinematic
+        {
+            wanted += b.velocity * dt;
+        }
+        let mut pushes: Vec<(usize, Vec2)> = Vec::new();
+        let mut remaining = wanted;
+        for _ in 0..4 {
+            if remaining.length_squared() < 1e-12 {
+                break;
+            }
+            let (next, hit) = walker.advance(at, remaining);
+            let Some(hit) = hit else {
+                at = next;
+                break;
+            };
+            let moved = next - at;
+            let left = remaining - moved;
+            let is_wall = hit.normal.y.abs() < mover.ground_normal;
+            if is_wall
+                && under.is_some()
+                && mover.max_step > 0.0
+                && let Some((stepped_to, height)) = self.step_up(&walker, next, left)
+            {
+                at = stepped_to;
+                out.stepped = out.stepped.max(height);
+                remaining = Vec2::ZERO;
+                continue;
+            }
+            if hit.normal.y <= -mover.ground_normal {
+                out.ceiling = Some(hit.body);
+            } else if is_wall {
+                out.wall = Some(hit.body);
+            }
+            // Walking into a dynamic body pushes it.
+            let stopped = -left.dot(hit.normal);
+            if let (Some(j), true) = (hit.pushable, stopped > 0.0 && mover.push_mass > 0.0) {
+                pushes.push((j, -hit.normal * (mover.push_mass * stopped / dt)));
+            }
+            at = next;
+            remaining = left - hit.normal * left.dot(hit.normal);
+        }
+        // Following a small drop: it walked off an edge, not jumped.
+        let mut ground = walker.ground(at, 2.0 * mover.skin);
+        if ground.is_none()
+            && under.is_some()
+            && translation.y <= 0.0
+            && mover.snap_down > 0.0
+            && let Some(hit) = walker.ground(at, mover.snap_down + mover.skin)
+        {
+            let drop = hit.fraction * (mover.snap_down + mover.skin) - mover.skin;
+            at.y -= drop.max(0.0);
+            ground = Some(hit);
+        }
+        out.on_ground = ground.is_some();
+        out.ground = ground.map(|h| h.body);
+        out.position = at;
+        out.translation = at - body.position;
+        for (j, impulse) in pushes {
+            let target = self.dynamic.meta[j].id;
+            out.pushed += 1;
+            // The impulse may not push it faster than the character came.
+            let mass = self.dynamic.meta[j].mass;
+            let cap = translation.length() / dt * mass;
+            let impulse = impulse.clamp_length_max(cap);
+            let _ = self.try_apply_impulse(target, impulse);
+        }
+        self.try_set_kinematic_target(id, at, dt)?;
+        Ok(out)
+    }
+
+    /// Climbs a step blocking a walk of `left` from `at`: up at most
+    /// `max_step`, forward, then down onto ground. Returns where it ends and
+    /// how high it climbed, or `None` if there is no step to climb there.
+    fn step_up(&self, walker: &Walker<'_>, at: Vec2, left: Vec2) -> Option<(Vec2, f32)> {
+        let mover = walker.mover;
+        let forward = Vec2::new(left.x, 0.0);
+        if forward.x.abs() < 1e-6 {
+            return None;
+        }
+        let (up, _) = walker.advance(at, Vec2::new(0.0, mover.max_step + mover.skin));
+        let (ahead, _) = walker.advance(up, forward);
+        if (ahead.x - up.x).abs() < mover.skin {
+            return None; // still blocked: a wall, not a step
+        }
+        let fall = up.y - at.y + mover.skin;
+        let landing = walker.ground(ahead, fall)?;
+        let drop = landing.fraction * fall - mover.skin;
+        let end = Vec2::new(ahead.x, ahead.y - drop.max(0.0));
+        let height = end.y - at.y;
+        (height > 0.0 && height <= mover.max_step + mover.skin).then_some((end, height))
+    }
+}

@@ -1,0 +1,317 @@
+//! The character mover: move and slide with a skin, steps, snapping down,
+//! ground, wall and ceiling reports, riding platforms, one-way platforms,
+//! pushing dynamic bodies, and never ending a move inside geometry.
+
+use passo_physics::constants::LINEAR_SLOP;
+use passo_physics::glam::Vec2;
+use passo_physics::{
+    BodyDef, BodyId, BodyKind, CharacterMover, MoveOutcome, Shape, TileKind, TileMap, World,
+    collide,
+};
+use proptest::prelude::*;
+
+const DT: f32 = 1.0 / 60.0;
+const HALF: Vec2 = Vec2::new(0.2, 0.4);
+
+fn level(text: &str) -> World {
+    let mut world = World::default();
+    let map = TileMap::from_ascii(text, Vec2::splat(0.5), Vec2::ZERO).unwrap();
+    world.add_tile_map(&map, BodyKind::Static).unwrap();
+    world
+}
+
+/// A character standing (a skin above the ground) with its centre at `x`
+/// on ground whose top is at `ground`.
+fn character(world: &mut World, x: f32, ground: f32) -> BodyId {
+    let skin = CharacterMover::default().skin;
+    let def = BodyDef::new_kinematic(
+        Vec2::new(x, ground + HALF.y + skin),
+        Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
+        Vec2::ZERO,
+    );
+    world.add_body(def).unwrap()
+}
+
+/// Moves at `velocity` (m/s) for `ticks` ticks; returns the last outcome.
+fn walk(world: &mut World, id: BodyId, velocity: Vec2, ticks: usize) -> MoveOutcome {
+    let mover = CharacterMover::default();
+    let mut last = MoveOutcome::default();
+    for _ in 0..ticks {
+        last = world.move_character(id, velocity * DT, &mover, DT).unwrap();
+        world.step(DT);
+    }
+    last
+}
+
+fn at(world: &World, id: BodyId) -> Vec2 {
+    world.body(id).unwrap().position
+}
+
+#[test]
+fn it_walks_on_flat_ground_exactly_as_far_as_asked() {
+    let mut world = level("################");
+    let id = character(&mut world, 1.0, 0.5);
+    let start = at(&world, id);
+    let out = walk(&mut world, id, Vec2::new(3.0, -5.0), 60);
+    let moved = at(&world, id) - start;
+    assert!((moved.x - 3.0).abs() < 1e-3, "moved {moved}");
+    assert!(
+        moved.y.abs() < 1e-4,
+        "stayed a skin above the ground: {moved}"
+    );
+    assert!(out.on_ground && out.ground.is_some() && out.wall.is_none());
+}
+
+#[test]
+fn a_wall_stops_it_a_skin_short_and_is_reported() {
+    let mut world = level(
+        "
+        .......#
+        .......#
+        ########",
+    );
+    let id = character(&mut world, 1.0, 0.5);
+    let out = walk(&mut world, id, Vec2::new(4.0, -5.0), 90);
+    let skin = CharacterMover::default().skin;
+    let x = at(&world, id).x;
+    // The wall's face is at x = 3.5.
+    assert!((x - (3.5 - HALF.x - skin)).abs() < 1e-3, "at {x}");
+    assert!(out.wall.is_some(), "{out:?}");
+}
+
+#[test]
+fn it_climbs_a_step_up_to_max_step_and_no_higher() {
+    // A step of 0.25 m (half a cell, drawn with a 0.25 m map over the
+    // ground) and one of 0.5 m.
+    for (height, climbs) in [(0.25, true), (0.5, false)] {
+        let mut world = level("################");
+        let step =
+            BodyDef::new_static(Vec2::new(5.0, 0.5 + height / 2.0), Shape::rect(4.0, height));
+        world.add_body(step).unwrap();
+        let id = character(&mut world, 1.0, 0.5);
+        let out = walk(&mut world, id, Vec2::new(3.0, -5.0), 60);
+        let p = at(&world, id);
+        if climbs {
+            let top = 0.5 + height + HALF.y + CharacterMover::default().skin;
+            assert!(
+                (p.y - top).abs() < 2e-3 && p.x > 3.5,
+                "{height} m step: at {p}"
+            );
+        } else {
+            assert!(p.x < 3.0 - HALF.x, "{height} m step stops it: at {p}");
+            assert!(out.wall.is_some());
+        }
+    }
+}
+
+#[test]
+fn it_follows_a_small_drop_and_leaves_the_ground_over_a_big_one() {
+    for (drop, follows) in [(0.25, true), (0.75, false)] {
+        let mut world = World::default();
+        let high = BodyDef::new_static(Vec2::new(2.0, -0.5), Shape::rect(4.0, 1.0));
+        let low = BodyDef::new_static(Vec2::new(8.0, -0.5 - drop), Shape::rect(8.0, 1.0));
+        world.add_body(high).unwrap();
+        world.add_body(low).unwrap();
+        let id = character(&mut world, 3.0, 0.0);
+        // Walking with no fall in the translation: only snapping keeps it
+        // on the ground.
+        let mover = CharacterMover::default();
+        let mut left_ground = false;
+        for _ in 0..30 {
+            let out = world
+                .move_character(id, Vec2::new(3.0, 0.0) * DT, &mover, DT)
+                .unwrap();
+            world.step(DT);
+            left_ground |= !out.on_ground;
+        }
+        let y = at(&world, id).y;
+        if follows {
+            assert!(!left_ground, "{drop} m: it stayed on the ground");
+            assert!((y - (-drop + HALF.y + mover.skin)).abs() < 2e-3, "at {y}");
+        } else {
+            assert!(left_ground, "{drop} m: it walked off into the air");
+        }
+    }
+}
+
+#[test]
+fn a_ceiling_stops_a_jump_and_is_reported() {
+    let mut world = level(
+        "
+        ########
+        ........
+        ........
+        ########",
+    );
+    // Ground top at 0.5, ceiling underside at 1.5.
+    let id = character(&mut world, 1.0, 0.5);
+    let out = walk(&mut world, id, Vec2::new(0.0, 6.0), 30);
+    let top = at(&world, id).y + HALF.y;
+    assert!(
+        (top - (1.5 - CharacterMover::default().skin)).abs() < 1e-3,
+        "head at {top}"
+    );
+    assert!(out.ceiling.is_some());
+}
+
+#[test]
+fn it_rides_a_moving_platform() {
+    let mut world = World::default();
+    let platform = world
+        .add_body(BodyDef::new_kinematic(
+            Vec2::new(0.0, -0.25),
+            Shape::rect(3.0, 0.5),
+            Vec2::new(2.0, 0.0),
+        ))
+        .unwrap();
+    let id = character(&mut world, 0.0, 0.0);
+    let start = at(&world, id);
+    let out = walk(&mut world, id, Vec2::new(0.0, -5.0), 60);
+    let moved = at(&world, id) - start;
+    assert!((moved.x - 2.0).abs() < 0.02, "carried {moved}");
+    assert!(moved.y.abs() < 1e-3);
+    assert_eq!(out.ground, Some(platform));
+}
+
+#[test]
+fn one_way_platforms_are_jumped_through_landed_on_and_dropped_through() {
+    let mut world = level(
+        "
+        ........
+        ..----..
+        ........
+        ........
+        ########",
+    );
+    // Ground top 0.5; the ledge from x 1 to 3, top at 2.0.
+    let id = character(&mut world, 2.0, 0.5);
+    // Jump up through it, then fall back onto it.
+    walk(&mut world, id, Vec2::new(0.0, 8.0), 20);
+    assert!(at(&world, id).y - HALF.y > 2.0, "went up through the ledge");
+    let out = walk(&mut world, id, Vec2::new(0.0, -5.0), 40);
+    let feet = at(&world, id).y - HALF.y;
+    assert!(
+        (feet - (2.0 + CharacterMover::default().skin)).abs() < 1e-3,
+        "on the ledge: {feet}"
+    );
+    assert!(out.on_ground);
+    // Drop through it.
+    world.drop_through(id, 0.3);
+    walk(&mut world, id, Vec2::new(0.0, -5.0), 40);
+    let feet = at(&world, id).y - HALF.y;
+    assert!(
+        (feet - (0.5 + CharacterMover::default().skin)).abs() < 1e-3,
+        "back on the ground: {feet}"
+    );
+}
+
+#[test]
+fn it_pushes_a_crate_as_hard_as_push_mass_says() {
+    let push = |push_mass: f32| {
+        let mut world = level("####################");
+        let crate_ = world
+            .add_body(BodyDef::new_dynamic(
+                Vec2::new(3.0, 0.75),
+                Shape::rect(0.5, 0.5),
+            ))
+            .unwrap();
+        let id = character(&mut world, 1.0, 0.5);
+        let mover = CharacterMover {
+            push_mass,
+            ..CharacterMover::default()
+        };
+        for _ in 0..120 {
+            world
+                .move_character(id, Vec2::new(2.0, -5.0) * DT, &mover, DT)
+                .unwrap();
+            world.step(DT);
+        }
+        (at(&world, crate_).x, at(&world, id).x)
+    };
+    let (crate_x, player_x) = push(20.0);
+    assert!(crate_x > 4.0, "pushed the crate to {crate_x}");
+    assert!(
+        player_x < crate_x - 0.45,
+        "never inside it: {player_x} vs {crate_x}"
+    );
+    let (crate_x, _) = push(0.0);
+    assert!(
+        (crate_x - 3.0).abs() < 0.05,
+        "push_mass 0 leaves it: {crate_x}"
+    );
+}
+
+#[test]
+fn bad_calls_are_refused() {
+    let mut world = level("####");
+    let dynamic = world
+        .add_body(BodyDef::new_dynamic(
+            Vec2::new(1.0, 2.0),
+            Shape::circle(0.2),
+        ))
+        .unwrap();
+    let id = character(&mut world, 1.0, 0.5);
+    let mover = CharacterMover::default();
+    assert!(world.move_character(dynamic, Vec2::X, &mover, DT).is_err());
+    assert!(
+        world
+            .move_character(id, Vec2::new(f32::NAN, 0.0), &mover, DT)
+            .is_err()
+    );
+    assert!(world.move_character(id, Vec2::X, &mover, 0.0).is_err());
+    let bad = CharacterMover { skin: 0.0, ..mover };
+    assert!(world.move_character(id, Vec2::X, &bad, DT).is_err());
+}
+
+/// The deepest overlap of the character with a solid (not one-way) static
+/// body.
+fn deepest_in_walls(world: &World, id: BodyId) -> f32 {
+    let me = world.body(id).unwrap();
+    let shape = me.shape.unwrap();
+    world
+        .bodies()
+        .filter(|b| b.kind == BodyKind::Static && b.one_way.is_none())
+        .filter_map(|b| collide(&shape, me.position, &b.shape?, b.position, 0.0))
+        .map(|m| -m.separation)
+        .fold(0.0, f32::max)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn it_never_ends_a_move_inside_a_solid_cell(
+        cells in prop::collection::vec(0u8..10, 16 * 12),
+        inputs in prop::collection::vec((-6.0f32..6.0, -12.0f32..12.0, 0u8..8), 90),
+    ) {
+        // A random level of 16 × 12 cells of 0.5 m in a closed room, with
+        // a clear spot at the start.
+        let mut map = TileMap::new(16, 12, Vec2::splat(0.5), Vec2::ZERO).unwrap();
+        let kinds = [TileKind::SOLID, TileKind::ICE, TileKind::ONE_WAY];
+        let kinds: Vec<u8> = kinds.iter().map(|k| map.add_kind(*k).unwrap()).collect();
+        for y in 0..12u32 {
+            for x in 0..16u32 {
+                let edge = x == 0 || y == 0 || x == 15 || y == 11;
+                let clear = (2..4).contains(&x) && (1..4).contains(&y);
+                let cell = cells[(y * 16 + x) as usize];
+                let kind = if edge { Some(kinds[0]) } else if clear { None } else {
+                    match cell { 0 => Some(kinds[0]), 1 => Some(kinds[1]), 2 => Some(kinds[2]), _ => None }
+                };
+                map.set(x, y, kind).unwrap();
+            }
+        }
+        let mut world = World::default();
+        world.add_tile_map(&map, BodyKind::Static).unwrap();
+        let id = character(&mut world, 1.5, 0.5);
+        let mover = CharacterMover::default();
+        for (vx, vy, drop) in inputs {
+            if drop == 0 {
+                world.drop_through(id, 0.2);
+            }
+            world.move_character(id, Vec2::new(vx, vy) * DT, &mover, DT).unwrap();
+            world.step(DT);
+            let deepest = deepest_in_walls(&world, id);
+            prop_assert!(deepest <= LINEAR_SLOP, "{} m inside a solid cell at {}", deepest, at(&world, id));
+        }
+    }
+}
