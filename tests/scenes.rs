@@ -182,8 +182,14 @@ proptest! {
     #[test]
     fn mutated_scene_text_gives_a_scene_or_an_error_never_a_panic(text in mutated()) {
         if let Ok(scene) = Scene::parse(&text, "fuzz.ron") {
-            // A scene that parses and validates must also build and step.
-            let mut built = scene.build().expect("validated scenes build");
+            // A scene that parses and validates must also build and step,
+            // unless it names a map file: what is in that file (or whether
+            // it is there) is checked when it is read.
+            let built = scene.build();
+            if scene.file.tilemap.as_ref().is_some_and(|t| t.file.is_some()) {
+                return Ok(());
+            }
+            let mut built = built.expect("validated scenes build");
             if built.world.len() <= 3000 {
                 built.world.step((1.0 / scene.file.rate_hz) as f32);
                 assert_finite(&built.world);

@@ -24,6 +24,28 @@ const STATIC_COLOUR: Colour = Colour([0x6b, 0x70, 0x7a, 0xff]);
 /// static ones.
 pub const KINEMATIC_COLOUR: Colour = Colour([0xd8, 0xd4, 0xf0, 0xff]);
 
+/// Ice cells (sRGB): a pale blue.
+const ICE_COLOUR: Colour = Colour([0xa8, 0xd8, 0xf0, 0xff]);
+/// Bouncy cells: a pink.
+const BOUNCY_COLOUR: Colour = Colour([0xe8, 0x7a, 0xb8, 0xff]);
+/// One-way cells: a lighter grey than solid ground.
+const ONE_WAY_COLOUR: Colour = Colour([0xa0, 0xa4, 0xac, 0xff]);
+
+/// The colour of a tile map's box of `kind`, in a map of `body` kind.
+fn tile_colour(kind: &passo_physics::TileKind, body: BodyKind) -> Colour {
+    if kind.one_way.is_some() {
+        ONE_WAY_COLOUR
+    } else if kind.restitution > 0.5 {
+        BOUNCY_COLOUR
+    } else if kind.friction < 0.1 {
+        ICE_COLOUR
+    } else if body == BodyKind::Kinematic {
+        KINEMATIC_COLOUR
+    } else {
+        STATIC_COLOUR
+    }
+}
+
 /// What the renderer and the game need to know about a scene body.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneBody {
@@ -47,6 +69,8 @@ pub struct BuiltScene {
     /// The kinematic bodies that follow a path, for
     /// [`drive_platforms`](BuiltScene::drive_platforms).
     pub platforms: Vec<Platform>,
+    /// Spawn points of the scene's tile map, by name, metres.
+    pub spawns: Vec<(String, Vec2)>,
 }
 
 /// A kinematic body on a back-and-forth path.
@@ -155,6 +179,23 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
     let mut bodies = Vec::new();
     let mut platforms = Vec::new();
     let mut bounds: Option<Aabb> = None;
+    // The level's cells first, as boxes coloured by their kind.
+    let level = file.tilemap.as_ref().map(|t| t.load(source)).transpose()?;
+    if let (Some(level), Some(tilemap)) = (&level, &file.tilemap) {
+        let ids = world
+            .add_tile_map(&level.map, tilemap.kind)
+            .map_err(|e| invalid("tilemap".into(), e))?;
+        for (id, rect) in ids.into_iter().zip(level.map.rects()) {
+            let aabb = level.map.rect_aabb(&rect);
+            bounds = Some(bounds.map_or(aabb, |b| b.union(&aabb)));
+            let kind = level.map.kinds()[rect.kind as usize];
+            bodies.push(SceneBody {
+                id,
+                name: None,
+                colour: tile_colour(&kind, tilemap.kind),
+            });
+        }
+    }
     let mut add = |spec: &BodySpec, position: Vec2, path: &dyn Fn() -> String| {
         let def = body_def(spec, position);
         let id = world.add_body(def).map_err(|e| invalid(path(), e))?;
@@ -182,6 +223,16 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
     };
     for (i, spec) in file.bodies.iter().enumerate() {
         add(spec, spec.position, &|| format!("bodies[{i}]"))?;
+    }
+    let mut spawns = Vec::new();
+    if let Some(level) = level {
+        for (i, spec) in level.bodies.iter().enumerate() {
+            let name = spec.name.clone().unwrap_or_default();
+            add(spec, spec.position, &|| {
+                format!("tilemap object {i} `{name}`")
+            })?;
+        }
+        spawns = level.spawns;
     }
     for (i, g) in file.generators.iter().enumerate() {
         let mut result = Ok(());
@@ -211,5 +262,6 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         bodies,
         camera,
         platforms,
+        spawns,
     })
 }

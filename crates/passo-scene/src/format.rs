@@ -56,6 +56,9 @@ pub struct SceneFile {
     /// Bodies made by pattern.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub generators: Vec<Generator>,
+    /// A level on a grid: a Tiled map or ASCII art (see [`TileMapRef`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tilemap: Option<crate::map_ref::TileMapRef>,
 }
 
 fn default_rate() -> f64 {
@@ -515,6 +518,19 @@ impl SceneFile {
             "> 0 m/s or inf",
         )?;
         self.validate_forces(&c)?;
+        if let Some(t) = &self.tilemap {
+            if t.file.is_some() == t.ascii.is_some() {
+                return Err(c.fail(
+                    "tilemap",
+                    "needs exactly one of `file` and `ascii`".to_owned(),
+                ));
+            }
+            c.positive("tilemap.cell", t.cell, "m")?;
+            c.finite_vec("tilemap.origin", t.origin)?;
+            if t.kind == BodyKind::Dynamic {
+                return Err(c.fail("tilemap.kind", "must be Static or Kinematic".to_owned()));
+            }
+        }
         if let Some(contacts) = &self.collisions {
             contacts
                 .validate()

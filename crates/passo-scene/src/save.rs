@@ -68,6 +68,8 @@ pub fn scene_from_world(world: &World, base: &SceneFile, bodies: &[SceneBody]) -
             max: c.max,
         }),
         bodies: specs,
+        // The map's cells are among the bodies, one box per merged run.
+        tilemap: None,
         generators: Vec::new(),
     }
 }

@@ -81,6 +81,10 @@ pub const BUILTIN: &[BuiltIn] = &[
         "confined",
         include_str!("../../../assets/scenes/confined.ron"),
     ),
+    BuiltIn::new(
+        "platformer",
+        include_str!("../../../assets/scenes/platformer.ron"),
+    ),
 ];
 
 /// The scenes directory next to the working directory, if there is one.
@@ -105,12 +109,21 @@ pub fn load(name_or_path: &str) -> Result<Scene> {
         }
     }
     match BUILTIN.iter().find(|b| b.name == name_or_path) {
-        Some(b) => Ok(Scene::parse(b.text, &format!("{}.ron (built in)", b.name))?),
+        // A built-in scene's level map is read from the source tree's
+        // assets, where its file was.
+        Some(b) => Ok(Scene::parse(b.text, &built_in_path(b.name))?),
         None => bail!(
             "no scene named `{name_or_path}`: give a path to a .ron file or one of: {}",
             names().join(", ")
         ),
     }
+}
+
+/// Where the built-in scene `name` was when the binary was built: its
+/// name in messages, and where a level map it names is looked for.
+fn built_in_path(name: &str) -> String {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes");
+    dir.join(format!("{name}.ron")).display().to_string()
 }
 
 /// Whether [`load`] reads its argument as a path rather than a name.

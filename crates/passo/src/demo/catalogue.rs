@@ -23,7 +23,14 @@ impl Entry {
 
 /// The scene list, with the label each entry shows.
 pub fn catalogue() -> Vec<(String, Entry)> {
-    let showcase = ["playground", "rain", "stack", "pyramid", "drag_race"];
+    let showcase = [
+        "playground",
+        "platformer",
+        "rain",
+        "stack",
+        "pyramid",
+        "drag_race",
+    ];
     let mut list: Vec<(String, Entry)> = showcase
         .iter()
         .map(|n| ((*n).to_owned(), Entry::File((*n).to_owned())))

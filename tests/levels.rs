@@ -1,0 +1,203 @@
+//! Levels from the Tiled editor (`.tmx`, `.tmj`) and ASCII art in scene
+//! files: cells, objects, spawn points, and errors that name the file, the
+//! layer and the object.
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyKind, Shape, TileKind};
+use passo_scene::{Scene, TileMapRef};
+use std::path::PathBuf;
+
+fn assets() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets")
+}
+
+fn level_ref(file: &str) -> TileMapRef {
+    TileMapRef {
+        file: Some(file.to_owned()),
+        ascii: None,
+        layer: "solid".into(),
+        cell: 0.5,
+        origin: Vec2::ZERO,
+        kind: BodyKind::Static,
+    }
+}
+
+#[test]
+fn the_shipped_tiled_level_builds_with_its_cells_objects_and_spawn() {
+    let scene = Scene::load(&assets().join("scenes/platformer.ron")).unwrap();
+    let mut built = scene.build().unwrap();
+    // The player's spawn point: Tiled (32, 208) px in a map 240 px tall,
+    // 16 px tiles of 0.5 m, y up.
+    assert_eq!(
+        built.spawns,
+        vec![("player".to_owned(), Vec2::new(1.0, 1.0))]
+    );
+    let world = &built.world;
+    let named = |name: &str| {
+        let id = built
+            .bodies
+            .iter()
+            .find(|b| b.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("{name} is in the scene"))
+            .id;
+        world.body(id).unwrap()
+    };
+    let coin = named("coin 1");
+    assert!(coin.sensor && coin.kind == BodyKind::Static);
+    assert_eq!(coin.shape, Some(Shape::circle(0.125)));
+    assert!(named("goal").sensor);
+    let lift = named("lift");
+    assert_eq!(lift.kind, BodyKind::Kinematic);
+    assert_eq!(built.platforms.len(), 1, "the lift follows its path");
+    let crate_ = named("crate");
+    assert_eq!(crate_.kind, BodyKind::Dynamic);
+    assert!(
+        (crate_.mass - 2.0 * 0.25).abs() < 1e-6,
+        "density 2 × 0.25 m²"
+    );
+    assert!((crate_.friction - 0.5).abs() < 1e-6);
+    // The cells: 197 solid cells merged into far fewer boxes, with ice,
+    // bouncy and one-way ones among them.
+    let statics: Vec<_> = world
+        .bodies()
+        .filter(|b| b.kind == BodyKind::Static && !b.sensor)
+        .collect();
+    assert!(statics.len() < 60, "{} boxes", statics.len());
+    assert!(statics.iter().any(|b| b.one_way == Some(Vec2::Y)));
+    assert!(
+        statics
+            .iter()
+            .any(|b| (b.friction - TileKind::ICE.friction).abs() < 1e-6)
+    );
+    assert!(
+        statics
+            .iter()
+            .any(|b| b.restitution == TileKind::BOUNCY.restitution)
+    );
+    // The crate falls onto the floor (top at 0.5 m) and rests there.
+    let crate_id = crate_.id;
+    for tick in 1..=180 {
+        let t_end = tick as f64 / 60.0;
+        passo_scene::BuiltScene::drive_platforms(
+            &built.platforms,
+            &mut built.world,
+            t_end,
+            1.0 / 60.0,
+        );
+        built.world.step(1.0 / 60.0);
+    }
+    let y = built.world.body(crate_id).unwrap().position.y;
+    assert!((y - 0.75).abs() < 0.01, "the crate rests on the floor: {y}");
+}
+
+#[test]
+fn the_tmx_and_tmj_forms_of_a_map_give_the_same_level() {
+    let scene = assets().join("scenes/platformer.ron").display().to_string();
+    let tmx = level_ref("../levels/first.tmx").load(&scene).unwrap();
+    let tmj = level_ref("../levels/first.tmj").load(&scene).unwrap();
+    assert_eq!(tmx, tmj);
+    assert_eq!((tmx.map.width(), tmx.map.height()), (30, 15));
+    assert_eq!(tmx.bodies.len(), 6);
+}
+
+#[test]
+fn an_ascii_tilemap_in_a_scene_file_is_a_level() {
+    let text = r#"(
+        name: "ascii",
+        forces: (gravity: (0, -9.81)),
+        collisions: (),
+        tilemap: (ascii: "
+            #......#
+            #..--..#
+            ########", cell: 0.5, origin: (-2, 0)),
+        bodies: [(shape: Circle(radius: 0.2), position: (-1, 1.2))],
+    )"#;
+    let mut built = Scene::parse(text, "ascii.ron").unwrap().build().unwrap();
+    // Floor, two walls, the ledge; then the ball.
+    assert_eq!(built.bodies.len(), 5);
+    let ball = built.bodies[4].id;
+    for _ in 0..120 {
+        built.world.step(1.0 / 60.0);
+    }
+    let y = built.world.body(ball).unwrap().position.y;
+    assert!((y - 0.7).abs() < 0.01, "on the floor (top at 0.5 m): {y}");
+}
+
+/// Writes `text` as `name` in a fresh directory; returns the scene path
+/// that would sit beside it.
+fn map_file(name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("passo-levels-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join(name), text).unwrap();
+    dir.join("scene.ron").display().to_string()
+}
+
+fn tmx_with(objects: &str) -> String {
+    format!(
+        r#"<?xml version="1.0" encoding="UTF-8"?>
+<map version="1.10" orientation="orthogonal" renderorder="right-down" width="2" height="1" tilewidth="16" tileheight="16" infinite="0">
+ <layer id="1" name="ground" width="2" height="1"><data encoding="csv">0,0</data></layer>
+ <objectgroup id="2" name="things">{objects}</objectgroup>
+</map>"#
+    )
+}
+
+#[test]
+fn errors_name_the_file_the_layer_and_the_object() {
+    let scene = map_file("a.tmx", &tmx_with(""));
+    let err = level_ref("a.tmx").load(&scene).unwrap_err().to_string();
+    assert!(
+        err.contains("a.tmx") && err.contains("layer `solid`") && err.contains("ground"),
+        "{err}"
+    );
+    let cases = [
+        (
+            r#"<object id="7" name="rock" x="0" y="0"><polygon points="0,0 8,0 4,8"/></object>"#,
+            "polygon",
+        ),
+        (
+            r#"<object id="7" name="rock" x="0" y="0" width="8" height="8" rotation="30"/>"#,
+            "rotated",
+        ),
+        (
+            r#"<object id="7" name="rock" class="boulder" x="0" y="0" width="8" height="8"/>"#,
+            "class `boulder`",
+        ),
+        (
+            r#"<object id="7" name="rock" x="0" y="0" width="8" height="4"><ellipse/></object>"#,
+            "ellipse",
+        ),
+        (
+            r#"<object id="7" name="rock" x="0" y="0" width="8" height="8"><properties><property name="friction" value="lots"/></properties></object>"#,
+            "friction",
+        ),
+    ];
+    for (object, why) in cases {
+        let scene = map_file("b.tmx", &tmx_with(object));
+        let mut r = level_ref("b.tmx");
+        r.layer = "ground".into();
+        let err = r.load(&scene).unwrap_err().to_string();
+        assert!(
+            err.contains("b.tmx")
+                && err.contains("layer `things`, object 7 `rock`")
+                && err.contains(why),
+            "{why}: {err}"
+        );
+    }
+    // A missing file is an error, not a panic.
+    let err = level_ref("none.tmx").load(&scene).unwrap_err().to_string();
+    assert!(err.contains("none.tmx"), "{err}");
+}
+
+#[test]
+fn a_scene_tilemap_needs_exactly_one_source() {
+    for text in [
+        r#"(name: "x", tilemap: ())"#,
+        r##"(name: "x", tilemap: (file: "a.tmx", ascii: "#"))"##,
+        r##"(name: "x", tilemap: (ascii: "#", cell: 0))"##,
+        r##"(name: "x", tilemap: (ascii: "#", kind: Dynamic))"##,
+    ] {
+        let err = Scene::parse(text, "t.ron").unwrap_err().to_string();
+        assert!(err.contains("tilemap"), "{err}");
+    }
+}
