@@ -21,7 +21,7 @@
 //! the map's bottom-left corner lands on `origin`.
 
 use crate::error::SceneError;
-use crate::format::{BodySpec, PlatformPath};
+use crate::format::{BodySpec, Colour, PlatformPath};
 use crate::map_ref::TileMapRef;
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyKind, Shape, TileKind, TileMap};
@@ -622,8 +622,15 @@ impl RawObject {
             }
             RawShape::Point => unreachable!("points are spawns"),
         };
+        // Coins gold and goals green; other bodies take the scene's colours.
+        let colour = match class.to_ascii_lowercase().as_str() {
+            "coin" => Some(Colour([0xf0, 0xc8, 0x30, 0xff])),
+            "goal" => Some(Colour([0x5c, 0xb8, 0x5c, 0xff])),
+            _ => None,
+        };
         let mut spec = BodySpec {
             name,
+            colour,
             kind,
             shape: Some(shape),
             position: to_world(self.x + w / 2.0, self.y + h / 2.0),

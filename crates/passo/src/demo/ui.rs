@@ -119,10 +119,13 @@ fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actio
     }
     ui.horizontal(|ui| {
         if sim.session.is_recording() {
-            ui.colored_label(Color32::from_rgb(240, 90, 90), "● recording");
+            ui.colored_label(Color32::from_rgb(240, 90, 90), "recording");
             actions.stop_recording |= ui.button("stop and save").clicked();
         } else {
-            actions.record |= ui.button("● record").clicked();
+            let record = egui::Button::new(
+                egui::RichText::new("record").color(Color32::from_rgb(240, 90, 90)),
+            );
+            actions.record |= ui.add(record).clicked();
             actions.replay_last |= ui
                 .add_enabled(input.last_replay, egui::Button::new("replay last"))
                 .clicked();
@@ -173,11 +176,14 @@ fn rewind_section(ui: &mut egui::Ui, sim: &mut Sim) {
     let before = at;
     ui.add_enabled(newest > 0, Slider::new(&mut at, 0..=newest).text("tick"));
     ui.horizontal(|ui| {
-        if ui.add_enabled(at > 0, egui::Button::new("◀")).clicked() {
+        if ui
+            .add_enabled(at > 0, egui::Button::new("< back"))
+            .clicked()
+        {
             at -= 1;
         }
         if ui
-            .add_enabled(at < newest, egui::Button::new("▶"))
+            .add_enabled(at < newest, egui::Button::new("on >"))
             .clicked()
         {
             at += 1;
@@ -439,7 +445,7 @@ fn help(ui: &mut egui::Ui) {
         .default_open(true)
         .show(ui, |ui| {
             for line in [
-                "A / D or ← / →: walk (Shift: run)",
+                "A / D or the left / right arrows: walk (Shift: run)",
                 "Space: jump (when standing)",
                 "G (hold): glide, W: wind on/off",
                 "P: pause, N: single step, R: reset",
@@ -479,5 +485,37 @@ pub(crate) fn lane_labels(
             egui::FontId::proportional(15.0),
             SERIES[i % SERIES.len()],
         );
+    }
+}
+
+#[cfg(test)]
+mod glyph_tests {
+    use egui::epaint::text::{FontDefinitions, FontFamily, FontId, Fonts, TextOptions};
+
+    /// Every non-ASCII character in the demo's string literals is in the
+    /// fonts the demo ships (egui's defaults): a missing one draws as an
+    /// empty box (the record and rewind buttons once did).
+    #[test]
+    fn every_symbol_the_demo_shows_is_in_the_fonts() {
+        let mut fonts = Fonts::new(TextOptions::default(), FontDefinitions::default());
+        let font = FontId::new(14.0, FontFamily::Proportional);
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/demo");
+        let mut missing = Vec::new();
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let source = std::fs::read_to_string(&path).unwrap();
+            let code = &source[..source.find("#[cfg(test)]").unwrap_or(source.len())];
+            for line in code.lines().filter(|l| !l.trim_start().starts_with("//")) {
+                // The text between quotes: the string literals.
+                for literal in line.split('"').skip(1).step_by(2) {
+                    for c in literal.chars().filter(|c| !c.is_ascii()) {
+                        if !fonts.has_glyph(&font, c) {
+                            missing.push((path.file_name().unwrap().to_owned(), c));
+                        }
+                    }
+                }
+            }
+        }
+        assert!(missing.is_empty(), "not in the fonts: {missing:?}");
     }
 }
