@@ -478,3 +478,58 @@ fn rewinding_past_a_drag_slider_change_puts_the_slider_back() {
     run(&mut sim, 15, Input::default());
     assert!((sim.session.knobs.drag_scale - before).abs() < 1e-6);
 }
+
+#[test]
+fn the_platformer_level_is_played_with_the_character_mover() {
+    let mut sim = load(&Entry::File("platformer".into())).unwrap();
+    // A kinematic character at the level's `player` spawn point, (1, 1);
+    // it falls to stand a skin above the floor (top at 0.5 m).
+    let start = player(&sim);
+    assert_eq!(start.kind, passo_physics::BodyKind::Kinematic);
+    assert!((start.position.x - 1.0).abs() < 1e-6);
+    run(&mut sim, 30, Input::default());
+    let rest = player(&sim).position;
+    assert!(
+        (rest.y - (0.5 + 0.35 + 0.01)).abs() < 1e-3,
+        "standing at {rest}"
+    );
+    // Walking right for a quarter of a second at 4.5 m/s, on the ground
+    // (short of the block at x = 2.5 m, whose underside at 1 m is lower
+    // than the character's head).
+    run(
+        &mut sim,
+        15,
+        Input {
+            right: true,
+            ..Input::default()
+        },
+    );
+    let walked = player(&sim).position - rest;
+    assert!((walked.x - 4.5 * 0.25).abs() < 0.02, "walked {walked}");
+    assert!(walked.y.abs() < 1e-3);
+    // A jump: up at 6.5 m/s under 9.81 m/s², apex v² / 2g = 2.15 m higher.
+    let before = player(&sim).position.y;
+    let mut highest = before;
+    run(
+        &mut sim,
+        1,
+        Input {
+            jump: true,
+            ..Input::default()
+        },
+    );
+    // In the air 2 × 6.5 / 9.81 = 1.33 s: 80 ticks.
+    for _ in 0..100 {
+        run(&mut sim, 1, Input::default());
+        highest = highest.max(player(&sim).position.y);
+    }
+    let apex = highest - before;
+    assert!(
+        (apex - 6.5f32.powi(2) / (2.0 * 9.81)).abs() < 0.12,
+        "apex {apex} m"
+    );
+    assert!(
+        (player(&sim).position.y - before).abs() < 1e-3,
+        "landed again"
+    );
+}

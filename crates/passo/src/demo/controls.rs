@@ -1,10 +1,15 @@
 //! What the player and the panel control: the keys held this tick
-//! ([`Input`]), the panel's sliders ([`Knobs`]), and the controller that
-//! turns the keys into forces on the player's body.
+//! ([`Input`]), the panel's sliders ([`Knobs`]), and the two controllers
+//! of the player: forces on a dynamic body (the playground's physics
+//! player), or the character mover on a kinematic one (a level's player,
+//! made at its `player` spawn point).
 
 use glam::Vec2;
 use passo_physics::constants::DEFAULT_MAX_SPEED;
-use passo_physics::{BodyDef, BodyId, BodyKind, QuadraticDrag, World, WorldSettings};
+use passo_physics::{
+    BodyDef, BodyId, BodyKind, CharacterMover, QuadraticDrag, Shape, World, WorldSettings,
+};
+use passo_scene::{BuiltScene, Colour, SceneBody};
 use serde::{Deserialize, Serialize};
 use std::ops::RangeInclusive;
 
@@ -161,4 +166,76 @@ pub(crate) fn drive_player(
         let area = base * knobs.drag_scale * if open { GLIDE_DRAG } else { 1.0 };
         let _ = world.set_drag_area(player, area);
     }
+}
+
+/// The character's size, metres: a little narrower than a 0.5 m tile and
+/// shorter than two.
+const CHARACTER_SIZE: Vec2 = Vec2::new(0.4, 0.7);
+/// Fastest fall of a gliding character, m/s.
+const GLIDE_FALL_SPEED: f32 = 1.5;
+/// The character's colour (sRGB).
+const CHARACTER_COLOUR: Colour = Colour([0xe4, 0x6c, 0x3a, 0xff]);
+
+/// Adds a kinematic character named `player` at the scene's `player`
+/// spawn point, if it has one; returns it.
+pub(crate) fn add_character(built: &mut BuiltScene) -> Option<BodyId> {
+    let &(_, at) = built.spawns.iter().find(|(name, _)| name == "player")?;
+    let skin = CharacterMover::default().skin;
+    let def = BodyDef::new_kinematic(
+        at + Vec2::new(0.0, 0.5 * CHARACTER_SIZE.y + skin),
+        Shape::rect(CHARACTER_SIZE.x, CHARACTER_SIZE.y),
+        Vec2::ZERO,
+    );
+    let id = built.world.add_body(def).ok()?;
+    built.bodies.push(SceneBody {
+        id,
+        name: Some("player".into()),
+        colour: CHARACTER_COLOUR,
+    });
+    Some(id)
+}
+
+/// Whether `player` is moved by the character mover (a kinematic body).
+pub(crate) fn is_character(world: &World, player: BodyId) -> bool {
+    world
+        .body(player)
+        .is_some_and(|b| b.kind == BodyKind::Kinematic)
+}
+
+/// Moves a kinematic character with the character mover: walk and run at
+/// their speeds, jump from the ground, fall under the gravity slider,
+/// glide slowly down while G is held. Its own velocity (the last tick's
+/// motion, which the world keeps) is the only state, so rewinding and
+/// replays need nothing else. Consumes a pending jump.
+pub(crate) fn drive_character(
+    world: &mut World,
+    player: BodyId,
+    input: &mut Input,
+    knobs: &Knobs,
+    dt: f32,
+) {
+    let jump = std::mem::replace(&mut input.jump, false);
+    let Some(body) = world.body(player) else {
+        return;
+    };
+    let mover = CharacterMover::default();
+    // Where it stands now.
+    let Ok(now) = world.move_character(player, Vec2::ZERO, &mover, dt) else {
+        return;
+    };
+    let dir = f32::from(u8::from(input.right)) - f32::from(u8::from(input.left));
+    let mut v = body.velocity;
+    v.x = dir * if input.run { RUN_SPEED } else { WALK_SPEED };
+    if now.on_ground {
+        v.y = if jump { JUMP_SPEED } else { 0.0 };
+    } else {
+        v.y += knobs.gravity * dt;
+        if now.ceiling.is_some() {
+            v.y = v.y.min(0.0);
+        }
+        if input.glide {
+            v.y = v.y.max(-GLIDE_FALL_SPEED);
+        }
+    }
+    let _ = world.move_character(player, v * dt, &mover, dt);
 }

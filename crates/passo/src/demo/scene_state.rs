@@ -76,9 +76,11 @@ impl SceneState {
     /// The state of a scene file, with interpolated drawing on and the
     /// plot the scene table chose.
     pub fn from_scene(scene: &Scene, plot: Plot) -> Result<Self> {
-        let built = scene.build()?;
+        let mut built = scene.build()?;
         let file = scene.file.clone();
-        let player = built.body_named("player");
+        let player = built
+            .body_named("player")
+            .or_else(|| controls::add_character(&mut built));
         let platforms = built.platforms;
         let lanes = vec![Lane::new(
             String::new(),
@@ -175,8 +177,12 @@ impl SceneState {
         BuiltScene::drive_platforms(&self.platforms, &mut self.lanes[0].world, t_end, dt);
         if let Some(player) = self.player {
             let lane = &mut self.lanes[0];
-            let base_drag = lane.base_drag(player);
-            controls::drive_player(&mut lane.world, player, &mut self.input, knobs, base_drag);
+            if controls::is_character(&lane.world, player) {
+                controls::drive_character(&mut lane.world, player, &mut self.input, knobs, dt);
+            } else {
+                let base_drag = lane.base_drag(player);
+                controls::drive_player(&mut lane.world, player, &mut self.input, knobs, base_drag);
+            }
         }
         for lane in &mut self.lanes {
             lane.world.step(dt);
