@@ -26,11 +26,14 @@ fn level_ref(file: &str) -> TileMapRef {
 fn the_shipped_tiled_level_builds_with_its_cells_objects_and_spawn() {
     let scene = Scene::load(&assets().join("scenes/platformer.ron")).unwrap();
     let mut built = scene.build().unwrap();
-    // The player's spawn point: Tiled (32, 208) px in a map 240 px tall,
-    // 16 px tiles of 0.5 m, y up.
+    // The players' spawn points: Tiled (32, 208) and (144, 208) px in a
+    // map 240 px tall, 16 px tiles of 0.5 m, y up.
     assert_eq!(
         built.spawns,
-        vec![("player".to_owned(), Vec2::new(1.0, 1.0))]
+        vec![
+            ("player".to_owned(), Vec2::new(1.0, 1.0)),
+            ("physics player".to_owned(), Vec2::new(4.5, 1.0))
+        ]
     );
     let world = &built.world;
     let named = |name: &str| {

@@ -195,6 +195,34 @@ pub(crate) fn add_character(built: &mut BuiltScene) -> Option<BodyId> {
     Some(id)
 }
 
+/// Adds a dynamic physics player at the scene's `physics player` spawn
+/// point, the character's size, if it has one; returns it.
+pub(crate) fn add_physics_player(built: &mut BuiltScene) -> Option<BodyId> {
+    let &(_, at) = built
+        .spawns
+        .iter()
+        .find(|(name, _)| name == "physics player")?;
+    let def = BodyDef {
+        mass: 70.0,
+        friction: 0.8,
+        drag_area: 0.5,
+        ..BodyDef::new_dynamic(
+            at + Vec2::new(0.0, 0.5 * CHARACTER_SIZE.y),
+            Shape::rect(CHARACTER_SIZE.x, CHARACTER_SIZE.y),
+        )
+    };
+    let id = built.world.add_body(def).ok()?;
+    built.bodies.push(SceneBody {
+        id,
+        name: Some("physics player".into()),
+        colour: PHYSICS_PLAYER_COLOUR,
+    });
+    Some(id)
+}
+
+/// The physics player's colour beside the character (sRGB).
+const PHYSICS_PLAYER_COLOUR: Colour = Colour([0x3a, 0x8e, 0xe4, 0xff]);
+
 /// Whether `player` is moved by the character mover (a kinematic body).
 pub(crate) fn is_character(world: &World, player: BodyId) -> bool {
     world

@@ -26,6 +26,10 @@ pub struct SceneState {
     pub bounds: Aabb,
     /// The body the keyboard moves, in lane 0.
     pub player: Option<BodyId>,
+    /// A physics player the same keys push with forces, beside a
+    /// character moved by the character mover (a level's `physics player`
+    /// spawn point), so the two controllers can be compared.
+    pub twin: Option<BodyId>,
     /// Whether each lane has its own integrator (the integrator picker is off).
     pub fixed_integrators: bool,
     /// The plot.
@@ -81,6 +85,7 @@ impl SceneState {
         let player = built
             .body_named("player")
             .or_else(|| controls::add_character(&mut built));
+        let twin = controls::add_physics_player(&mut built);
         let platforms = built.platforms;
         let lanes = vec![Lane::new(
             String::new(),
@@ -95,6 +100,7 @@ impl SceneState {
             lanes,
             bounds: built.camera,
             player,
+            twin,
             fixed_integrators: false,
             file: Some(file),
             input: Input::default(),
@@ -122,6 +128,7 @@ impl SceneState {
                 max: Vec2::new(6.5, 3.0),
             },
             player: None,
+            twin: None,
             fixed_integrators: true,
             file: None,
             input: Input::default(),
@@ -175,6 +182,13 @@ impl SceneState {
         self.ticks += 1;
         let t_end = self.ticks as f64 * f64::from(dt);
         BuiltScene::drive_platforms(&self.platforms, &mut self.lanes[0].world, t_end, dt);
+        if let Some(twin) = self.twin {
+            // The same keys, jump included, before the player takes them.
+            let lane = &mut self.lanes[0];
+            let base_drag = lane.base_drag(twin);
+            let mut input = self.input;
+            controls::drive_player(&mut lane.world, twin, &mut input, knobs, base_drag);
+        }
         if let Some(player) = self.player {
             let lane = &mut self.lanes[0];
             if controls::is_character(&lane.world, player) {
