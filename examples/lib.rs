@@ -2,3 +2,5 @@
 #![warn(missing_docs)]
 
 pub mod netplay;
+#[path = "platformer_game.rs"]
+pub mod platformer;

@@ -204,3 +204,49 @@ fn a_scene_tilemap_needs_exactly_one_source() {
         assert!(err.contains("tilemap"), "{err}");
     }
 }
+
+#[test]
+fn malformed_maps_are_errors_not_panics() {
+    // A .tmx whose layer has fewer tiles than the map has cells.
+    let short = r#"<?xml version="1.0" encoding="UTF-8"?>
+<map version="1.10" orientation="orthogonal" renderorder="right-down" width="4" height="2" tilewidth="16" tileheight="16" infinite="0">
+ <layer id="1" name="solid" width="4" height="2"><data encoding="csv">1,1,1</data></layer>
+</map>"#;
+    let scene = map_file("short.tmx", short);
+    let err = level_ref("short.tmx").load(&scene).unwrap_err().to_string();
+    assert!(err.contains("short.tmx"), "{err}");
+    // A .tmj whose data does not match its size.
+    let tmj = r#"{"orientation": "orthogonal", "width": 4, "height": 2, "tilewidth": 16, "tileheight": 16,
+        "tilesets": [], "layers": [{"type": "tilelayer", "name": "solid", "data": [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]}]}"#;
+    let scene = map_file("long.tmj", tmj);
+    let err = level_ref("long.tmj").load(&scene).unwrap_err().to_string();
+    assert!(
+        err.contains("long.tmj") && err.contains("10 tiles"),
+        "{err}"
+    );
+    // An object with a path of period 0 is checked as a scene body is.
+    let object = r#"<object id="3" name="lift" class="kinematic" x="0" y="0" width="16" height="8"><properties><property name="period" type="float" value="0"/></properties></object>"#;
+    let scene = map_file("c.tmx", &tmx_with(object));
+    let mut r = level_ref("c.tmx");
+    r.layer = "ground".into();
+    let err = r.load(&scene).unwrap_err().to_string();
+    assert!(
+        err.contains("object 3 `lift`") && err.contains("period"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_tile_object_is_placed_by_its_bottom_left_corner() {
+    // Tiled places an object made from a tile by its bottom-left corner:
+    // this one (16 × 16 px, y = 16 px) fills the top tile row of a map two
+    // rows tall, so its centre is 1.5 tiles up: 0.75 m.
+    let tmj = r#"{"orientation": "orthogonal", "width": 2, "height": 2, "tilewidth": 16, "tileheight": 16,
+        "tilesets": [{"firstgid": 1, "tiles": []}],
+        "layers": [{"type": "tilelayer", "name": "solid", "data": [0, 0, 0, 0]},
+                   {"type": "objectgroup", "name": "things", "objects": [
+                       {"id": 1, "name": "block", "gid": 1, "x": 0, "y": 16, "width": 16, "height": 16}]}]}"#;
+    let scene = map_file("tile.tmj", tmj);
+    let level = level_ref("tile.tmj").load(&scene).unwrap();
+    assert_eq!(level.bodies[0].position, Vec2::new(0.25, 0.75));
+}

@@ -174,6 +174,36 @@ fn it_rides_a_moving_platform() {
 }
 
 #[test]
+fn it_rides_a_lift_down_without_leaving_it() {
+    // A lift going down at 1.5 m/s (2.5 cm a tick, more than the skin).
+    let mut world = World::default();
+    let lift = world
+        .add_body(BodyDef::new_kinematic(
+            Vec2::new(0.0, -0.25),
+            Shape::rect(3.0, 0.5),
+            Vec2::new(0.0, -1.5),
+        ))
+        .unwrap();
+    let id = character(&mut world, 0.0, 0.0);
+    let mover = CharacterMover::default();
+    for tick in 0..60 {
+        let out = world
+            .move_character(id, Vec2::new(0.0, -5.0) * DT, &mover, DT)
+            .unwrap();
+        assert!(
+            out.on_ground && out.ground == Some(lift),
+            "tick {tick}: {out:?}"
+        );
+        world.step(DT);
+    }
+    let gap = at(&world, id).y - HALF.y - (world.body(lift).unwrap().position.y + 0.25);
+    assert!(
+        (gap - mover.skin).abs() < 1e-3,
+        "a skin above the lift: {gap}"
+    );
+}
+
+#[test]
 fn one_way_platforms_are_jumped_through_landed_on_and_dropped_through() {
     let mut world = level(
         "
@@ -230,6 +260,8 @@ fn it_pushes_a_crate_as_hard_as_push_mass_says() {
     };
     let (crate_x, player_x) = push(20.0);
     assert!(crate_x > 4.0, "pushed the crate to {crate_x}");
+    // Never faster than the character walks (2 m/s for 2 s from x = 3).
+    assert!(crate_x < 3.0 + 2.0 * 2.0 + 0.1, "crate at {crate_x}");
     assert!(
         player_x < crate_x - 0.45,
         "never inside it: {player_x} vs {crate_x}"

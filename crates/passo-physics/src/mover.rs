@@ -119,9 +119,28 @@ struct Walker<'a> {
     mover: &'a CharacterMover,
     filter: QueryFilter,
     dropping: bool,
+    /// The kinematic body it rides, and its travel this step: it is seen
+    /// where it will be after the step, as the character will.
+    ridden: Option<(BodyId, Vec2)>,
 }
 
 impl Walker<'_> {
+    /// Where a found body is met: the ridden one where it will be.
+    fn place(&self, f: &Found<'_>) -> Vec2 {
+        match self.ridden {
+            Some((id, travel)) if id == f.id => f.position + travel,
+            _ => f.position,
+        }
+    }
+
+    /// Calls `f` with every candidate near `area` (grown by the ridden
+    /// body's travel, so it is found where it will be).
+    fn near(&self, area: &crate::Aabb, mut f: impl FnMut(Found<'_>)) {
+        let grow = self.ridden.map_or(0.0, |(_, t)| t.length());
+        self.world
+            .candidates(&area.grown(grow), &self.filter, &mut f);
+    }
+
     /// The first body `shape` meets moving from `from` by `by`: one-way
     /// platforms only from their solid side (and not while dropping
     /// through), and nothing it overlaps at the start (the push out deals
@@ -134,9 +153,9 @@ impl Walker<'_> {
         let swept =
             crate::Aabb::from_centre(from, half).union(&crate::Aabb::from_centre(from + by, half));
         let mut best: Option<Hit> = None;
-        self.world.candidates(&swept, &self.filter, |f: Found<'_>| {
-            let Some(hit) = crate::cast::cast_shape(&self.shape, from, by, &f.shape, f.position)
-            else {
+        self.near(&swept, |f: Found<'_>| {
+            let at = self.place(&f);
+            let Some(hit) = crate::cast::cast_shape(&self.shape, from, by, &f.shape, at) else {
                 return;
             };
             if hit.fraction == 0.0 && self.overlaps(from, &f) {
@@ -163,7 +182,7 @@ impl Walker<'_> {
 
     /// Whether the character at `at` overlaps `f` (deeper than touching).
     fn overlaps(&self, at: Vec2, f: &Found<'_>) -> bool {
-        collide(&self.shape, at, &f.shape, f.position, 0.0).is_some_and(|m| m.separation < 0.0)
+        collide(&self.shape, at, &f.shape, self.place(f), 0.0).is_some_and(|m| m.separation < 0.0)
     }
 
     /// Moves from `from` by `by` as far as the first hit allows, a skin
@@ -188,11 +207,11 @@ impl Walker<'_> {
         for _ in 0..4 {
             let mut deepest: Option<(f32, Vec2)> = None;
             let area = crate::Aabb::from_centre(at, self.shape.half_extents());
-            self.world.candidates(&area, &self.filter, |f: Found<'_>| {
+            self.near(&area, |f: Found<'_>| {
                 if f.meta.one_way.is_some() {
                     return;
                 }
-                if let Some(m) = collide(&self.shape, at, &f.shape, f.position, 0.0)
+                if let Some(m) = collide(&self.shape, at, &f.shape, self.place(&f), 0.0)
                     && m.separation < 0.0
                     && deepest.is_none_or(|(s, _)| m.separation < s)
                 {
@@ -271,26 +290,31 @@ impl World {
         let i = self
             .dynamic_index(id)?
             .expect("a kinematic body is in the dynamic arrays");
-        let walker = Walker {
+        let mut walker = Walker {
             world: self,
             shape,
             mover,
             filter: mover.filter.excluding(id),
             dropping: self.dynamic.meta[i].drop_through > 0.0,
+            ridden: None,
         };
         let mut out = MoveOutcome::default();
         let mut at = walker.push_out(body.position);
-        // Riding: the platform under it carries it.
+        // Riding: the platform under it carries it first; from then on
+        // the platform is seen where it will be after the step, as the
+        // character will (so a platform going down does not stop its
+        // rider a skin below it, and the rider stays on it).
         let under = walker.ground(at, 2.0 * mover.skin);
-        let mut wanted = translation;
         if let Some(ground) = under
             && let Some(b) = self.body(ground.body)
             && b.kind == crate::BodyKind::Kinematic
         {
-            wanted += b.velocity * dt;
+            let travel = b.velocity * dt;
+            walker.ridden = Some((ground.body, travel));
+            at = walker.advance(at, travel).0;
         }
         let mut pushes: Vec<(usize, Vec2)> = Vec::new();
-        let mut remaining = wanted;
+        let mut remaining = translation;
         for _ in 0..4 {
             if remaining.length_squared() < 1e-12 {
                 break;
@@ -318,10 +342,13 @@ impl World {
             } else if is_wall {
                 out.wall = Some(hit.body);
             }
-            // Walking into a dynamic body pushes it.
-            let stopped = -left.dot(hit.normal);
-            if let (Some(j), true) = (hit.pushable, stopped > 0.0 && mover.push_mass > 0.0) {
-                pushes.push((j, -hit.normal * (mover.push_mass * stopped / dt)));
+            // Walking into a dynamic body pushes it, once per move, with
+            // the speed it was stopped from.
+            let stopped = -left.dot(hit.normal) / dt;
+            if let (Some(j), true) = (hit.pushable, stopped > 0.0 && mover.push_mass > 0.0)
+                && !pushes.iter().any(|p| p.0 == j)
+            {
+                pushes.push((j, -hit.normal * stopped));
             }
             at = next;
             remaining = left - hit.normal * left.dot(hit.normal);
@@ -342,14 +369,13 @@ impl World {
         out.ground = ground.map(|h| h.body);
         out.position = at;
         out.translation = at - body.position;
-        for (j, impulse) in pushes {
+        for (j, velocity) in pushes {
             let target = self.dynamic.meta[j].id;
             out.pushed += 1;
-            // The impulse may not push it faster than the character came.
-            let mass = self.dynamic.meta[j].mass;
-            let cap = translation.length() / dt * mass;
-            let impulse = impulse.clamp_length_max(cap);
-            let _ = self.try_apply_impulse(target, impulse);
+            // At most push_mass of impulse per m/s: a light body is pushed
+            // up to the speed it was met with, never faster.
+            let mass = self.dynamic.meta[j].mass.min(mover.push_mass);
+            let _ = self.try_apply_impulse(target, velocity * mass);
         }
         self.try_set_kinematic_target(id, at, dt)?;
         Ok(out)

@@ -323,11 +323,21 @@ impl Proxies {
             }
         }
         let Some(region) = region else { return };
+        // Only when the proxies fill a small part of the level: otherwise
+        // looking for the statics near them would visit most of the tree
+        // every step for nothing.
+        let area = |b: &Aabb| b.size().x * b.size().y;
+        let small = self
+            .tree
+            .bounds()
+            .is_some_and(|level| area(&region) * NARROWED_TREE as f32 <= area(&level));
         self.near_items.clear();
-        let (near, items) = (&mut self.near_items, &self.tree_items);
-        self.tree
-            .query(&region, |item| near.push(items[item as usize]));
-        let narrowed = self.near_items.len() * NARROWED_TREE < self.tree.len();
+        if small {
+            let (near, items) = (&mut self.near_items, &self.tree_items);
+            self.tree
+                .query(&region, |item| near.push(items[item as usize]));
+        }
+        let narrowed = small && self.near_items.len() * NARROWED_TREE < self.tree.len();
         if narrowed {
             let boxes = self
                 .near_items

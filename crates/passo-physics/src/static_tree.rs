@@ -60,6 +60,11 @@ impl StaticTree {
         self.nodes.reserve(more(self.nodes.len(), 2 * n));
     }
 
+    /// The box around every item (`None` for an empty tree).
+    pub(crate) fn bounds(&self) -> Option<Aabb> {
+        self.nodes.first().map(|n| n.aabb)
+    }
+
     /// Number of items.
     pub(crate) fn len(&self) -> usize {
         self.items.len()

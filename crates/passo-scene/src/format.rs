@@ -606,6 +606,12 @@ fn physics_message(e: &passo_physics::PhysicsError) -> String {
     }
 }
 
+/// Checks a body made elsewhere (a Tiled object) as a scene body is
+/// checked; errors name `source` and `path`.
+pub(crate) fn check_body(spec: &BodySpec, source: &str, path: &str) -> Result<(), SceneError> {
+    spec.validate(&Check { source }, path)
+}
+
 impl BodySpec {
     fn validate(&self, c: &Check<'_>, path: &str) -> Result<(), SceneError> {
         let at = |field: &str| format!("{path}.{field}");

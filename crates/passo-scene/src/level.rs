@@ -67,8 +67,8 @@ impl TileMapRef {
         let path = beside(scene, file);
         let shown = path.display().to_string();
         let raw = match path.extension().and_then(|e| e.to_str()) {
-            Some("tmj") | Some("json") => read_tmj(&path)?,
-            _ => read_tmx(&path)?,
+            Some("tmj") | Some("json") => read_tmj(&path, &self.layer)?,
+            _ => read_tmx(&path, &self.layer)?,
         };
         raw.into_level(self, &shown)
     }
@@ -131,7 +131,7 @@ struct RawMap {
     objects: Vec<RawObject>,
 }
 
-fn read_tmx(path: &Path) -> Result<RawMap, SceneError> {
+fn read_tmx(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneError> {
     let shown = path.display().to_string();
     let map = tiled::Loader::new()
         .load_tmx_map(path)
@@ -146,6 +146,16 @@ fn read_tmx(path: &Path) -> Result<RawMap, SceneError> {
             message: "must be orthogonal and finite".into(),
         });
     }
+    if map.width as usize * map.height as usize > passo_physics::MAX_TILE_CELLS {
+        return Err(SceneError::Invalid {
+            source_name: shown,
+            field: "map".into(),
+            message: format!(
+                "{} × {} tiles is more than a tile map may have (4096 × 4096)",
+                map.width, map.height
+            ),
+        });
+    }
     let mut raw = RawMap {
         width: map.width,
         height: map.height,
@@ -153,18 +163,34 @@ fn read_tmx(path: &Path) -> Result<RawMap, SceneError> {
         tile_height: map.tile_height as f32,
         ..RawMap::default()
     };
-    collect_tmx_layers(&map, map.layers(), &mut raw);
+    // The `tiled` crate indexes a layer's tiles without checking that the
+    // file gave as many as the map has cells: a short layer would panic
+    // inside it, so that becomes an error here.
+    let read = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        collect_tmx_layers(&map, map.layers(), wanted_layer, &mut raw)
+    }));
+    if read.is_err() {
+        return Err(SceneError::Invalid {
+            source_name: shown,
+            field: format!("layer `{wanted_layer}`"),
+            message: "has fewer tiles than the map has cells".into(),
+        });
+    }
     Ok(raw)
 }
 
 fn collect_tmx_layers<'m>(
     map: &'m tiled::Map,
     layers: impl Iterator<Item = tiled::Layer<'m>>,
+    wanted: &str,
     raw: &mut RawMap,
 ) {
     for layer in layers {
         let name = layer.name.clone();
         match layer.layer_type() {
+            tiled::LayerType::Tiles(_) if name != wanted => {
+                raw.tile_layers.push((name, Vec::new()))
+            }
             tiled::LayerType::Tiles(tiles) => {
                 let cells = (0..map.height as i32)
                     .flat_map(|y| (0..map.width as i32).map(move |x| (x, y)))
@@ -196,20 +222,25 @@ fn collect_tmx_layers<'m>(
                         tiled::ObjectShape::Capsule { .. } => RawShape::Other("a capsule"),
                         tiled::ObjectShape::Text { .. } => RawShape::Other("a text"),
                     };
+                    // A tile object is placed by its bottom-left corner.
+                    let tile_height = match (&object.shape, object.tile_data()) {
+                        (tiled::ObjectShape::Rect { height, .. }, Some(_)) => *height,
+                        _ => 0.0,
+                    };
                     raw.objects.push(RawObject {
                         layer: name.clone(),
                         id: object.id(),
                         name: object.name.clone(),
                         class: object.user_type.clone(),
                         x: object.x,
-                        y: object.y,
+                        y: object.y - tile_height,
                         rotation: object.rotation,
                         shape,
                         properties: tmx_properties(&object.properties),
                     });
                 }
             }
-            tiled::LayerType::Group(group) => collect_tmx_layers(map, group.layers(), raw),
+            tiled::LayerType::Group(group) => collect_tmx_layers(map, group.layers(), wanted, raw),
             tiled::LayerType::Image(_) => {}
         }
     }
@@ -237,7 +268,7 @@ fn tmx_properties(properties: &tiled::Properties) -> Properties {
 
 /// Reads a map saved as JSON (`.tmj`): the same model as a `.tmx`, with
 /// tilesets embedded or in `.tsj` files beside it.
-fn read_tmj(path: &Path) -> Result<RawMap, SceneError> {
+fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneError> {
     use serde_json::Value as Json;
     let shown = path.display().to_string();
     let fail = |message: String| SceneError::Invalid {
@@ -277,6 +308,12 @@ fn read_tmj(path: &Path) -> Result<RawMap, SceneError> {
         tile_height: dimension("tileheight")? as f32,
         ..RawMap::default()
     };
+    if raw.width as usize * raw.height as usize > passo_physics::MAX_TILE_CELLS {
+        return Err(fail(format!(
+            "{} × {} tiles is more than a tile map may have (4096 × 4096)",
+            raw.width, raw.height
+        )));
+    }
     // Tiles by global id: (first gid, tiles of the set by local id).
     let mut sets: Vec<(u32, Vec<(u32, RawTile)>)> = Vec::new();
     for set in json
@@ -338,11 +375,23 @@ fn read_tmj(path: &Path) -> Result<RawMap, SceneError> {
         let name = text(&layer, "name");
         match layer.get("type").and_then(Json::as_str) {
             Some("tilelayer") => {
+                if name != wanted_layer {
+                    raw.tile_layers.push((name, Vec::new()));
+                    continue;
+                }
                 let Some(data) = layer.get("data").and_then(Json::as_array) else {
                     return Err(fail(format!(
                         "layer `{name}`: tile data must be a CSV array (Tiled: layer format CSV)"
                     )));
                 };
+                if data.len() != raw.width as usize * raw.height as usize {
+                    return Err(fail(format!(
+                        "layer `{name}` has {} tiles for a map of {} × {} cells",
+                        data.len(),
+                        raw.width,
+                        raw.height
+                    )));
+                }
                 // The top bits of a global id are flip flags.
                 let cells = data
                     .iter()
@@ -385,7 +434,9 @@ fn read_tmj(path: &Path) -> Result<RawMap, SceneError> {
                         name: text(object, "name"),
                         class: class.and_then(Json::as_str).unwrap_or("").to_owned(),
                         x: number(object, "x").unwrap_or(0.0) as f32,
-                        y: number(object, "y").unwrap_or(0.0) as f32,
+                        // A tile object is placed by its bottom-left corner.
+                        y: number(object, "y").unwrap_or(0.0) as f32
+                            - if object.get("gid").is_some() { h } else { 0.0 },
                         rotation: number(object, "rotation").unwrap_or(0.0) as f32,
                         shape,
                         properties: json_properties(object),
@@ -546,6 +597,7 @@ impl RawMap {
             bodies: Vec::new(),
             spawns: Vec::new(),
         };
+        let mut checked = 0;
         for object in &self.objects {
             let what = if object.name.is_empty() {
                 format!("layer `{}`, object {}", object.layer, object.id)
@@ -557,7 +609,11 @@ impl RawMap {
             };
             object
                 .read(&to_world, scale, &mut level)
-                .map_err(|m| invalid(what, m))?;
+                .map_err(|m| invalid(what.clone(), m))?;
+            if let Some(spec) = level.bodies.last().filter(|_| level.bodies.len() > checked) {
+                crate::format::check_body(spec, shown, &what)?;
+            }
+            checked = level.bodies.len();
         }
         Ok(level)
     }

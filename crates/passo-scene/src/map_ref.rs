@@ -25,7 +25,8 @@ pub struct TileMapRef {
     /// Where the map's lower-left corner goes, metres. Default (0, 0).
     #[serde(default)]
     pub origin: Vec2,
-    /// `Static` (default) or `Kinematic` (the whole map moves).
+    /// `Static` (default) or `Kinematic` (boxes the game moves: give each
+    /// the same velocity; for a few boxes, not a whole level).
     #[serde(default = "default_kind")]
     pub kind: BodyKind,
 }

@@ -131,6 +131,15 @@ fn the_demo_runs_in_a_real_window_and_shows_the_scene() {
             .all(|(a, b)| a.abs_diff(b) <= 2),
         "{got:?}"
     );
+    // The panel's plot (130 px on a grey-20 ground) is whole in the window:
+    // it comes right after the scene, so no window cuts it off.
+    let plot_rows = (0..image.height)
+        .filter(|&y| image.get(150, y) == Some([20, 20, 20, 255]))
+        .count();
+    assert!(
+        plot_rows >= 120,
+        "{plot_rows} rows of the plot in the window"
+    );
     std::fs::remove_dir_all(dir).unwrap();
 }
 

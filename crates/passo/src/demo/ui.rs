@@ -61,28 +61,34 @@ pub(crate) fn panel(
     let response = egui::Panel::left("passo panel")
         .default_size(300.0)
         .show(ui, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| {
-                scene_section(ui, sim, input, actions);
-                ui.separator();
-                loop_section(ui, sim, actions);
-                ui.separator();
-                rewind_section(ui, sim);
-                ui.separator();
-                forces_section(ui, sim, actions);
-                ui.separator();
-                stats_section(ui, sim, input.fps);
-                plot(ui, sim);
-                ui.separator();
-                ui.label(egui::RichText::new("Draw").strong());
-                ui.horizontal(|ui| {
-                    ui.checkbox(&mut view.velocities, "velocities");
-                    ui.checkbox(&mut view.forces, "forces");
-                    ui.checkbox(&mut view.contacts, "contacts");
-                    ui.checkbox(&mut view.sleeping, "dim sleeping");
+            // The plot comes right after the scene, so it is whole in a
+            // window of any height (at 1280 × 800 it was cut off at the
+            // bottom); the rest scrolls, with its bar always shown.
+            let bar = egui::scroll_area::ScrollBarVisibility::AlwaysVisible;
+            egui::ScrollArea::vertical()
+                .scroll_bar_visibility(bar)
+                .show(ui, |ui| {
+                    scene_section(ui, sim, input, actions);
+                    plot(ui, sim);
+                    ui.separator();
+                    loop_section(ui, sim, actions);
+                    ui.separator();
+                    rewind_section(ui, sim);
+                    ui.separator();
+                    forces_section(ui, sim, actions);
+                    ui.separator();
+                    stats_section(ui, sim, input.fps);
+                    ui.separator();
+                    ui.label(egui::RichText::new("Draw").strong());
+                    ui.horizontal(|ui| {
+                        ui.checkbox(&mut view.velocities, "velocities");
+                        ui.checkbox(&mut view.forces, "forces");
+                        ui.checkbox(&mut view.contacts, "contacts");
+                        ui.checkbox(&mut view.sleeping, "dim sleeping");
+                    });
+                    ui.separator();
+                    help(ui);
                 });
-                ui.separator();
-                help(ui);
-            });
         });
     response.response.rect.width()
 }

@@ -1,0 +1,237 @@
+//! The game of the `platformer` example, apart from its window: a level
+//! made in the Tiled editor, a player moved by the character mover, coins
+//! and a goal as sensors, and the game-feel helpers every platformer
+//! writes by hand (they belong in a game, not in the physics): coyote
+//! time, jump buffering and variable jump height.
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, BodyId, CharacterMover, Shape, World};
+use passo_scene::{BuiltScene, Platform, Scene, SceneBody};
+use std::path::Path;
+
+/// Walking speed, m/s.
+pub const WALK_SPEED: f32 = 4.5;
+/// Running speed, m/s.
+pub const RUN_SPEED: f32 = 8.0;
+/// Speed a jump starts with, m/s: up to v² / 2g = 1.7 m high.
+pub const JUMP_SPEED: f32 = 5.8;
+/// Gravity on the player, m/s².
+pub const GRAVITY: f32 = 9.81;
+/// How long after walking off an edge a jump still works, s.
+pub const COYOTE_TIME: f32 = 0.1;
+/// How long before landing a jump press is kept, s.
+pub const JUMP_BUFFER: f32 = 0.1;
+/// Releasing jump while rising keeps this much of the upward speed.
+pub const JUMP_CUT: f32 = 0.4;
+/// Fastest fall while gliding, m/s.
+pub const GLIDE_FALL: f32 = 1.5;
+/// Ice: how fast the walking speed follows the keys, per second (on
+/// ground that is not ice the speed follows at once).
+pub const ICE_GRIP: f32 = 2.0;
+/// The player's size, metres.
+pub const PLAYER_SIZE: Vec2 = Vec2::new(0.4, 0.7);
+
+/// The keys this tick.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Keys {
+    /// Walk left.
+    pub left: bool,
+    /// Walk right.
+    pub right: bool,
+    /// Run.
+    pub run: bool,
+    /// Jump is held.
+    pub jump: bool,
+    /// Glide (slow fall) is held.
+    pub glide: bool,
+}
+
+/// The game.
+pub struct Platformer {
+    /// The level's world.
+    pub world: World,
+    /// Every body with its colour, for drawing.
+    pub bodies: Vec<SceneBody>,
+    platforms: Vec<Platform>,
+    /// The player's body (kinematic).
+    pub player: BodyId,
+    mover: CharacterMover,
+    velocity: Vec2,
+    since_ground: f32,
+    since_jump_press: f32,
+    jump_was_held: bool,
+    rising_from_jump: bool,
+    /// Coins collected.
+    pub coins: u32,
+    goal: Option<BodyId>,
+    /// The tick the player reached the goal.
+    pub reached: Option<u64>,
+    /// Ticks played.
+    pub tick: u64,
+}
+
+impl Platformer {
+    /// Loads the level of a scene file and puts the player at its `player`
+    /// spawn point.
+    pub fn load(scene: &Path) -> Result<Self, String> {
+        let scene = Scene::load(scene).map_err(|e| e.to_string())?;
+        let mut built: BuiltScene = scene.build().map_err(|e| e.to_string())?;
+        let &(_, spawn) = built
+            .spawns
+            .iter()
+            .find(|(name, _)| name == "player")
+            .ok_or("the level has no `player` spawn point")?;
+        let mover = CharacterMover::default();
+        let def = BodyDef::new_kinematic(
+            spawn + Vec2::new(0.0, 0.5 * PLAYER_SIZE.y + mover.skin),
+            Shape::rect(PLAYER_SIZE.x, PLAYER_SIZE.y),
+            Vec2::ZERO,
+        );
+        let player = built.world.add_body(def).map_err(|e| e.to_string())?;
+        built.bodies.push(SceneBody {
+            id: player,
+            name: Some("player".into()),
+            colour: passo_scene::Colour([0xe4, 0x6c, 0x3a, 0xff]),
+        });
+        let goal = built.body_named("goal");
+        Ok(Self {
+            world: built.world,
+            bodies: built.bodies,
+            platforms: built.platforms,
+            player,
+            mover,
+            velocity: Vec2::ZERO,
+            since_ground: f32::INFINITY,
+            since_jump_press: f32::INFINITY,
+            jump_was_held: false,
+            rising_from_jump: false,
+            coins: 0,
+            goal,
+            reached: None,
+            tick: 0,
+        })
+    }
+
+    /// The player's position, metres.
+    pub fn player_position(&self) -> Vec2 {
+        self.world
+            .body(self.player)
+            .map_or(Vec2::ZERO, |b| b.position)
+    }
+
+    /// One fixed tick of `dt` seconds with `keys` held.
+    pub fn update(&mut self, keys: Keys, dt: f32) {
+        self.tick += 1;
+        let t_end = self.tick as f64 * f64::from(dt);
+        BuiltScene::drive_platforms(&self.platforms, &mut self.world, t_end, dt);
+        // Where the player stands before moving (it may ride a platform).
+        let Ok(now) = self
+            .world
+            .move_character(self.player, Vec2::ZERO, &self.mover, dt)
+        else {
+            return;
+        };
+        let on_ice = now
+            .ground
+            .and_then(|g| self.world.body(g))
+            .is_some_and(|g| g.friction < 0.1);
+        // Coyote time and jump buffering.
+        self.since_ground = if now.on_ground {
+            0.0
+        } else {
+            self.since_ground + dt
+        };
+        let pressed = keys.jump && !self.jump_was_held;
+        self.jump_was_held = keys.jump;
+        self.since_jump_press = if pressed {
+            0.0
+        } else {
+            self.since_jump_press + dt
+        };
+        let dir = f32::from(u8::from(keys.right)) - f32::from(u8::from(keys.left));
+        let target = dir * if keys.run { RUN_SPEED } else { WALK_SPEED };
+        self.velocity.x = if on_ice {
+            // Ice: the speed follows the keys slowly.
+            self.velocity.x + (target - self.velocity.x) * (ICE_GRIP * dt).min(1.0)
+        } else {
+            target
+        };
+        if now.on_ground && self.velocity.y <= 0.0 {
+            self.velocity.y = 0.0;
+            self.rising_from_jump = false;
+        } else {
+            self.velocity.y -= GRAVITY * dt;
+        }
+        if self.since_jump_press <= JUMP_BUFFER && self.since_ground <= COYOTE_TIME {
+            self.velocity.y = JUMP_SPEED;
+            self.since_jump_press = f32::INFINITY;
+            self.since_ground = f32::INFINITY;
+            self.rising_from_jump = true;
+        }
+        // Variable jump height: letting go of jump while rising cuts it.
+        if self.rising_from_jump && !keys.jump && self.velocity.y > 0.0 {
+            self.velocity.y *= JUMP_CUT;
+            self.rising_from_jump = false;
+        }
+        if keys.glide && self.velocity.y < -GLIDE_FALL {
+            self.velocity.y = -GLIDE_FALL;
+        }
+        if let Ok(out) = self
+            .world
+            .move_character(self.player, self.velocity * dt, &self.mover, dt)
+        {
+            if out.ceiling.is_some() && self.velocity.y > 0.0 {
+                self.velocity.y = 0.0;
+            }
+            if out.wall.is_some() && !on_ice {
+                self.velocity.x = 0.0;
+            }
+        }
+        self.world.step(dt);
+        self.collect();
+    }
+
+    /// Coins the player touches are taken; the goal is noted.
+    fn collect(&mut self) {
+        let touched: Vec<BodyId> = self
+            .world
+            .sensor_overlaps()
+            .iter()
+            .filter(|p| p.visitor == self.player)
+            .map(|p| p.sensor)
+            .collect();
+        for sensor in touched {
+            if Some(sensor) == self.goal {
+                self.reached.get_or_insert(self.tick);
+            } else if self.is_coin(sensor) && self.world.remove_body(sensor).is_some() {
+                self.coins += 1;
+            }
+        }
+    }
+
+    fn is_coin(&self, id: BodyId) -> bool {
+        self.bodies
+            .iter()
+            .any(|b| b.id == id && b.name.as_deref().is_some_and(|n| n.starts_with("coin")))
+    }
+
+    /// Scripted keys that play the level to its goal: run right, and jump
+    /// when a wall is in the way.
+    pub fn autopilot(&self) -> Keys {
+        let at = self.player_position();
+        let blocked = self
+            .world
+            .cast_shape(
+                &Shape::rect(PLAYER_SIZE.x, PLAYER_SIZE.y),
+                at,
+                Vec2::new(0.3, 0.0),
+                &passo_physics::QueryFilter::solid().excluding(self.player),
+            )
+            .is_some_and(|hit| hit.normal.x < -0.5);
+        Keys {
+            right: true,
+            jump: blocked,
+            ..Keys::default()
+        }
+    }
+}

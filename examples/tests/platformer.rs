@@ -1,0 +1,122 @@
+//! The platformer's game, without a window: the scripted player reaches
+//! the goal of the level made in Tiled, and the game-feel helpers do what
+//! they say.
+
+use passo_examples::platformer::{
+    COYOTE_TIME, GRAVITY, JUMP_CUT, JUMP_SPEED, Keys, Platformer, WALK_SPEED,
+};
+use std::path::PathBuf;
+
+const DT: f32 = 1.0 / 60.0;
+
+fn level() -> Platformer {
+    let scene = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/platformer.ron");
+    Platformer::load(&scene).unwrap()
+}
+
+#[test]
+fn the_scripted_player_reaches_the_goal() {
+    let mut game = level();
+    for _ in 0..60 * 20 {
+        let keys = game.autopilot();
+        game.update(keys, DT);
+        if game.reached.is_some() {
+            break;
+        }
+    }
+    let at = game.player_position();
+    assert!(
+        game.reached.is_some(),
+        "stuck at {at} after {} ticks",
+        game.tick
+    );
+    // The goal is at the end of the bottom corridor, x in [13.5, 14] m.
+    assert!(at.x > 13.0, "at {at}");
+}
+
+#[test]
+fn a_held_jump_reaches_v2_over_2g_and_a_tapped_one_less() {
+    let apex = |hold: usize| {
+        let mut game = level();
+        for _ in 0..30 {
+            game.update(Keys::default(), DT);
+        }
+        let start = game.player_position().y;
+        let mut top = start;
+        for tick in 0..90 {
+            let keys = Keys {
+                jump: tick < hold,
+                ..Keys::default()
+            };
+            game.update(keys, DT);
+            top = top.max(game.player_position().y);
+        }
+        top - start
+    };
+    let full = JUMP_SPEED * JUMP_SPEED / (2.0 * GRAVITY);
+    let held = apex(90);
+    assert!((held - full).abs() < 0.1, "held: {held} m, v²/2g = {full}");
+    // Let go after 3 ticks: the upward speed is cut to JUMP_CUT of itself.
+    let tapped = apex(3);
+    assert!(tapped < 0.5 * held, "tapped: {tapped} m");
+    const { assert!(JUMP_CUT < 1.0) };
+}
+
+#[test]
+fn coyote_time_lets_a_jump_start_just_after_walking_off_an_edge() {
+    // Walk off the block at x = 2.5..4 m (top at 1.5 m) and press jump a
+    // few ticks after leaving it: the jump still happens.
+    let mut game = level();
+    // Up onto the block first.
+    for _ in 0..600 {
+        let keys = game.autopilot();
+        game.update(keys, DT);
+        if game.player_position().y > 1.8 && game.player_position().x > 3.0 {
+            break;
+        }
+    }
+    let mut left_edge = None;
+    for tick in 0..120 {
+        let past = game.player_position().x > 4.0 + 0.2 + 0.05;
+        if past && left_edge.is_none() {
+            left_edge = Some(tick);
+        }
+        let late = left_edge.is_some_and(|t| tick - t == 3);
+        let keys = Keys {
+            right: true,
+            jump: late,
+            ..Keys::default()
+        };
+        let before = game.player_position().y;
+        game.update(keys, DT);
+        if late {
+            const { assert!(3.0 * DT < COYOTE_TIME) };
+            assert!(game.player_position().y > before, "the late jump rose");
+            return;
+        }
+    }
+    panic!("never walked off the block");
+}
+
+#[test]
+fn walking_moves_at_walking_speed() {
+    let mut game = level();
+    for _ in 0..30 {
+        game.update(Keys::default(), DT);
+    }
+    let start = game.player_position();
+    for _ in 0..15 {
+        game.update(
+            Keys {
+                right: true,
+                ..Keys::default()
+            },
+            DT,
+        );
+    }
+    let moved = game.player_position() - start;
+    assert!(
+        (moved.x - WALK_SPEED * 15.0 * DT).abs() < 0.02,
+        "moved {moved}"
+    );
+}

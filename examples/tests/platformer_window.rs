@@ -1,0 +1,58 @@
+//! The platformer example in a real window: under Xvfb (a virtual X
+//! display) its scripted player reaches the goal of the Tiled level, and
+//! the last frame shows the player.
+
+use passo_render::RgbaImage;
+use std::path::PathBuf;
+use std::process::Command;
+
+/// The example's binary, which `cargo test` builds beside the tests.
+fn example() -> PathBuf {
+    let exe = std::env::current_exe().unwrap();
+    let profile_dir = exe.parent().unwrap().parent().unwrap();
+    profile_dir.join("examples").join("platformer")
+}
+
+#[test]
+fn the_scripted_player_reaches_the_goal_in_a_window() {
+    if Command::new("xvfb-run").arg("--help").output().is_err() {
+        panic!("xvfb-run is missing: install `xvfb xauth` (see the README) to run the window test");
+    }
+    let dir = std::env::temp_dir().join(format!("passo-platformer-{}", std::process::id()));
+    let runtime = dir.join("runtime");
+    std::fs::create_dir_all(&runtime).unwrap();
+    let shot = dir.join("platformer.png");
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24"])
+        .arg(example())
+        .args([
+            "--autopilot",
+            "--until-goal",
+            "--frames",
+            "20000",
+            "--software",
+            "--screenshot",
+        ])
+        .arg(&shot)
+        .env("XDG_RUNTIME_DIR", &runtime)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "the example failed:\n{stdout}\n{stderr}"
+    );
+    assert!(stdout.contains("goal reached at tick"), "{stdout}");
+    // The last frame shows the player (its orange) somewhere.
+    let image = RgbaImage::load_png(&shot).unwrap();
+    let orange = (0..image.height)
+        .flat_map(|y| (0..image.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            image
+                .get(x, y)
+                .is_some_and(|p| p[0] > 200 && (90..130).contains(&p[1]) && p[2] < 90)
+        })
+        .count();
+    assert!(orange > 100, "{orange} orange pixels");
+}
