@@ -19,6 +19,7 @@ fn level_ref(file: &str) -> TileMapRef {
         cell: 0.5,
         origin: Vec2::ZERO,
         kind: BodyKind::Static,
+        path: None,
     }
 }
 
@@ -79,16 +80,7 @@ fn the_shipped_tiled_level_builds_with_its_cells_objects_and_spawn() {
     );
     // The crate falls onto the floor (top at 0.5 m) and rests there.
     let crate_id = crate_.id;
-    for tick in 1..=180 {
-        let t_end = tick as f64 / 60.0;
-        passo_scene::BuiltScene::drive_platforms(
-            &built.platforms,
-            &mut built.world,
-            t_end,
-            1.0 / 60.0,
-        );
-        built.world.step(1.0 / 60.0);
-    }
+    passo_tests::run_scene(&mut built, 180, |_, _| {});
     let y = built.world.body(crate_id).unwrap().position.y;
     assert!((y - 0.75).abs() < 0.01, "the crate rests on the floor: {y}");
 }
@@ -249,4 +241,47 @@ fn a_tile_object_is_placed_by_its_bottom_left_corner() {
     let scene = map_file("tile.tmj", tmj);
     let level = level_ref("tile.tmj").load(&scene).unwrap();
     assert_eq!(level.bodies[0].position, Vec2::new(0.25, 0.75));
+}
+
+#[test]
+fn a_kinematic_map_on_a_path_carries_a_rider_standing_on_a_joint() {
+    // A moving bridge of solid and bouncy cells (so several boxes, all of
+    // friction 0.6), on a path
+    // 2 m to the right and back in 4 s; a box rides it standing on the
+    // joint of two of its boxes.
+    let text = r###"(
+        name: "bridge",
+        forces: (gravity: (0, -9.81)),
+        collisions: (),
+        tilemap: (ascii: "##^^##^^##", cell: 0.5, kind: Kinematic, path: (by: (2, 0), period: 4)),
+        bodies: [(name: "rider", shape: Box(half_extents: (0.2, 0.2)), position: (1.0, 0.7))],
+    )"###;
+    let mut built = Scene::parse(text, "bridge.ron").unwrap().build().unwrap();
+    assert_eq!(
+        built.platforms.len(),
+        5,
+        "every box of the map follows the path"
+    );
+    let rider = built.body_named("rider").unwrap();
+    let mut fastest_drop = 0.0f32;
+    let start = built.world.body(rider).unwrap().position;
+    passo_tests::run_scene(&mut built, 120, |tick, world| {
+        if tick > 30 {
+            fastest_drop = fastest_drop.max(-world.body(rider).unwrap().velocity.y);
+        }
+    });
+    // After 2 s the bridge is at its far end: the rider came along.
+    let moved = built.world.body(rider).unwrap().position - start;
+    assert!((moved.x - 2.0).abs() < 0.05, "carried {moved}");
+    assert!(
+        fastest_drop < 1e-3,
+        "no bump at the joints: {fastest_drop} m/s down"
+    );
+    let err = Scene::parse(
+        r##"(name: "x", tilemap: (ascii: "#", path: (by: (1, 0), period: 2)))"##,
+        "t.ron",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("tilemap.path"), "{err}");
 }

@@ -158,3 +158,86 @@ unsafe impl GlobalAlloc for Counting {
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
+
+/// Pushes `body` along +x at `speed` every tick (the game sets its
+/// horizontal velocity) for `ticks` ticks of `dt`; returns the velocity
+/// after each step.
+pub fn push_along_x(
+    world: &mut World,
+    body: BodyId,
+    speed: f32,
+    ticks: usize,
+    dt: f32,
+) -> Vec<Vec2> {
+    (0..ticks)
+        .map(|_| {
+            let v = world.body(body).unwrap().velocity;
+            world.set_velocity(body, Vec2::new(speed, v.y));
+            world.step(dt);
+            world.body(body).unwrap().velocity
+        })
+        .collect()
+}
+
+/// Asserts that velocities over joints (`seamed`) keep |v_y| < 1e-4 m/s and
+/// match those over one long box (`reference`) to 1e-5 m/s, tick by tick.
+pub fn assert_slides_as_on_one_box(seamed: &[Vec2], reference: &[Vec2], what: &str) {
+    for (tick, (t, r)) in seamed.iter().zip(reference).enumerate() {
+        assert!(
+            t.y.abs() < 1e-4,
+            "{what}, tick {tick}: vertical speed {}",
+            t.y
+        );
+        assert!(
+            (t.x - r.x).abs() < 1e-5,
+            "{what}, tick {tick}: {} m/s over the joints, {} on one box",
+            t.x,
+            r.x
+        );
+    }
+}
+
+/// Steps a built scene `ticks` ticks at 60 Hz, its platforms driven, and
+/// calls `after(tick, world)` after each step.
+pub fn run_scene(
+    built: &mut passo_scene::BuiltScene,
+    ticks: u64,
+    mut after: impl FnMut(u64, &World),
+) {
+    for tick in 1..=ticks {
+        let t_end = tick as f64 / 60.0;
+        passo_scene::BuiltScene::drive_platforms(
+            &built.platforms,
+            &mut built.world,
+            t_end,
+            1.0 / 60.0,
+        );
+        built.world.step(1.0 / 60.0);
+        after(tick, &built.world);
+    }
+}
+
+/// Presses `body` against a wall on its left with 5 N for two seconds of
+/// `dt` steps, asserting each step that it falls freely (to 0.02 m/s: no
+/// joint of the wall holds it up) and calling `check` with it.
+pub fn assert_falls_freely_along_a_wall(
+    world: &mut World,
+    body: BodyId,
+    dt: f32,
+    mut check: impl FnMut(&passo_physics::Body),
+) {
+    let mut t = 0.0f32;
+    for _ in 0..120 {
+        world.apply_force(body, Vec2::new(-5.0, 0.0));
+        world.step(dt);
+        t += dt;
+        let b = world.body(body).unwrap();
+        let free = -9.81 * t;
+        assert!(
+            (b.velocity.y - free).abs() < 0.02,
+            "at {t:.3} s: {} m/s, free fall {free}",
+            b.velocity.y
+        );
+        check(&b);
+    }
+}

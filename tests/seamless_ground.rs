@@ -6,6 +6,7 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, Shape, World};
+use passo_tests::{assert_falls_freely_along_a_wall, assert_slides_as_on_one_box, push_along_x};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -41,20 +42,6 @@ fn long_box(n: usize) -> Vec<(Vec2, Vec2)> {
         Vec2::new(0.5 * (n as f32 - 1.0), -0.5),
         Vec2::new(n as f32, 1.0),
     )]
-}
-
-/// Pushes the body along +x at `speed` every tick (the game sets its
-/// horizontal velocity) for `ticks` ticks; returns the velocity after each
-/// step.
-fn push(world: &mut World, body: BodyId, speed: f32, ticks: usize) -> Vec<Vec2> {
-    (0..ticks)
-        .map(|_| {
-            let v = world.body(body).unwrap().velocity;
-            world.set_velocity(body, Vec2::new(speed, v.y));
-            world.step(DT);
-            world.body(body).unwrap().velocity
-        })
-        .collect()
 }
 
 #[test]
@@ -111,23 +98,11 @@ fn a_box_and_a_circle_pushed_across_200_tiles_move_as_on_one_long_box() {
     for shape in [Shape::rect(0.6, 1.0), Shape::circle(0.4)] {
         let (mut on_tiles, a) = world_with(&tiles(n), shape, 0.0);
         let (mut on_one, b) = world_with(&long_box(n), shape, 0.0);
-        let tiled = push(&mut on_tiles, a, 6.0, ticks);
-        let reference = push(&mut on_one, b, 6.0, ticks);
+        let tiled = push_along_x(&mut on_tiles, a, 6.0, ticks, DT);
+        let reference = push_along_x(&mut on_one, b, 6.0, ticks, DT);
         let end = on_tiles.body(a).unwrap().position.x;
         assert!(end > 201.0, "{shape:?} crossed 200 joints: at {end}");
-        for (tick, (t, r)) in tiled.iter().zip(&reference).enumerate() {
-            assert!(
-                t.y.abs() < 1e-4,
-                "{shape:?}, tick {tick}: vertical speed {} on the tiles",
-                t.y
-            );
-            assert!(
-                (t.x - r.x).abs() < 1e-5,
-                "{shape:?}, tick {tick}: {} m/s on the tiles, {} on one box",
-                t.x,
-                r.x
-            );
-        }
+        assert_slides_as_on_one_box(&tiled, &reference, &format!("{shape:?} on the tiles"));
         // Friction is the only loss: 6 - mu g dt after each pushed step.
         let loss = 6.0 - reference[ticks / 2].x;
         assert!(
@@ -157,22 +132,9 @@ fn a_box_slides_down_a_wall_of_stacked_tiles_without_catching() {
             ..Default::default()
         })
         .unwrap();
-    let mut t = 0.0f32;
-    for _ in 0..120 {
-        // Pressed against the wall.
-        world.apply_force(body, Vec2::new(-5.0, 0.0));
-        world.step(DT);
-        t += DT;
-        let b = world.body(body).unwrap();
-        // Free fall within the solver's tolerance: no joint holds it up.
-        let free = -9.81 * t;
-        assert!(
-            (b.velocity.y - free).abs() < 0.02,
-            "at {t:.3} s: {} m/s, free fall {free}",
-            b.velocity.y
-        );
+    assert_falls_freely_along_a_wall(&mut world, body, DT, |b| {
         assert!(b.position.x > 0.79, "it stays against the wall");
-    }
+    });
 }
 
 #[test]
@@ -206,7 +168,7 @@ fn a_box_slides_from_static_ground_onto_a_flush_kinematic_platform_and_off_again
                 Shape::rect(0.6, 1.0),
             ))
             .unwrap();
-        push(&mut world, body, 4.0, 150)
+        push_along_x(&mut world, body, 4.0, 150, DT)
     };
     let (with, without) = (slide(true), slide(false));
     for (tick, (a, b)) in with.iter().zip(&without).enumerate() {

@@ -4,6 +4,7 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, BodyKind, Shape, TileKind, TileMap, World};
+use passo_tests::{assert_falls_freely_along_a_wall, assert_slides_as_on_one_box, push_along_x};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -44,17 +45,6 @@ fn body_on(world: &mut World, shape: Shape, x: f32) -> BodyId {
     world.add_body(def).unwrap()
 }
 
-fn push(world: &mut World, body: BodyId, speed: f32, ticks: usize) -> Vec<Vec2> {
-    (0..ticks)
-        .map(|_| {
-            let v = world.body(body).unwrap().velocity;
-            world.set_velocity(body, Vec2::new(speed, v.y));
-            world.step(DT);
-            world.body(body).unwrap().velocity
-        })
-        .collect()
-}
-
 #[test]
 fn a_box_and_a_circle_slide_across_200_cells_as_on_one_box() {
     let map = patchwork_ground(210);
@@ -74,23 +64,11 @@ fn a_box_and_a_circle_slide_across_200_cells_as_on_one_box() {
         ))
         .unwrap();
         let b = body_on(&mut one, shape, 0.0);
-        let on_tiles = push(&mut tiled, a, 6.0, ticks);
-        let reference = push(&mut one, b, 6.0, ticks);
+        let on_tiles = push_along_x(&mut tiled, a, 6.0, ticks, DT);
+        let reference = push_along_x(&mut one, b, 6.0, ticks, DT);
         let end = tiled.body(a).unwrap().position.x;
         assert!(end > 200.0, "{shape:?} crossed the map: at {end}");
-        for (tick, (t, r)) in on_tiles.iter().zip(&reference).enumerate() {
-            assert!(
-                t.y.abs() < 1e-4,
-                "{shape:?}, tick {tick}: vertical speed {}",
-                t.y
-            );
-            assert!(
-                (t.x - r.x).abs() < 1e-5,
-                "{shape:?}, tick {tick}: {} m/s on the map, {} on one box",
-                t.x,
-                r.x
-            );
-        }
+        assert_slides_as_on_one_box(&on_tiles, &reference, &format!("{shape:?} on the map"));
     }
 }
 
@@ -113,24 +91,13 @@ fn a_box_slides_down_a_wall_of_cells_of_many_kinds_without_catching() {
             ..BodyDef::new_dynamic(Vec2::new(0.3, 38.0), Shape::rect(0.6, 0.6))
         })
         .unwrap();
-    let mut t = 0.0f32;
-    for _ in 0..120 {
-        world.apply_force(body, Vec2::new(-5.0, 0.0));
-        world.step(DT);
-        t += DT;
-        let b = world.body(body).unwrap();
-        let free = -9.81 * t;
-        assert!(
-            (b.velocity.y - free).abs() < 0.02,
-            "at {t:.3} s: {} m/s, free fall {free}",
-            b.velocity.y
-        );
+    assert_falls_freely_along_a_wall(&mut world, body, DT, |b| {
         assert!(
             b.velocity.x.abs() < 1e-4,
             "no sideways kick: {}",
             b.velocity.x
         );
-    }
+    });
 }
 
 #[test]

@@ -88,6 +88,11 @@ pub(crate) struct Proxies {
     /// them (see `find_pairs`).
     near_items: Vec<u32>,
     near_tree: StaticTree,
+    /// This step: the kinematic boxes, and scratch space for the faces
+    /// their neighbours cover.
+    kinematic_tree: StaticTree,
+    neighbours: Vec<Aabb>,
+    spans: Vec<(f32, f32)>,
     /// Proxy -> dynamic index.
     pub body: Vec<u32>,
     /// Proxy boxes, grown by their margins.
@@ -201,18 +206,33 @@ impl Proxies {
             }
             _ => None,
         };
+        if dynamic.kinematic.is_empty() {
+            return;
+        }
+        // The kinematic boxes in a tree of their own, rebuilt each step
+        // (they move): `O(k log k)` for `k` of them.
+        let boxes = dynamic
+            .kinematic
+            .iter()
+            .map(|&k| box_of(k).unwrap_or(Aabb::from_centre(dynamic.pos[k as usize], Vec2::ZERO)));
+        self.kinematic_tree.rebuild(boxes);
+        let (mut neighbours, mut spans) = (
+            std::mem::take(&mut self.neighbours),
+            std::mem::take(&mut self.spans),
+        );
         for &k in &dynamic.kinematic {
             let Some(a) = box_of(k) else { continue };
-            let mut faces = 0;
+            neighbours.clear();
             let (items, by_kinematic) = (&self.tree_items, &mut self.faces_by_kinematic);
             let meta_k = &dynamic.meta[k as usize];
-            self.tree.query(&a.grown(2.0 * LINEAR_SLOP), |item| {
+            let near = a.grown(2.0 * LINEAR_SLOP);
+            self.tree.query(&near, |item| {
                 let s = items[item as usize];
                 let meta_s = &statics.meta[s as usize];
                 if let Some(Shape::Box { half_extents }) = meta_s.shape {
                     let b = Aabb::from_centre(statics.pos[s as usize], half_extents);
                     if can_cover(meta_s, meta_k) {
-                        faces |= Faces::covered_by(&a, &b, LINEAR_SLOP);
+                        neighbours.push(b);
                     }
                     let covered = Faces::covered_by(&b, &a, LINEAR_SLOP);
                     if covered != 0 && can_cover(meta_k, meta_s) {
@@ -220,16 +240,23 @@ impl Proxies {
                     }
                 }
             });
-            for &other in &dynamic.kinematic {
+            let kinematic = &dynamic.kinematic;
+            self.kinematic_tree.query(&near, |item| {
+                let other = kinematic[item as usize];
                 let covers = other != k && can_cover(&dynamic.meta[other as usize], meta_k);
                 if let (true, Some(b)) = (covers, box_of(other)) {
-                    faces |= Faces::covered_by(&a, &b, LINEAR_SLOP);
+                    neighbours.push(b);
                 }
-            }
+            });
+            // Neighbours cover a face together, as for static boxes (a
+            // moving tile map's boxes meet as a static map's do).
+            let faces = Faces::covered_by_all(&a, &neighbours, LINEAR_SLOP, &mut spans);
             if faces != 0 {
                 self.kinematic_faces.push((k, Faces(faces)));
             }
         }
+        self.neighbours = neighbours;
+        self.spans = spans;
         self.kinematic_faces.sort_unstable_by_key(|f| f.0);
         self.faces_by_kinematic.sort_unstable_by_key(|f| f.0);
     }

@@ -1,8 +1,9 @@
 //! Building a physics world from a scene.
 
 use crate::error::SceneError;
-use crate::format::{BodySpec, Colour, PlatformPath, SceneFile};
+use crate::format::{BodySpec, Colour, SceneFile};
 use crate::generate::generate;
+use crate::map_ref::PlatformPath;
 use passo_physics::glam::Vec2;
 use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, ForceModels, World, WorldSettings};
 
@@ -194,6 +195,13 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
                 name: None,
                 colour: tile_colour(&kind, tilemap.kind),
             });
+            if let Some(path) = tilemap.path {
+                platforms.push(Platform {
+                    id,
+                    start: aabb.centre(),
+                    path,
+                });
+            }
         }
     }
     let mut add = |spec: &BodySpec, position: Vec2, path: &dyn Fn() -> String| {

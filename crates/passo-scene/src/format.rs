@@ -2,6 +2,7 @@
 //! with precise errors, and validation with the allowed ranges.
 
 use crate::error::{SceneError, closest};
+use crate::map_ref::PlatformPath;
 use passo_physics::constants::{
     DEFAULT_DRAG_AREA, DEFAULT_FRICTION, DEFAULT_MAX_SPEED, DEFAULT_MIN_SPEED,
 };
@@ -109,30 +110,6 @@ pub struct Camera {
     pub min: Vec2,
     /// Upper-right corner.
     pub max: Vec2,
-}
-
-/// A kinematic body's motion back and forth between its position and
-/// `position + by`: there and back in `period` seconds, easing in and out
-/// at each end (no sudden reversal), the same at every frame rate.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PlatformPath {
-    /// The far end, relative to the body's position, m.
-    pub by: Vec2,
-    /// Seconds for the way there and back, > 0.
-    pub period: f32,
-}
-
-impl PlatformPath {
-    /// The offset from the start at `t` seconds: a smoothstep ease of the
-    /// triangle wave (arithmetic only, so every platform computes the same
-    /// bits).
-    pub fn offset(&self, t: f64) -> Vec2 {
-        let phase = (t / f64::from(self.period)).rem_euclid(1.0);
-        let s = 1.0 - (2.0 * phase - 1.0).abs();
-        let eased = s * s * (3.0 - 2.0 * s);
-        self.by * eased as f32
-    }
 }
 
 /// Material of a body.
@@ -529,6 +506,13 @@ impl SceneFile {
             c.finite_vec("tilemap.origin", t.origin)?;
             if t.kind == BodyKind::Dynamic {
                 return Err(c.fail("tilemap.kind", "must be Static or Kinematic".to_owned()));
+            }
+            if let Some(path) = &t.path {
+                c.finite_vec("tilemap.path.by", path.by)?;
+                c.positive("tilemap.path.period", path.period, "s")?;
+                if t.kind != BodyKind::Kinematic {
+                    return Err(c.fail("tilemap.path", "is for `kind: Kinematic` maps".to_owned()));
+                }
             }
         }
         if let Some(contacts) = &self.collisions {

@@ -21,8 +21,8 @@
 //! the map's bottom-left corner lands on `origin`.
 
 use crate::error::SceneError;
-use crate::format::{BodySpec, Colour, PlatformPath};
-use crate::map_ref::TileMapRef;
+use crate::format::{BodySpec, Colour};
+use crate::map_ref::{PlatformPath, TileMapRef};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyKind, Shape, TileKind, TileMap};
 use std::path::{Path, PathBuf};

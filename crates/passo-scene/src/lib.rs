@@ -31,11 +31,9 @@ mod save;
 
 pub use build::{BuiltScene, KINEMATIC_COLOUR, Platform, SceneBody};
 pub use error::SceneError;
-pub use format::{
-    BodySpec, Camera, Colour, Forces, Generator, MAX_BODIES, Material, PlatformPath, SceneFile,
-};
+pub use format::{BodySpec, Camera, Colour, Forces, Generator, MAX_BODIES, Material, SceneFile};
 pub use level::Level;
-pub use map_ref::TileMapRef;
+pub use map_ref::{PlatformPath, TileMapRef};
 pub use save::scene_from_world;
 
 use std::path::Path;

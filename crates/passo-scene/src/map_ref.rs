@@ -25,10 +25,14 @@ pub struct TileMapRef {
     /// Where the map's lower-left corner goes, metres. Default (0, 0).
     #[serde(default)]
     pub origin: Vec2,
-    /// `Static` (default) or `Kinematic` (boxes the game moves: give each
-    /// the same velocity; for a few boxes, not a whole level).
+    /// `Static` (default) or `Kinematic` (boxes that move together: give
+    /// them a `path`, or the same velocity in code; for a part of a level,
+    /// not a whole one).
     #[serde(default = "default_kind")]
     pub kind: BodyKind,
+    /// A `Kinematic` map's back-and-forth path, as a body's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub path: Option<PlatformPath>,
 }
 
 fn default_layer() -> String {
@@ -39,4 +43,28 @@ fn default_cell() -> f32 {
 }
 fn default_kind() -> BodyKind {
     BodyKind::Static
+}
+
+/// A kinematic body's motion back and forth between its position and
+/// `position + by`: there and back in `period` seconds, easing in and out
+/// at each end (no sudden reversal), the same at every frame rate.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlatformPath {
+    /// The far end, relative to the body's position, m.
+    pub by: Vec2,
+    /// Seconds for the way there and back, > 0.
+    pub period: f32,
+}
+
+impl PlatformPath {
+    /// The offset from the start at `t` seconds: a smoothstep ease of the
+    /// triangle wave (arithmetic only, so every platform computes the same
+    /// bits).
+    pub fn offset(&self, t: f64) -> Vec2 {
+        let phase = (t / f64::from(self.period)).rem_euclid(1.0);
+        let s = 1.0 - (2.0 * phase - 1.0).abs();
+        let eased = s * s * (3.0 - 2.0 * s);
+        self.by * eased as f32
+    }
 }

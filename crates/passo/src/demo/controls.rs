@@ -186,11 +186,16 @@ pub(crate) fn add_character(built: &mut BuiltScene) -> Option<BodyId> {
         Shape::rect(CHARACTER_SIZE.x, CHARACTER_SIZE.y),
         Vec2::ZERO,
     );
+    add_named(built, def, "player", CHARACTER_COLOUR)
+}
+
+/// Adds a body to a built scene with its name and colour.
+fn add_named(built: &mut BuiltScene, def: BodyDef, name: &str, colour: Colour) -> Option<BodyId> {
     let id = built.world.add_body(def).ok()?;
     built.bodies.push(SceneBody {
         id,
-        name: Some("player".into()),
-        colour: CHARACTER_COLOUR,
+        name: Some(name.into()),
+        colour,
     });
     Some(id)
 }
@@ -211,13 +216,7 @@ pub(crate) fn add_physics_player(built: &mut BuiltScene) -> Option<BodyId> {
             Shape::rect(CHARACTER_SIZE.x, CHARACTER_SIZE.y),
         )
     };
-    let id = built.world.add_body(def).ok()?;
-    built.bodies.push(SceneBody {
-        id,
-        name: Some("physics player".into()),
-        colour: PHYSICS_PLAYER_COLOUR,
-    });
-    Some(id)
+    add_named(built, def, "physics player", PHYSICS_PLAYER_COLOUR)
 }
 
 /// The physics player's colour beside the character (sRGB).
