@@ -7,7 +7,7 @@
 //! ```
 //!
 //! A / D or the arrow keys walk, Shift runs, Space jumps (hold it to jump
-//! higher), G glides. `--autopilot` plays the level by script;
+//! higher), G glides, Q turns the wind on and off. `--autopilot` plays the level by script;
 //! `--frames N` runs N frames and exits, printing a line with the ticks,
 //! the coins and the tick the goal was reached (`--until-goal`: or as soon
 //! as the goal is reached); `--screenshot FILE` saves the last frame as a
@@ -136,6 +136,7 @@ impl App {
             KeyCode::ShiftLeft | KeyCode::ShiftRight => self.keys.run = down,
             KeyCode::Space | KeyCode::KeyW | KeyCode::ArrowUp => self.keys.jump = down,
             KeyCode::KeyG => self.keys.glide = down,
+            KeyCode::KeyQ if down => self.keys.wind = !self.keys.wind,
             _ => {}
         }
     }

@@ -1,5 +1,6 @@
 //! The game of the `platformer` example, apart from its window: a level
-//! made in the Tiled editor, a player moved by the character mover, coins
+//! made in the Tiled editor, a player moved by the character mover (walk,
+//! run, jump, slide on ice, glide, wind), coins
 //! and a goal as sensors, and the game-feel helpers every platformer
 //! writes by hand (they belong in a game, not in the physics): coyote
 //! time, jump buffering and variable jump height.
@@ -28,6 +29,9 @@ pub const GLIDE_FALL: f32 = 1.5;
 /// Ice: how fast the walking speed follows the keys, per second (on
 /// ground that is not ice the speed follows at once).
 pub const ICE_GRIP: f32 = 2.0;
+/// How fast the wind carries the player along +x while it blows, m/s
+/// (half of it on the ground, where the feet hold).
+pub const WIND_SPEED: f32 = 2.0;
 /// The player's size, metres.
 pub const PLAYER_SIZE: Vec2 = Vec2::new(0.4, 0.7);
 
@@ -44,6 +48,8 @@ pub struct Keys {
     pub jump: bool,
     /// Glide (slow fall) is held.
     pub glide: bool,
+    /// The wind blows (along +x).
+    pub wind: bool,
 }
 
 /// The game.
@@ -176,9 +182,14 @@ impl Platformer {
         if keys.glide && self.velocity.y < -GLIDE_FALL {
             self.velocity.y = -GLIDE_FALL;
         }
+        let mut translation = self.velocity * dt;
+        if keys.wind {
+            let hold = if now.on_ground { 0.5 } else { 1.0 };
+            translation.x += WIND_SPEED * hold * dt;
+        }
         if let Ok(out) = self
             .world
-            .move_character(self.player, self.velocity * dt, &self.mover, dt)
+            .move_character(self.player, translation, &self.mover, dt)
         {
             if out.ceiling.is_some() && self.velocity.y > 0.0 {
                 self.velocity.y = 0.0;

@@ -120,3 +120,28 @@ fn walking_moves_at_walking_speed() {
         "moved {moved}"
     );
 }
+
+#[test]
+fn the_wind_carries_the_player_standing_still() {
+    let mut game = level();
+    for _ in 0..30 {
+        game.update(Keys::default(), DT);
+    }
+    let start = game.player_position();
+    for _ in 0..15 {
+        game.update(
+            Keys {
+                wind: true,
+                ..Keys::default()
+            },
+            DT,
+        );
+    }
+    // On the ground the wind carries it at half of WIND_SPEED.
+    let moved = game.player_position() - start;
+    let expected = 0.5 * passo_examples::platformer::WIND_SPEED * 15.0 * DT;
+    assert!(
+        (moved.x - expected).abs() < 0.01,
+        "moved {moved}, expected {expected}"
+    );
+}
