@@ -12,7 +12,12 @@
 //! sleep. Penetration is measured the same way for both: Passo's exact
 //! geometry at the final positions.
 //!
+//! With the `box2d` feature, Box2D v3 (through `boxdd`, built from source)
+//! runs the same rain too, in the same run: fixed rotation, sleeping off
+//! for its main column, 4 substeps, friction 0.6, restitution 0.
+//!
 //! Run: `cargo run --release -p passo-benches --features rapier --bin peer [N ...]`
+//! (`--features rapier,box2d` for the Box2D columns).
 
 use passo_benches::{RAIN_MASS, RAIN_RADIUS, rain_world, time_steps, with_sleeping};
 use passo_physics::{BodyKind, Shape, World};
@@ -71,6 +76,101 @@ fn rapier_penetration(passo: &World, rapier: &Rapier) -> f32 {
     copy.max_penetration()
 }
 
+/// Box2D v3 through `boxdd`.
+#[cfg(feature = "box2d")]
+mod box2d {
+    use boxdd::{
+        BodyBuilder, BodyType, Foundation, MotionLocks, Position, ShapeDef, SurfaceMaterial,
+        Vec2 as BoxVec2, WorldBuilder, shapes,
+    };
+    use passo_benches::{RAIN_MASS, RAIN_RADIUS};
+    use passo_physics::{BodyKind, Shape, World};
+
+    pub struct Box2d {
+        world: boxdd::World,
+        bodies: Vec<(passo_physics::BodyId, boxdd::BodyId)>,
+    }
+
+    /// The same bodies as a Passo world, in Box2D.
+    pub fn copy(passo: &World, sleep: bool) -> Box2d {
+        let foundation = Foundation::initialize_default().expect("Box2D starts");
+        let def = WorldBuilder::from(foundation.world_def())
+            .gravity(BoxVec2::new(0.0, -9.81))
+            .enable_sleep(sleep)
+            .build()
+            .expect("a world definition");
+        let mut world = foundation.create_world(def).expect("a world");
+        let mut bodies = Vec::new();
+        for b in passo.bodies() {
+            let kind = match b.kind {
+                BodyKind::Static => BodyType::Static,
+                BodyKind::Kinematic => BodyType::Kinematic,
+                BodyKind::Dynamic => BodyType::Dynamic,
+            };
+            let def = BodyBuilder::from(foundation.body_def())
+                .body_type(kind)
+                .position(Position::new(b.position.x, b.position.y))
+                .motion_locks(MotionLocks::new(false, false, true))
+                .enable_sleep(sleep)
+                .build()
+                .expect("a body definition");
+            let id = world.create_body(def).expect("a body");
+            let density = if b.kind == BodyKind::Dynamic {
+                RAIN_MASS / (std::f32::consts::PI * RAIN_RADIUS * RAIN_RADIUS)
+            } else {
+                1.0
+            };
+            let material = SurfaceMaterial::new()
+                .with_friction(0.6)
+                .and_then(|m| m.with_restitution(0.0))
+                .expect("a material");
+            let shape_def = ShapeDef::builder()
+                .density(density)
+                .material(material)
+                .build()
+                .expect("a shape definition");
+            let mut body = world.body(id).expect("the body");
+            match b.shape.expect("benchmark bodies have shapes") {
+                Shape::Circle { radius } => {
+                    let circle = shapes::circle([0.0, 0.0], radius).expect("a circle");
+                    body.create_circle(&shape_def, &circle)
+                        .expect("a circle shape");
+                }
+                Shape::Box { half_extents } => {
+                    let polygon =
+                        shapes::box_polygon(half_extents.x, half_extents.y).expect("a box");
+                    body.create_polygon(&shape_def, &polygon)
+                        .expect("a box shape");
+                }
+            }
+            bodies.push((b.id, id));
+        }
+        Box2d { world, bodies }
+    }
+
+    impl Box2d {
+        /// One step of 1/60 s in 4 substeps.
+        pub fn step(&mut self) {
+            let _ = self.world.step(1.0 / 60.0, 4).expect("a step");
+        }
+
+        /// Max penetration of the final state, by Passo's exact geometry.
+        pub fn penetration(&mut self, passo: &World) -> f32 {
+            let mut copy = passo.clone();
+            for &(id, body) in &self.bodies {
+                let p = self
+                    .world
+                    .body(body)
+                    .expect("the body")
+                    .position()
+                    .expect("its position");
+                copy.set_position(id, passo_physics::glam::Vec2::new(p.x, p.y));
+            }
+            copy.max_penetration()
+        }
+    }
+}
+
 fn main() {
     let sizes: Vec<usize> = std::env::args()
         .skip(1)
@@ -89,15 +189,36 @@ fn main() {
         v[v.len() / 2]
     };
     println!(
-        "| rain | Passo ms/step (awake) | rapier2d ms/step (awake) | speed-up | Passo max penetration | rapier2d max penetration | Passo ms/step (sleeping on) | rapier2d ms/step (sleeping on) |"
+        "| rain | Passo ms/step (awake) | rapier2d ms/step (awake) | speed-up | Passo max penetration | rapier2d max penetration | Passo ms/step (sleeping on) | rapier2d ms/step (sleeping on) |{}",
+        if cfg!(feature = "box2d") {
+            " Box2D v3 ms/step (awake) | Box2D v3 max penetration | Box2D v3 ms/step (sleeping on) |"
+        } else {
+            ""
+        }
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "|---:|---:|---:|---:|---:|---:|---:|---:|{}",
+        if cfg!(feature = "box2d") {
+            "---:|---:|---:|"
+        } else {
+            ""
+        }
+    );
     for n in sizes {
         let start = rain_world(n);
         let awake_start = with_sleeping(&start, false);
         let (mut p, mut ps, mut r, mut s) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let (mut passo_pen, mut rapier_pen) = (0.0, 0.0);
+        let (mut b, mut bs, mut box2d_pen) = (Vec::<f64>::new(), Vec::<f64>::new(), 0.0f32);
         for _ in 0..3 {
+            #[cfg(feature = "box2d")]
+            {
+                let mut awake = box2d::copy(&start, false);
+                b.push(time_steps(ticks, || awake.step()).mean_ms);
+                box2d_pen = awake.penetration(&start);
+                let mut sleepy = box2d::copy(&start, true);
+                bs.push(time_steps(ticks, || sleepy.step()).mean_ms);
+            }
             let mut passo = awake_start.clone();
             p.push(time_steps(ticks, || passo.step(1.0 / 60.0)).mean_ms);
             passo_pen = passo.max_penetration();
@@ -110,8 +231,14 @@ fn main() {
             s.push(time_steps(ticks, || sleepy.world.step()).mean_ms);
         }
         let (p, ps, r, s) = (median(p), median(ps), median(r), median(s));
+        let box2d = if b.is_empty() {
+            String::new()
+        } else {
+            let (b, bs) = (median(b), median(bs));
+            format!(" {b:.2} | {:.1} mm | {bs:.2} |", box2d_pen * 1e3)
+        };
         println!(
-            "| {n} | {p:.2} | {r:.2} | {:.2}× | {:.1} mm | {:.1} mm | {ps:.2} | {s:.2} |",
+            "| {n} | {p:.2} | {r:.2} | {:.2}× | {:.1} mm | {:.1} mm | {ps:.2} | {s:.2} |{box2d}",
             r / p,
             passo_pen * 1e3,
             rapier_pen * 1e3,
