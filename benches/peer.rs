@@ -16,10 +16,11 @@
 //! runs the same rain too, in the same run: fixed rotation, sleeping off
 //! for its main column, 4 substeps, friction 0.6, restitution 0.
 //!
-//! Run: `cargo run --release -p passo-benches --features rapier --bin peer [N ...]`
-//! (`--features rapier,box2d` for the Box2D columns).
+//! Run: `cargo run --release -p passo-benches --features rapier --bin peer [N | pN ...]`
+//! (N: a rain of N circles; pN: a pyramid of base N; `--features rapier,box2d`
+//! or `rapier,box2d-avx2` for the Box2D columns).
 
-use passo_benches::{RAIN_MASS, RAIN_RADIUS, rain_world, time_steps, with_sleeping};
+use passo_benches::{pyramid_world, rain_world, time_steps, with_sleeping};
 use passo_physics::{BodyKind, Shape, World};
 use rapier2d::prelude::*;
 
@@ -52,11 +53,7 @@ fn rapier_copy(passo: &World, sleep: bool) -> Rapier {
         }
         .friction(0.6)
         .restitution(0.0)
-        .density(if b.kind == BodyKind::Dynamic {
-            RAIN_MASS / (std::f32::consts::PI * RAIN_RADIUS * RAIN_RADIUS)
-        } else {
-            1.0
-        })
+        .density(density_of(&b))
         .build();
         world
             .colliders
@@ -64,6 +61,14 @@ fn rapier_copy(passo: &World, sleep: bool) -> Rapier {
         handles.push((b.id, handle));
     }
     Rapier { world, handles }
+}
+
+/// The density that gives a body its Passo mass (1 for immovable ones).
+fn density_of(b: &passo_physics::Body) -> f32 {
+    match (b.kind, b.shape) {
+        (BodyKind::Dynamic, Some(shape)) => b.mass / shape.area(),
+        _ => 1.0,
+    }
 }
 
 /// Max penetration of rapier's final state, by Passo's exact geometry.
@@ -83,7 +88,6 @@ mod box2d {
         BodyBuilder, BodyType, Foundation, MotionLocks, Position, ShapeDef, SurfaceMaterial,
         Vec2 as BoxVec2, WorldBuilder, shapes,
     };
-    use passo_benches::{RAIN_MASS, RAIN_RADIUS};
     use passo_physics::{BodyKind, Shape, World};
 
     pub struct Box2d {
@@ -115,11 +119,7 @@ mod box2d {
                 .build()
                 .expect("a body definition");
             let id = world.create_body(def).expect("a body");
-            let density = if b.kind == BodyKind::Dynamic {
-                RAIN_MASS / (std::f32::consts::PI * RAIN_RADIUS * RAIN_RADIUS)
-            } else {
-                1.0
-            };
+            let density = super::density_of(&b);
             let material = SurfaceMaterial::new()
                 .with_friction(0.6)
                 .and_then(|m| m.with_restitution(0.0))
@@ -172,15 +172,23 @@ mod box2d {
 }
 
 fn main() {
-    let sizes: Vec<usize> = std::env::args()
+    // `N`: a rain of N circles; `pN`: a pyramid of base N.
+    let mut scenes: Vec<(String, World)> = std::env::args()
         .skip(1)
-        .filter_map(|a| a.parse().ok())
+        .filter_map(|a| match a.strip_prefix('p') {
+            Some(base) => base
+                .parse()
+                .ok()
+                .map(|b| (format!("pyramid {b}"), pyramid_world(b))),
+            None => a.parse().ok().map(|n| (format!("rain {n}"), rain_world(n))),
+        })
         .collect();
-    let sizes = if sizes.is_empty() {
-        vec![1000, 10_000]
-    } else {
-        sizes
-    };
+    if scenes.is_empty() {
+        scenes = vec![
+            ("rain 1000".into(), rain_world(1000)),
+            ("rain 10000".into(), rain_world(10_000)),
+        ];
+    }
     let ticks = 300;
     // Each engine runs three times, interleaved, and the median run is
     // kept: the machine is shared, and a single run can be off by 20 %.
@@ -189,7 +197,7 @@ fn main() {
         v[v.len() / 2]
     };
     println!(
-        "| rain | Passo ms/step (awake) | rapier2d ms/step (awake) | speed-up | Passo max penetration | rapier2d max penetration | Passo ms/step (sleeping on) | rapier2d ms/step (sleeping on) |{}",
+        "| scene | Passo ms/step (awake) | rapier2d ms/step (awake) | speed-up | Passo max penetration | rapier2d max penetration | Passo ms/step (sleeping on) | rapier2d ms/step (sleeping on) |{}",
         if cfg!(feature = "box2d") {
             " Box2D v3 ms/step (awake) | Box2D v3 max penetration | Box2D v3 ms/step (sleeping on) |"
         } else {
@@ -204,8 +212,7 @@ fn main() {
             ""
         }
     );
-    for n in sizes {
-        let start = rain_world(n);
+    for (n, start) in scenes {
         let awake_start = with_sleeping(&start, false);
         let (mut p, mut ps, mut r, mut s) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let (mut passo_pen, mut rapier_pen) = (0.0, 0.0);
