@@ -98,23 +98,25 @@ fn coyote_time_lets_a_jump_start_just_after_walking_off_an_edge() {
     panic!("never walked off the block");
 }
 
-#[test]
-fn walking_moves_at_walking_speed() {
+/// How far the player moves in 15 ticks holding `keys`, after settling.
+fn moved_holding(keys: Keys) -> passo_physics::glam::Vec2 {
     let mut game = level();
     for _ in 0..30 {
         game.update(Keys::default(), DT);
     }
     let start = game.player_position();
     for _ in 0..15 {
-        game.update(
-            Keys {
-                right: true,
-                ..Keys::default()
-            },
-            DT,
-        );
+        game.update(keys, DT);
     }
-    let moved = game.player_position() - start;
+    game.player_position() - start
+}
+
+#[test]
+fn walking_moves_at_walking_speed() {
+    let moved = moved_holding(Keys {
+        right: true,
+        ..Keys::default()
+    });
     assert!(
         (moved.x - WALK_SPEED * 15.0 * DT).abs() < 0.02,
         "moved {moved}"
@@ -123,22 +125,11 @@ fn walking_moves_at_walking_speed() {
 
 #[test]
 fn the_wind_carries_the_player_standing_still() {
-    let mut game = level();
-    for _ in 0..30 {
-        game.update(Keys::default(), DT);
-    }
-    let start = game.player_position();
-    for _ in 0..15 {
-        game.update(
-            Keys {
-                wind: true,
-                ..Keys::default()
-            },
-            DT,
-        );
-    }
+    let moved = moved_holding(Keys {
+        wind: true,
+        ..Keys::default()
+    });
     // On the ground the wind carries it at half of WIND_SPEED.
-    let moved = game.player_position() - start;
     let expected = 0.5 * passo_examples::platformer::WIND_SPEED * 15.0 * DT;
     assert!(
         (moved.x - expected).abs() < 0.01,
