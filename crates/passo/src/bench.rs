@@ -313,8 +313,9 @@ pub fn integration_ns(n: usize, parallel: bool) -> f64 {
 /// Nanoseconds per body-step of a bare structure-of-arrays loop doing the
 /// arithmetic of [`integration_ns`]'s step (gravity, the accumulated force,
 /// stable quadratic drag, the non-finite guard and subnormal flush, the
-/// position, the force cleared) on `n` bodies, best of five: what the step
-/// would cost with nothing around the arithmetic.
+/// world's default speed limits, the position, the force cleared) on `n`
+/// bodies, best of five: what the step would cost with nothing around the
+/// arithmetic.
 pub fn bare_soa_ns(n: usize) -> f64 {
     let (mut px, mut py) = (vec![0.0f32; n], vec![0.0f32; n]);
     let (mut vx, mut vy) = (vec![3.0f32; n], vec![1.0f32; n]);
@@ -322,6 +323,10 @@ pub fn bare_soa_ns(n: usize) -> f64 {
     let inv_mass = vec![1.0f32; n];
     let drag_area = vec![passo_physics::constants::DEFAULT_DRAG_AREA; n];
     let (g, dt) = (-9.81f32, 1.0f32 / 60.0);
+    let (min, max) = (
+        passo_physics::constants::DEFAULT_MIN_SPEED,
+        passo_physics::constants::DEFAULT_MAX_SPEED,
+    );
     let half_rho = 0.5 * passo_physics::QuadraticDrag::default().density;
     let steps = (20_000_000 / n.max(1)).clamp(5, 20_000);
     let mut step = || {
@@ -342,6 +347,12 @@ pub fn bare_soa_ns(n: usize) -> f64 {
             let flush = |c: f32| if c.abs() < f32::MIN_POSITIVE { 0.0 } else { c };
             x = if finite { flush(x) } else { 0.0 };
             y = if finite { flush(y) } else { 0.0 };
+            // The speed limits: clamp to the maximum, snap below the minimum.
+            let s2 = x * x + y * y;
+            let clamp = if s2 > max * max { max / s2.sqrt() } else { 1.0 };
+            let keep = if s2 < min * min { 0.0 } else { clamp };
+            x *= keep;
+            y *= keep;
             vx[i] = x;
             vy[i] = y;
             px[i] += x * dt;
