@@ -28,6 +28,7 @@ mod generate;
 mod level;
 mod map_ref;
 mod save;
+mod tiled_file;
 
 pub use build::{BuiltScene, KINEMATIC_COLOUR, Platform, SceneBody};
 pub use error::SceneError;

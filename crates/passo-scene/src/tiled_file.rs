@@ -1,0 +1,399 @@
+//! Reading map files of the Tiled editor into what Passo uses of them
+//! ([`RawMap`]): `.tmx` through the `tiled` crate, `.tmj` as JSON (the
+//! crate reads no JSON maps). Only the wanted tile layer's tiles are read;
+//! a layer whose tiles do not match the map's size, or a map larger than a
+//! tile map may be, is an error, never a panic.
+
+use crate::error::SceneError;
+use std::path::Path;
+
+/// A property value, as both formats give it.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Value {
+    Bool(bool),
+    Number(f32),
+    Text(String),
+}
+
+pub(crate) type Properties = Vec<(String, Value)>;
+
+/// A tile of the solid layer: its class and properties.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct RawTile {
+    pub class: String,
+    pub properties: Properties,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum RawShape {
+    Rect(f32, f32),
+    Ellipse(f32, f32),
+    Point,
+    /// A shape Passo has no body for (polygon, polyline, text, capsule).
+    Other(&'static str),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct RawObject {
+    pub layer: String,
+    pub id: u32,
+    pub name: String,
+    pub class: String,
+    pub x: f32,
+    pub y: f32,
+    pub rotation: f32,
+    pub shape: RawShape,
+    pub properties: Properties,
+}
+
+/// A map in neither format's types: what Passo reads of it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct RawMap {
+    pub width: u32,
+    pub height: u32,
+    pub tile_width: f32,
+    pub tile_height: f32,
+    /// Every tile layer: its name and tiles, row by row from the top.
+    pub tile_layers: Vec<(String, Vec<Option<RawTile>>)>,
+    pub objects: Vec<RawObject>,
+}
+
+pub(crate) fn read_tmx(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneError> {
+    let shown = path.display().to_string();
+    let map = tiled::Loader::new()
+        .load_tmx_map(path)
+        .map_err(|e| SceneError::Io {
+            source_name: shown.clone(),
+            message: e.to_string(),
+        })?;
+    if map.orientation != tiled::Orientation::Orthogonal || map.infinite() {
+        return Err(SceneError::Invalid {
+            source_name: shown,
+            field: "map".into(),
+            message: "must be orthogonal and finite".into(),
+        });
+    }
+    if map.width as usize * map.height as usize > passo_physics::MAX_TILE_CELLS {
+        return Err(SceneError::Invalid {
+            source_name: shown,
+            field: "map".into(),
+            message: format!(
+                "{} × {} tiles is more than a tile map may have (4096 × 4096)",
+                map.width, map.height
+            ),
+        });
+    }
+    let mut raw = RawMap {
+        width: map.width,
+        height: map.height,
+        tile_width: map.tile_width as f32,
+        tile_height: map.tile_height as f32,
+        ..RawMap::default()
+    };
+    // The `tiled` crate indexes a layer's tiles without checking that the
+    // file gave as many as the map has cells: a short layer would panic
+    // inside it, so that becomes an error here.
+    let read = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        collect_tmx_layers(&map, map.layers(), wanted_layer, &mut raw)
+    }));
+    if read.is_err() {
+        return Err(SceneError::Invalid {
+            source_name: shown,
+            field: format!("layer `{wanted_layer}`"),
+            message: "has fewer tiles than the map has cells".into(),
+        });
+    }
+    Ok(raw)
+}
+
+fn collect_tmx_layers<'m>(
+    map: &'m tiled::Map,
+    layers: impl Iterator<Item = tiled::Layer<'m>>,
+    wanted: &str,
+    raw: &mut RawMap,
+) {
+    for layer in layers {
+        let name = layer.name.clone();
+        match layer.layer_type() {
+            tiled::LayerType::Tiles(_) if name != wanted => {
+                raw.tile_layers.push((name, Vec::new()))
+            }
+            tiled::LayerType::Tiles(tiles) => {
+                let cells = (0..map.height as i32)
+                    .flat_map(|y| (0..map.width as i32).map(move |x| (x, y)))
+                    .map(|(x, y)| {
+                        tiles.get_tile(x, y).map(|t| match t.get_tile() {
+                            Some(tile) => RawTile {
+                                class: tile.user_type.clone(),
+                                properties: tmx_properties(&tile.properties),
+                            },
+                            None => RawTile::default(),
+                        })
+                    })
+                    .collect();
+                raw.tile_layers.push((name, cells));
+            }
+            tiled::LayerType::Objects(objects) => {
+                for object in objects.objects() {
+                    #[allow(deprecated)]
+                    let shape = match &object.shape {
+                        tiled::ObjectShape::Rect { width, height } => {
+                            RawShape::Rect(*width, *height)
+                        }
+                        tiled::ObjectShape::Ellipse { width, height } => {
+                            RawShape::Ellipse(*width, *height)
+                        }
+                        tiled::ObjectShape::Point(..) => RawShape::Point,
+                        tiled::ObjectShape::Polygon { .. } => RawShape::Other("a polygon"),
+                        tiled::ObjectShape::Polyline { .. } => RawShape::Other("a polyline"),
+                        tiled::ObjectShape::Capsule { .. } => RawShape::Other("a capsule"),
+                        tiled::ObjectShape::Text { .. } => RawShape::Other("a text"),
+                    };
+                    // A tile object is placed by its bottom-left corner.
+                    let tile_height = match (&object.shape, object.tile_data()) {
+                        (tiled::ObjectShape::Rect { height, .. }, Some(_)) => *height,
+                        _ => 0.0,
+                    };
+                    raw.objects.push(RawObject {
+                        layer: name.clone(),
+                        id: object.id(),
+                        name: object.name.clone(),
+                        class: object.user_type.clone(),
+                        x: object.x,
+                        y: object.y - tile_height,
+                        rotation: object.rotation,
+                        shape,
+                        properties: tmx_properties(&object.properties),
+                    });
+                }
+            }
+            tiled::LayerType::Group(group) => collect_tmx_layers(map, group.layers(), wanted, raw),
+            tiled::LayerType::Image(_) => {}
+        }
+    }
+}
+
+fn tmx_properties(properties: &tiled::Properties) -> Properties {
+    let mut out: Properties = properties
+        .iter()
+        .filter_map(|(name, value)| {
+            let value = match value {
+                tiled::PropertyValue::BoolValue(b) => Value::Bool(*b),
+                tiled::PropertyValue::FloatValue(f) => Value::Number(*f),
+                tiled::PropertyValue::IntValue(i) => Value::Number(*i as f32),
+                tiled::PropertyValue::StringValue(s) => Value::Text(s.clone()),
+                _ => return None,
+            };
+            Some((name.clone(), value))
+        })
+        .collect();
+    // A hash map's order is not the file's: sort, so errors come out the
+    // same every run.
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    out
+}
+
+/// Reads a map saved as JSON (`.tmj`): the same model as a `.tmx`, with
+/// tilesets embedded or in `.tsj` files beside it.
+pub(crate) fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneError> {
+    use serde_json::Value as Json;
+    let shown = path.display().to_string();
+    let fail = |message: String| SceneError::Invalid {
+        source_name: shown.clone(),
+        field: "map".into(),
+        message,
+    };
+    let read = |p: &Path| -> Result<Json, SceneError> {
+        let text = std::fs::read_to_string(p).map_err(|e| SceneError::Io {
+            source_name: p.display().to_string(),
+            message: e.to_string(),
+        })?;
+        serde_json::from_str(&text).map_err(|e| SceneError::Syntax {
+            source_name: p.display().to_string(),
+            line: e.line(),
+            column: e.column(),
+            field: None,
+            message: e.to_string(),
+        })
+    };
+    let json = read(path)?;
+    let number = |v: &Json, key: &str| v.get(key).and_then(Json::as_f64);
+    let text = |v: &Json, key: &str| v.get(key).and_then(Json::as_str).unwrap_or("").to_owned();
+    if text(&json, "orientation") != "orthogonal" || json.get("infinite") == Some(&Json::Bool(true))
+    {
+        return Err(fail("must be orthogonal and finite".into()));
+    }
+    let dimension = |key: &str| {
+        number(&json, key)
+            .filter(|n| *n >= 1.0 && *n <= 65_536.0)
+            .ok_or_else(|| fail(format!("`{key}` must be a number in [1, 65536]")))
+    };
+    let mut raw = RawMap {
+        width: dimension("width")? as u32,
+        height: dimension("height")? as u32,
+        tile_width: dimension("tilewidth")? as f32,
+        tile_height: dimension("tileheight")? as f32,
+        ..RawMap::default()
+    };
+    if raw.width as usize * raw.height as usize > passo_physics::MAX_TILE_CELLS {
+        return Err(fail(format!(
+            "{} × {} tiles is more than a tile map may have (4096 × 4096)",
+            raw.width, raw.height
+        )));
+    }
+    // Tiles by global id: (first gid, tiles of the set by local id).
+    let mut sets: Vec<(u32, Vec<(u32, RawTile)>)> = Vec::new();
+    for set in json
+        .get("tilesets")
+        .and_then(Json::as_array)
+        .into_iter()
+        .flatten()
+    {
+        let first = number(set, "firstgid").unwrap_or(1.0) as u32;
+        let set = match set.get("source").and_then(Json::as_str) {
+            Some(source) => read(&path.parent().unwrap_or(Path::new("")).join(source))?,
+            None => set.clone(),
+        };
+        let tiles = set
+            .get("tiles")
+            .and_then(Json::as_array)
+            .into_iter()
+            .flatten()
+            .map(|t| {
+                let class = t.get("class").or_else(|| t.get("type"));
+                let tile = RawTile {
+                    class: class.and_then(Json::as_str).unwrap_or("").to_owned(),
+                    properties: json_properties(t),
+                };
+                (number(t, "id").unwrap_or(0.0) as u32, tile)
+            })
+            .collect();
+        sets.push((first, tiles));
+    }
+    sets.sort_by_key(|s| s.0);
+    let tile_of = |gid: u32| {
+        let set = sets.iter().rev().find(|s| s.0 <= gid)?;
+        let local = gid - set.0;
+        Some(
+            set.1
+                .iter()
+                .find(|t| t.0 == local)
+                .map(|t| t.1.clone())
+                .unwrap_or_default(),
+        )
+    };
+    fn layers(json: &Json) -> Vec<Json> {
+        let mut out = Vec::new();
+        for layer in json
+            .get("layers")
+            .and_then(Json::as_array)
+            .into_iter()
+            .flatten()
+        {
+            if layer.get("type").and_then(Json::as_str) == Some("group") {
+                out.extend(layers(layer));
+            } else {
+                out.push(layer.clone());
+            }
+        }
+        out
+    }
+    for layer in layers(&json) {
+        let name = text(&layer, "name");
+        match layer.get("type").and_then(Json::as_str) {
+            Some("tilelayer") => {
+                if name != wanted_layer {
+                    raw.tile_layers.push((name, Vec::new()));
+                    continue;
+                }
+                let Some(data) = layer.get("data").and_then(Json::as_array) else {
+                    return Err(fail(format!(
+                        "layer `{name}`: tile data must be a CSV array (Tiled: layer format CSV)"
+                    )));
+                };
+                if data.len() != raw.width as usize * raw.height as usize {
+                    return Err(fail(format!(
+                        "layer `{name}` has {} tiles for a map of {} × {} cells",
+                        data.len(),
+                        raw.width,
+                        raw.height
+                    )));
+                }
+                // The top bits of a global id are flip flags.
+                let cells = data
+                    .iter()
+                    .map(|v| v.as_u64().unwrap_or(0) as u32 & 0x1FFF_FFFF)
+                    .map(|gid| (gid != 0).then(|| tile_of(gid).unwrap_or_default()))
+                    .collect();
+                raw.tile_layers.push((name, cells));
+            }
+            Some("objectgroup") => {
+                for object in layer
+                    .get("objects")
+                    .and_then(Json::as_array)
+                    .into_iter()
+                    .flatten()
+                {
+                    let flag = |key: &str| object.get(key) == Some(&Json::Bool(true));
+                    let (w, h) = (
+                        number(object, "width").unwrap_or(0.0) as f32,
+                        number(object, "height").unwrap_or(0.0) as f32,
+                    );
+                    let shape = if flag("point") {
+                        RawShape::Point
+                    } else if flag("ellipse") {
+                        RawShape::Ellipse(w, h)
+                    } else if object.get("polygon").is_some() {
+                        RawShape::Other("a polygon")
+                    } else if object.get("polyline").is_some() {
+                        RawShape::Other("a polyline")
+                    } else if object.get("text").is_some() {
+                        RawShape::Other("a text")
+                    } else if flag("capsule") {
+                        RawShape::Other("a capsule")
+                    } else {
+                        RawShape::Rect(w, h)
+                    };
+                    let class = object.get("class").or_else(|| object.get("type"));
+                    raw.objects.push(RawObject {
+                        layer: name.clone(),
+                        id: number(object, "id").unwrap_or(0.0) as u32,
+                        name: text(object, "name"),
+                        class: class.and_then(Json::as_str).unwrap_or("").to_owned(),
+                        x: number(object, "x").unwrap_or(0.0) as f32,
+                        // A tile object is placed by its bottom-left corner.
+                        y: number(object, "y").unwrap_or(0.0) as f32
+                            - if object.get("gid").is_some() { h } else { 0.0 },
+                        rotation: number(object, "rotation").unwrap_or(0.0) as f32,
+                        shape,
+                        properties: json_properties(object),
+                    });
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(raw)
+}
+
+fn json_properties(v: &serde_json::Value) -> Properties {
+    use serde_json::Value as Json;
+    let mut out: Properties = v
+        .get("properties")
+        .and_then(Json::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(|p| {
+            let name = p.get("name")?.as_str()?.to_owned();
+            let value = match p.get("value")? {
+                Json::Bool(b) => Value::Bool(*b),
+                Json::Number(n) => Value::Number(n.as_f64()? as f32),
+                Json::String(s) => Value::Text(s.clone()),
+                _ => return None,
+            };
+            Some((name, value))
+        })
+        .collect();
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    out
+}
