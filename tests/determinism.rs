@@ -12,6 +12,7 @@
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, Shape, World};
 use passo_scene::Scene;
+use passo_tests::add_ground;
 use std::path::PathBuf;
 
 /// State hash of the scene below after `TICKS` ticks.
@@ -250,12 +251,7 @@ fn every_force_model(integrator: passo_physics::Integrator) -> World {
     })
     .unwrap();
     world.add_force_model(std::sync::Arc::new(Swirl));
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(30.0, 1.0),
-        ))
-        .unwrap();
+    add_ground(&mut world, 30.0);
     for i in 0..24 {
         let p = Vec2::new((i % 6) as f32 * 1.1 - 3.0, 1.0 + (i / 6) as f32 * 1.2);
         let shape = if i % 2 == 0 {

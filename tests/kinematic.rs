@@ -3,7 +3,7 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, BodyKind, ContactStage, Shape, Stage, World, WorldSettings};
-use passo_tests::max_penetration;
+use passo_tests::{add_ground, max_penetration};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -179,12 +179,7 @@ fn a_platform_that_reverses_from_up_to_down_lands_its_rider_again_without_a_boun
 #[test]
 fn a_platform_moving_sideways_pushes_a_box_in_its_way() {
     let mut world = World::default();
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(40.0, 1.0),
-        ))
-        .unwrap();
+    add_ground(&mut world, 40.0);
     let wall = world
         .add_body(BodyDef::new_kinematic(
             Vec2::new(-3.0, 1.0),

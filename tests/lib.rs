@@ -81,6 +81,13 @@ pub fn assert_finite(world: &World) {
     }
 }
 
+/// Flat static ground `width` metres wide, centred on x = 0, its top at
+/// y = 0 (1 m thick).
+pub fn add_ground(world: &mut World, width: f32) -> BodyId {
+    let def = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(width, 1.0));
+    world.add_body(def).expect("valid ground")
+}
+
 /// A static box from `min` to `max`.
 pub fn add_static_box(world: &mut World, min: Vec2, max: Vec2) -> BodyId {
     let def = BodyDef::new_static((min + max) * 0.5, Shape::rect(max.x - min.x, max.y - min.y));

@@ -2,6 +2,7 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, CollisionFilter, Shape, World};
+use passo_tests::add_ground;
 
 const DT: f32 = 1.0 / 60.0;
 const UP: Vec2 = Vec2::Y;
@@ -10,12 +11,7 @@ const UP: Vec2 = Vec2::Y;
 /// and solid ground at y = 0.
 fn world_with_platform(kind: &str) -> (World, BodyId) {
     let mut world = World::default();
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(40.0, 1.0),
-        ))
-        .unwrap();
+    add_ground(&mut world, 40.0);
     let def = match kind {
         "kinematic" => {
             BodyDef::new_kinematic(Vec2::new(0.0, 1.9), Shape::rect(4.0, 0.2), Vec2::ZERO)
@@ -165,12 +161,7 @@ fn a_platform_can_be_made_one_way_and_a_filter_changed_after_creation() {
             Shape::rect(4.0, 0.2),
         ))
         .unwrap();
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(40.0, 1.0),
-        ))
-        .unwrap();
+    add_ground(&mut world, 40.0);
     let a = ball(&mut world, Vec2::new(0.0, 0.25), Vec2::new(0.0, 8.0));
     world.step(DT);
     for _ in 0..10 {

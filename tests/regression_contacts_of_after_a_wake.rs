@@ -5,17 +5,12 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, Shape, World};
-use passo_tests::contacts_seen_from as scan;
+use passo_tests::{add_ground, contacts_seen_from as scan};
 
 #[test]
 fn contacts_of_after_waking_a_sleeping_pile_matches_the_contact_list() {
     let mut world = World::default();
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(20.0, 1.0),
-        ))
-        .unwrap();
+    add_ground(&mut world, 20.0);
     let boxes: Vec<_> = (0..12)
         .map(|i| {
             let p = Vec2::new((i % 4) as f32 * 1.01 - 1.5, 0.5 + (i / 4) as f32);
@@ -47,12 +42,7 @@ fn contacts_of_after_waking_a_sleeping_pile_matches_the_contact_list() {
 #[test]
 fn a_body_reusing_a_removed_bodys_slot_has_none_of_its_contacts() {
     let mut world = World::default();
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(20.0, 1.0),
-        ))
-        .unwrap();
+    add_ground(&mut world, 20.0);
     let a = world
         .add_body(BodyDef::new_dynamic(
             Vec2::new(0.0, 0.5),

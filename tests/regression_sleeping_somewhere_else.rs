@@ -9,17 +9,13 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, Shape, World};
+use passo_tests::add_ground;
 
 const DT: f32 = 1.0 / 60.0;
 
 fn ground_and_crate() -> (World, BodyId) {
     let mut world = World::default();
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(60.0, 1.0),
-        ))
-        .unwrap();
+    add_ground(&mut world, 60.0);
     let crate_ = world
         .add_body(
             BodyDef::new_dynamic(Vec2::new(0.0, 0.5), Shape::rect(1.0, 1.0)).with_friction(0.5),

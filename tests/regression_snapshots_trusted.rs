@@ -7,6 +7,7 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, Shape, World, WorldSnapshot};
+use passo_tests::add_ground;
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -14,12 +15,7 @@ const DT: f32 = 1.0 / 60.0;
 /// slot, as RON text.
 fn snapshot_text() -> String {
     let mut world = World::default();
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(10.0, 1.0),
-        ))
-        .unwrap();
+    add_ground(&mut world, 10.0);
     let gone = world
         .add_body(BodyDef::point_mass(Vec2::new(5.0, 5.0)))
         .unwrap();

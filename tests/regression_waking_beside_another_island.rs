@@ -5,16 +5,12 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, Shape, World};
+use passo_tests::add_ground;
 
 #[test]
 fn a_ball_landing_on_a_sleeping_box_beside_another_wakes_it_without_a_panic() {
     let mut world = World::default();
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(40.0, 1.0),
-        ))
-        .unwrap();
+    add_ground(&mut world, 40.0);
     // A row of boxes 1 cm apart: each its own island (they never touch),
     // joined to its neighbours by speculative contacts.
     let boxes: Vec<_> = (0..40)

@@ -6,7 +6,9 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, Shape, World};
-use passo_tests::{assert_falls_freely_along_a_wall, assert_slides_as_on_one_box, push_along_x};
+use passo_tests::{
+    add_ground, assert_falls_freely_along_a_wall, assert_slides_as_on_one_box, push_along_x,
+};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -189,12 +191,7 @@ fn a_sensor_or_a_one_way_ledge_flush_on_the_ground_does_not_make_it_seamless() {
     // on the ground stays put (it used to be pushed out sideways).
     for kind in ["sensor", "one-way"] {
         let mut world = World::default();
-        world
-            .add_body(BodyDef::new_static(
-                Vec2::new(0.0, -0.5),
-                Shape::rect(4.0, 1.0),
-            ))
-            .unwrap();
+        add_ground(&mut world, 4.0);
         let cover = BodyDef::new_static(Vec2::new(0.0, 0.5), Shape::rect(4.0, 1.0));
         let cover = if kind == "sensor" {
             cover.as_sensor()

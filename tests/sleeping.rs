@@ -4,7 +4,7 @@
 use passo_physics::constants::{SLEEP_SPEED, TIME_TO_SLEEP};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, ContactSettings, Shape, World, WorldSettings};
-use passo_tests::{add_box, add_static_box, assert_finite};
+use passo_tests::{add_box, add_ground, add_static_box, assert_finite};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -365,12 +365,7 @@ fn a_body_inside_a_sensor_stays_awake_and_inside() {
 fn a_woken_island_reports_awake_at_once_and_a_snapshot_taken_then_resumes_bit_for_bit() {
     // Two stacks of three boxes, each its own island, asleep.
     let mut world = World::default();
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -0.5),
-            Shape::rect(20.0, 1.0),
-        ))
-        .unwrap();
+    add_ground(&mut world, 20.0);
     let stack = |world: &mut World, x: f32| -> Vec<_> {
         (0..3)
             .map(|i| {
