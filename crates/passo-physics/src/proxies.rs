@@ -13,8 +13,10 @@ use crate::{Aabb, Shape};
 use glam::Vec2;
 
 /// The step searches a tree of the static bodies near its awake proxies
-/// when they are fewer than one in this many of the whole level.
+/// when they are fewer than one in this many of the whole level...
 const NARROWED_TREE: usize = 8;
+/// ...and the level has at least this many static bodies.
+const NARROWED_LEVEL: usize = 256;
 
 /// No proxy (or no body) here.
 pub(crate) const NO_PROXY: u32 = u32::MAX;
@@ -82,11 +84,10 @@ pub(crate) struct Proxies {
     /// kinematic box covers; sorted.
     faces_by_kinematic: Vec<(u32, Faces)>,
     tree_dirty: bool,
-    /// Per static body: its box (for the narrowed tree).
-    static_boxes: Vec<Aabb>,
-    /// This step: the static bodies near the awake proxies, and a tree of
-    /// them (see `find_pairs`).
+    /// This step: the static bodies near the awake proxies (by static
+    /// index), their boxes, and a tree of them (see `find_pairs`).
     near_items: Vec<u32>,
+    near_boxes: Vec<Aabb>,
     near_tree: StaticTree,
     /// This step: the kinematic boxes, and scratch space for the faces
     /// their neighbours cover.
@@ -148,15 +149,11 @@ impl Proxies {
 
     fn rebuild_tree(&mut self, statics: &StaticBodies) {
         self.tree_items.clear();
-        self.static_boxes.clear();
         let mut boxes = Vec::new();
         for (i, meta) in statics.meta.iter().enumerate() {
-            let half = meta.shape.map_or(Vec2::ZERO, |s| s.half_extents());
-            self.static_boxes
-                .push(Aabb::from_centre(statics.pos[i], half));
-            if meta.shape.is_some() {
+            if let Some(shape) = &meta.shape {
                 self.tree_items.push(i as u32);
-                boxes.push(self.static_boxes[i]);
+                boxes.push(Aabb::from_centre(statics.pos[i], shape.half_extents()));
             }
         }
         self.tree = StaticTree::build(boxes);
@@ -343,6 +340,10 @@ impl Proxies {
         // The static bodies near the awake proxies, when they are few of a
         // large level (a rain in one room of a 1000 × 1000 tile map): each
         // proxy then searches a small tree of them, not the whole level.
+        // A level of a few static bodies is searched as it is.
+        if self.tree.len() < NARROWED_LEVEL {
+            return self.pair_with_statics(false);
+        }
         let mut region: Option<Aabb> = None;
         for p in 0..self.boxes.len() {
             if !self.is_asleep(p) {
@@ -359,19 +360,26 @@ impl Proxies {
             .bounds()
             .is_some_and(|level| area(&region) * NARROWED_TREE as f32 <= area(&level));
         self.near_items.clear();
+        self.near_boxes.clear();
         if small {
-            let (near, items) = (&mut self.near_items, &self.tree_items);
-            self.tree
-                .query(&region, |item| near.push(items[item as usize]));
+            let (near, boxes, items) =
+                (&mut self.near_items, &mut self.near_boxes, &self.tree_items);
+            let tree = &self.tree;
+            tree.query(&region, |item| {
+                near.push(items[item as usize]);
+                boxes.push(tree.item_box(item));
+            });
         }
         let narrowed = small && self.near_items.len() * NARROWED_TREE < self.tree.len();
         if narrowed {
-            let boxes = self
-                .near_items
-                .iter()
-                .map(|&s| self.static_boxes[s as usize]);
-            self.near_tree.rebuild(boxes);
+            self.near_tree.rebuild(self.near_boxes.iter().copied());
         }
+        self.pair_with_statics(narrowed);
+    }
+
+    /// Pairs each awake proxy with the static bodies its box overlaps, in
+    /// the tree of the nearby ones (`narrowed`) or the whole level's.
+    fn pair_with_statics(&mut self, narrowed: bool) {
         let (tree, items) = if narrowed {
             (&self.near_tree, &self.near_items)
         } else {

@@ -65,6 +65,11 @@ impl StaticTree {
         self.nodes.first().map(|n| n.aabb)
     }
 
+    /// The box of item `item`.
+    pub(crate) fn item_box(&self, item: u32) -> Aabb {
+        self.boxes[item as usize]
+    }
+
     /// Number of items.
     pub(crate) fn len(&self) -> usize {
         self.items.len()
