@@ -162,6 +162,8 @@ impl World {
                 .motion
                 .piles
                 .find(&cw.solved.rows, self.dynamic.len(), DEEP_OVERLAP);
+        cw.colouring
+            .build(&cw.solved.rows, self.dynamic.len(), &cw.motion.piles.deep);
         if plan.hold_kinematic {
             self.hold_kinematic();
         }
@@ -183,6 +185,7 @@ impl World {
             self.integrate_positions(&mut cw.motion, &plan, &correction);
             self.relax(&mut cw, &plan);
         }
+        cw.colouring.store(&mut cw.solved.rows);
         if plan.substeps > 0 && plan.sweep {
             let stops = cw.sweep_fast_bodies(&mut self.dynamic, &self.statics);
             self.stats.swept_stops = self.stats.swept_stops.saturating_add(stops as u64);
@@ -267,12 +270,14 @@ impl World {
     /// Substep stages: warm start (with the push impulses cleared), then
     /// the Gauss-Seidel passes with the push.
     fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
-        let ContactWorld { solved, motion, .. } = cw;
+        let ContactWorld {
+            colouring, motion, ..
+        } = cw;
         motion.push.fill(Vec2::ZERO);
         let mut bodies = motion.bodies(&mut self.dynamic.vel);
-        solver::begin_substep(&mut solved.rows, &mut bodies, &plan.solver);
+        colouring.begin_substep(&mut bodies, &plan.solver, self.parallel);
         for _ in 0..plan.solver.iterations {
-            solver::solve(&mut solved.rows, &mut bodies, &plan.solver, true);
+            colouring.solve(&mut bodies, &plan.solver, true, self.parallel);
         }
     }
 
@@ -308,10 +313,13 @@ impl World {
 
     /// Substep stage: velocity passes at the new positions.
     fn relax(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
-        let ContactWorld { solved, motion, .. } = cw;
+        let ContactWorld {
+            colouring, motion, ..
+        } = cw;
         let mut bodies = motion.bodies(&mut self.dynamic.vel);
+        colouring.measure(&mut bodies, self.parallel);
         for _ in 0..plan.solver.relax_iterations {
-            solver::solve(&mut solved.rows, &mut bodies, &plan.solver, false);
+            colouring.solve(&mut bodies, &plan.solver, false, self.parallel);
         }
     }
 

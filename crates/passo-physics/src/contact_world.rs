@@ -5,6 +5,7 @@
 
 use crate::bodies::{Colliders, DynamicBodies, StaticBodies};
 use crate::collider::ColliderRef;
+use crate::colouring::Colouring;
 use crate::constraint::{Constraint, ContactInfo, ContactList, Merge};
 use crate::contact_state::{ContactState, names_bodies};
 use crate::continuous::Sweeps;
@@ -41,6 +42,8 @@ pub(crate) struct ContactWorld {
     pub sleeping: SleepingContacts,
     /// Per-body buffers of the substeps.
     pub motion: Motion,
+    /// The solved contacts in colours, as the substeps solve them.
+    pub colouring: Colouring,
     sweeps: Sweeps,
     events: EventTracker,
     /// Room for merging contacts found again, kept between steps.

@@ -81,6 +81,8 @@ mod constraint;
 
 mod narrow_phase;
 mod solver;
+// Graph colouring and the wide (lane by lane) contact passes.
+mod colouring;
 
 mod continuous;
 

@@ -24,7 +24,7 @@ pub struct WorldSettings {
     /// `f32::INFINITY` turns the clamp off. Default 1000 ([`DEFAULT_MAX_SPEED`]).
     pub max_speed: f32,
     /// Keep each body's position from before the last step, so a renderer
-    /// can draw [`World::interpolated_position`]. Costs one copy of the
+    /// can draw [`World::interpolated_position`](crate::World::interpolated_position). Costs one copy of the
     /// positions per step. Default `false`.
     pub interpolation: bool,
     /// How contacts between shaped bodies are solved; `None` turns

@@ -17,6 +17,10 @@
 //! sweep the bodies that moved beyond their reach (see `continuous`)
 //! ```
 //!
+//! The passes run colour by colour, eight contacts wide (see `colouring`),
+//! in an order that keeps each body's contacts in the list's order; the
+//! functions here solve the contacts one by one, for those no colour took.
+//!
 //! The normal row is a hard constraint `v_n >= 0` with accumulated-impulse
 //! clamping (`lambda >= 0`) and warm starting, so a resting contact's impulse
 //! converges to exactly the weight it carries and nothing sinks. A contact

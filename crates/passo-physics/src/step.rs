@@ -38,7 +38,7 @@ pub enum Stage {
     Spring,
     /// Central (orbital) gravity.
     CentralGravity,
-    /// The game's own [`ForceModel`]s.
+    /// The game's own [`ForceModel`](crate::ForceModel)s.
     CustomForces,
     /// Quadratic drag.
     QuadraticDrag,
