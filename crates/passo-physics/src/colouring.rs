@@ -17,23 +17,29 @@
 //! 10 000 circles sank three times deeper and was still moving after ten
 //! seconds.) The colours depend on the contacts alone.
 //!
-//! Each colour's contacts are laid out [`LANES`] at a time as a structure
-//! of arrays (a [`Block`]). A pass gathers the bodies of a block's lanes,
-//! solves the lanes side by side with the scalar solver's arithmetic
-//! (plain loops over arrays, which the compiler turns into vector
-//! instructions), and scatters the bodies back. A colour's last block is
-//! padded with lanes that name no body and whose masses are zero.
-//! Contacts left over when a body has more than [`COLOURS`] contacts are
-//! solved one by one after the colours by the scalar solver.
+//! Each colour's contacts are laid out [`LANES`] (four or eight) at a time
+//! as a structure of arrays (a [`Block`]). A pass gathers the bodies of a
+//! block's lanes, solves the lanes side by side with the scalar solver's
+//! arithmetic (plain loops over arrays, which the compiler turns into
+//! vector instructions), and scatters the bodies back. A colour's last
+//! block is padded with lanes that name no body and whose masses are
+//! zero. Contacts left over when a body has more than [`COLOURS`]
+//! contacts are solved one by one after the colours by the scalar solver.
 
 use crate::constraint::Constraint;
 use crate::solver::{self, SolverBodies, SolverParams};
 use glam::Vec2;
 use std::ops::Range;
 
-/// Contacts solved side by side in a [`Block`]: eight, the width of an
-/// AVX register of `f32` (two SSE registers).
+/// Contacts solved side by side in a [`Block`]: the `f32`s of one vector
+/// register, eight with AVX, four with SSE (the default x86-64 target;
+/// eight there spill registers and ran 5 % slower). The lanes of a block
+/// are independent, so the width changes the speed, never the bits.
+#[cfg(target_feature = "avx")]
 pub(crate) const LANES: usize = 8;
+/// Contacts solved side by side in a [`Block`] (see the AVX version).
+#[cfg(not(target_feature = "avx"))]
+pub(crate) const LANES: usize = 4;
 
 /// Colours at most: one bit each in a body's `u128` mask.
 pub(crate) const COLOURS: usize = 128;
@@ -51,6 +57,10 @@ pub(crate) struct Block {
     a: [u32; LANES],
     /// Body B's dynamic index ([`NONE`]: static, or padding).
     b: [u32; LANES],
+    /// Body A's dynamic index if the lane moves it (else [`NONE`]).
+    write_a: [u32; LANES],
+    /// Body B's dynamic index if the lane moves it (else [`NONE`]).
+    write_b: [u32; LANES],
     nx: [f32; LANES],
     ny: [f32; LANES],
     base_separation: [f32; LANES],
@@ -73,6 +83,8 @@ impl Block {
         row: [NONE; LANES],
         a: [NONE; LANES],
         b: [NONE; LANES],
+        write_a: [NONE; LANES],
+        write_b: [NONE; LANES],
         nx: [0.0; LANES],
         ny: [0.0; LANES],
         base_separation: [0.0; LANES],
@@ -92,6 +104,8 @@ impl Block {
         self.row[l] = row as u32;
         self.a[l] = c.a;
         self.b[l] = c.b.dynamic_index().map_or(NONE, |b| b as u32);
+        self.write_a[l] = if c.inv_mass_a > 0.0 { self.a[l] } else { NONE };
+        self.write_b[l] = if c.inv_mass_b > 0.0 { self.b[l] } else { NONE };
         self.nx[l] = c.normal.x;
         self.ny[l] = c.normal.y;
         self.base_separation[l] = c.base_separation;
@@ -310,29 +324,36 @@ impl<'a> Bodies<'a> {
         }
     }
 
+    // An index out of range ([`NONE`]) reads as zero and writes nothing:
+    // one bounds check serves as the padding check.
+
     #[inline(always)]
     fn vel(&self, i: u32) -> Vec2 {
-        self.vel[i as usize]
+        self.vel.get(i as usize).copied().unwrap_or(Vec2::ZERO)
     }
 
     #[inline(always)]
     fn set_vel(&mut self, i: u32, v: Vec2) {
-        self.vel[i as usize] = v;
+        if let Some(slot) = self.vel.get_mut(i as usize) {
+            *slot = v;
+        }
     }
 
     #[inline(always)]
     fn push(&self, i: u32) -> Vec2 {
-        self.push[i as usize]
+        self.push.get(i as usize).copied().unwrap_or(Vec2::ZERO)
     }
 
     #[inline(always)]
     fn set_push(&mut self, i: u32, v: Vec2) {
-        self.push[i as usize] = v;
+        if let Some(slot) = self.push.get_mut(i as usize) {
+            *slot = v;
+        }
     }
 
     #[inline(always)]
     fn delta(&self, i: u32) -> Vec2 {
-        self.delta[i as usize]
+        self.delta.get(i as usize).copied().unwrap_or(Vec2::ZERO)
     }
 }
 
@@ -350,14 +371,9 @@ impl Lanes {
     fn gather(k: &Block, get: impl Fn(u32) -> Vec2) -> Self {
         let mut s = Self::default();
         for l in 0..LANES {
-            if k.a[l] != NONE {
-                let v = get(k.a[l]);
-                (s.ax[l], s.ay[l]) = (v.x, v.y);
-            }
-            if k.b[l] != NONE {
-                let v = get(k.b[l]);
-                (s.bx[l], s.by[l]) = (v.x, v.y);
-            }
+            let (a, b) = (get(k.a[l]), get(k.b[l]));
+            (s.ax[l], s.ay[l]) = (a.x, a.y);
+            (s.bx[l], s.by[l]) = (b.x, b.y);
         }
         s
     }
@@ -366,12 +382,8 @@ impl Lanes {
     #[inline(always)]
     fn scatter(&self, k: &Block, mut set: impl FnMut(u32, Vec2)) {
         for l in 0..LANES {
-            if k.a[l] != NONE && k.inv_mass_a[l] > 0.0 {
-                set(k.a[l], Vec2::new(self.ax[l], self.ay[l]));
-            }
-            if k.b[l] != NONE && k.inv_mass_b[l] > 0.0 {
-                set(k.b[l], Vec2::new(self.bx[l], self.by[l]));
-            }
+            set(k.write_a[l], Vec2::new(self.ax[l], self.ay[l]));
+            set(k.write_b[l], Vec2::new(self.bx[l], self.by[l]));
         }
     }
 
@@ -520,8 +532,14 @@ mod tests {
             let mut moved = vec![false; bodies];
             for k in &c.blocks[range.clone()] {
                 for l in 0..LANES {
-                    for (body, inv_mass) in [(k.a[l], k.inv_mass_a[l]), (k.b[l], k.inv_mass_b[l])] {
-                        if body != NONE && inv_mass > 0.0 {
+                    let sides = [
+                        (k.a[l], k.write_a[l], k.inv_mass_a[l]),
+                        (k.b[l], k.write_b[l], k.inv_mass_b[l]),
+                    ];
+                    for (body, write, inv_mass) in sides {
+                        let moves = body != NONE && inv_mass > 0.0;
+                        assert_eq!(write, if moves { body } else { NONE });
+                        if moves {
                             assert!(!moved[body as usize], "body {body} twice in a colour");
                             moved[body as usize] = true;
                         }
@@ -546,7 +564,11 @@ mod tests {
             .collect();
         c.build(&floor, 11, &[]);
         assert_eq!(c.colour_count(), 2, "each body's two contacts, two colours");
-        assert_eq!(c.blocks.len(), 4, "ten contacts a colour: two blocks each");
+        assert_eq!(
+            c.blocks.len(),
+            2 * 10usize.div_ceil(LANES),
+            "ten contacts a colour"
+        );
         assert_colours_share_no_moved_body(&c, 11);
         // A chain longer than the colours wraps round.
         let long: Vec<_> = (0..200).map(|i| row(i, Some(i + 1), 1.0)).collect();

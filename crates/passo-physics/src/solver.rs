@@ -17,7 +17,7 @@
 //! sweep the bodies that moved beyond their reach (see `continuous`)
 //! ```
 //!
-//! The passes run colour by colour, eight contacts wide (see `colouring`),
+//! The passes run colour by colour, four or eight contacts wide (see `colouring`),
 //! in an order that keeps each body's contacts in the list's order; the
 //! functions here solve the contacts one by one, for those no colour took.
 //!
