@@ -4,14 +4,21 @@
 //! the same conditions.
 //!
 //! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|sleep|integration|rays`
+//! (and `--features parallel ... -- threads`: one thread against the pool)
 
 use passo_benches::{pyramid_world, rain_world, with_sleeping};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, ForceModels, QuadraticDrag, World, WorldSettings};
 use std::time::Instant;
 
-fn ms_per_step(mut world: World, warm: u32, ticks: u32) -> f64 {
-    world.set_parallel(false);
+fn ms_per_step(world: World, warm: u32, ticks: u32) -> f64 {
+    ms_per_step_on(world, false, warm, ticks)
+}
+
+/// Milliseconds per step on the calling thread alone, or (`parallel`)
+/// with the thread pool.
+fn ms_per_step_on(mut world: World, parallel: bool, warm: u32, ticks: u32) -> f64 {
+    world.set_parallel(parallel);
     for _ in 0..warm {
         world.step(1.0 / 60.0);
     }
@@ -88,6 +95,22 @@ fn main() {
             let w = with_sleeping(&pyramid_world(20), false);
             println!("pyramid 20 awake: {:.3} ms/step", ms_per_step(w, 60, 600));
         }
+        "threads" => {
+            // One thread against the pool (build with `--features parallel`).
+            for parallel in [false, true] {
+                let on = if parallel {
+                    "thread pool"
+                } else {
+                    "one thread"
+                };
+                let w = with_sleeping(&rain_world(10_000), false);
+                let ms = ms_per_step_on(w, parallel, 60, 240);
+                println!("rain 10000 awake, {on}: {ms:.2} ms/step");
+                let w = with_sleeping(&pyramid_world(100), false);
+                let ms = ms_per_step_on(w, parallel, 60, 240);
+                println!("pyramid 100 awake, {on}: {ms:.2} ms/step");
+            }
+        }
         "rays" => {
             let mut w = rain_world(10_000);
             w.set_parallel(false);
@@ -130,7 +153,7 @@ fn main() {
             );
         }
         _ => {
-            eprintln!("usage: steps integration|rain|pyramid|sleep|settle|rays");
+            eprintln!("usage: steps integration|rain|pyramid|sleep|settle|rays|threads");
             std::process::exit(2);
         }
     }

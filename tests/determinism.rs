@@ -180,27 +180,47 @@ fn big_rain(n: u32) -> World {
 
 #[test]
 fn the_same_bits_whatever_the_number_of_threads() {
-    let hashes = |threads: Option<usize>| {
+    // `threads`: step on a pool of that many workers; `None`: step from
+    // this thread (with `parallel`, the step enters the global pool itself).
+    let hashes = |parallel: bool, threads: Option<usize>| {
         let mut world = big_rain(6000);
         assert!(world.dynamic_len() >= passo_physics::constants::PARALLEL_MIN_ITEMS);
-        world.set_parallel(threads.is_some());
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads.unwrap_or(1))
-            .build()
-            .unwrap();
-        pool.install(|| {
+        world.set_parallel(parallel);
+        let mut run = || {
             (0..90)
                 .map(|_| {
                     world.step(1.0 / 60.0);
                     world.state_hash()
                 })
                 .collect::<Vec<u64>>()
-        })
+        };
+        let hashes = match threads {
+            Some(n) => rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+                .install(run),
+            None => run(),
+        };
+        // From 4 096 bodies the solver splits the pile in two regions and
+        // solves them side by side; here with thousands of contacts each.
+        let contacts = world.contacts().count();
+        assert!(contacts >= 4096, "{contacts} contacts");
+        hashes
     };
-    let single = hashes(None);
-    assert_eq!(hashes(Some(1)), single, "one worker thread");
-    assert_eq!(hashes(Some(2)), single, "two worker threads");
-    assert_eq!(hashes(Some(4)), single, "four worker threads on two cores");
+    let single = hashes(false, None);
+    assert_eq!(
+        hashes(true, None),
+        single,
+        "the global pool, entered by the step"
+    );
+    assert_eq!(hashes(true, Some(1)), single, "one worker thread");
+    assert_eq!(hashes(true, Some(2)), single, "two worker threads");
+    assert_eq!(
+        hashes(true, Some(4)),
+        single,
+        "four worker threads on two cores"
+    );
 }
 
 /// State hash of `every_force_model` after `TICKS` ticks, per integrator

@@ -143,27 +143,50 @@ pub(crate) struct Colouring {
     overflow_rows: Vec<u32>,
     /// Per dynamic body: the colours of the contacts that move it.
     masks: Vec<u128>,
-    /// Per row: its colour (`u8::MAX`: overflow).
+    /// Per picked row: its colour ([`OVERFLOW`]: none).
     colour_of: Vec<u8>,
 }
 
+/// The colour of a row left over, solved one by one.
+const OVERFLOW: u8 = u8::MAX;
+const _: () = assert!(COLOURS <= OVERFLOW as usize);
+
+/// The dynamic bodies a contact moves (inverse mass above zero): A's and
+/// B's indices, or `None`.
+#[inline(always)]
+pub(crate) fn moved(c: &Constraint) -> (Option<usize>, Option<usize>) {
+    let a = (c.inv_mass_a > 0.0).then_some(c.a as usize);
+    let b = c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0);
+    (a, b)
+}
+
 impl Colouring {
-    /// Colours `rows` (over `bodies` dynamic bodies) and lays them out in
-    /// blocks. `deep` marks the bodies whose contacts carry their push
-    /// (empty: none does). `O(rows + bodies)`.
-    pub(crate) fn build(&mut self, rows: &[Constraint], bodies: usize, deep: &[bool]) {
-        self.masks.clear();
-        self.masks.resize(bodies, 0);
+    /// Colours the rows `picked` (indices into `rows`, in order) over
+    /// `bodies` dynamic bodies, and lays them out in blocks. `deep` marks
+    /// the bodies whose contacts carry their push (empty: none does).
+    /// `O(picked)` once the body masks have grown to `bodies`.
+    pub(crate) fn build(
+        &mut self,
+        rows: &[Constraint],
+        picked: impl Iterator<Item = usize> + Clone,
+        bodies: usize,
+        deep: &[bool],
+    ) {
+        // The masks are all zero between builds: grown here, and the
+        // entries a build sets are cleared at its end.
+        if self.masks.len() < bodies {
+            self.masks.resize(bodies, 0);
+        }
         self.colour_of.clear();
         self.overflow.clear();
         self.overflow_rows.clear();
         let mut counts = [0usize; COLOURS];
-        for (i, c) in rows.iter().enumerate() {
-            let a = (c.inv_mass_a > 0.0).then_some(c.a as usize);
-            let b = c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0);
+        for i in picked.clone() {
+            let c = &rows[i];
+            let (a, b) = moved(c);
             let used = a.map_or(0, |a| self.masks[a]) | b.map_or(0, |b| self.masks[b]);
             if used == u128::MAX {
-                self.colour_of.push(u8::MAX);
+                self.colour_of.push(OVERFLOW);
                 self.overflow.push(*c);
                 self.overflow_rows.push(i as u32);
                 continue;
@@ -199,8 +222,13 @@ impl Colouring {
         }
         self.blocks.clear();
         self.blocks.resize(start, Block::PADDING);
-        for (i, (c, &colour)) in rows.iter().zip(&self.colour_of).enumerate() {
-            if colour == u8::MAX {
+        for (i, &colour) in picked.zip(&self.colour_of) {
+            let c = &rows[i];
+            let (a, b) = moved(c);
+            for body in [a, b].into_iter().flatten() {
+                self.masks[body] = 0;
+            }
+            if colour == OVERFLOW {
                 continue;
             }
             let slot = &mut next[colour as usize];
@@ -208,6 +236,14 @@ impl Colouring {
             self.blocks[*slot / LANES].set(*slot % LANES, i, c, carry);
             *slot += 1;
         }
+    }
+
+    /// Holds no contact.
+    pub(crate) fn clear(&mut self) {
+        self.blocks.clear();
+        self.colours.clear();
+        self.overflow.clear();
+        self.overflow_rows.clear();
     }
 
     /// Writes the impulses back to the rows they were built from.
@@ -230,65 +266,80 @@ impl Colouring {
         self.colours.len()
     }
 
-    /// Starts a substep (see [`solver::begin_substep`]).
-    pub(crate) fn begin_substep(
-        &mut self,
-        bodies: &mut SolverBodies<'_>,
-        params: &SolverParams,
-        parallel: bool,
-    ) {
-        let (warm, carry) = (params.warm_starting, params.carry_push);
-        self.for_each_block(bodies, parallel, |k, b| {
-            warm_start(k, b, warm, carry);
-            measure(k, b);
-        });
-        solver::begin_substep(&mut self.overflow, bodies, params);
-    }
-
-    /// Measures each contact's separation after the bodies moved (before
-    /// the relax passes).
-    pub(crate) fn measure(&mut self, bodies: &mut SolverBodies<'_>, parallel: bool) {
-        self.for_each_block(bodies, parallel, measure);
-    }
-
-    /// One Gauss-Seidel pass (see [`solver::solve`]).
-    pub(crate) fn solve(
-        &mut self,
-        bodies: &mut SolverBodies<'_>,
-        params: &SolverParams,
-        push: bool,
-        parallel: bool,
-    ) {
-        let rates = Rates::new(params);
-        if push {
-            self.for_each_block(bodies, parallel, |k, b| solve_block::<true>(k, b, &rates));
-        } else {
-            self.for_each_block(bodies, parallel, |k, b| solve_block::<false>(k, b, &rates));
-        }
-        solver::solve(&mut self.overflow, bodies, params, push);
-    }
-
-    /// Calls `f` on every block, colour after colour; a large colour's
-    /// blocks go to the thread pool when `parallel` is set (and the
-    /// feature is on).
-    fn for_each_block(
-        &mut self,
-        bodies: &mut SolverBodies<'_>,
-        parallel: bool,
-        f: impl Fn(&mut Block, &mut Bodies<'_>) + Sync,
-    ) {
-        let mut view = Bodies::new(bodies);
+    /// Runs `pass` over every block, colour after colour.
+    pub(crate) fn blocks<V: View>(&mut self, view: &mut V, pass: &Pass) {
         for range in &self.colours {
-            let _ = parallel;
             for k in &mut self.blocks[range.clone()] {
-                f(k, &mut view);
+                pass.run(k, view);
             }
+        }
+    }
+
+    /// Runs `pass` over the contacts left over, one by one.
+    pub(crate) fn overflow(&mut self, bodies: &mut SolverBodies<'_>, pass: &Pass) {
+        if self.overflow.is_empty() {
+            return;
+        }
+        match *pass {
+            Pass::Begin(ref params) => solver::begin_substep(&mut self.overflow, bodies, params),
+            // The scalar solver measures as it goes.
+            Pass::Measure => {}
+            Pass::Solve(ref params, _, push) => {
+                solver::solve(&mut self.overflow, bodies, params, push)
+            }
+        }
+    }
+
+    /// Runs `pass` over the blocks, then over the contacts left over.
+    pub(crate) fn run(&mut self, bodies: &mut SolverBodies<'_>, pass: &Pass) {
+        self.blocks(&mut Bodies::new(bodies), pass);
+        self.overflow(bodies, pass);
+    }
+
+    /// The dynamic bodies the blocks move, by colour (for checks).
+    #[cfg(debug_assertions)]
+    pub(crate) fn moved_bodies(&self) -> impl Iterator<Item = u32> + '_ {
+        self.blocks
+            .iter()
+            .flat_map(|k| k.write_a.iter().chain(&k.write_b))
+            .copied()
+            .filter(|&i| i != NONE)
+    }
+}
+
+/// What a pass over the contacts does.
+pub(crate) enum Pass {
+    /// Start a substep: warm start, carry the push in deep piles, measure
+    /// the separations (see [`solver::begin_substep`]).
+    Begin(SolverParams),
+    /// Measure the separations after the bodies moved.
+    Measure,
+    /// One Gauss-Seidel pass, with the push or without (see
+    /// [`solver::solve`]).
+    Solve(SolverParams, Rates, bool),
+}
+
+impl Pass {
+    pub(crate) fn solve(params: &SolverParams, push: bool) -> Self {
+        Self::Solve(*params, Rates::new(params), push)
+    }
+
+    #[inline(always)]
+    fn run<V: View>(&self, k: &mut Block, view: &mut V) {
+        match *self {
+            Pass::Begin(ref params) => {
+                warm_start(k, view, params.warm_starting, params.carry_push);
+                measure(k, view);
+            }
+            Pass::Measure => measure(k, view),
+            Pass::Solve(_, ref rates, true) => solve_block::<true, V>(k, view, rates),
+            Pass::Solve(_, ref rates, false) => solve_block::<false, V>(k, view, rates),
         }
     }
 }
 
 /// The solver's rates of one substep.
-struct Rates {
+pub(crate) struct Rates {
     inv_h: f32,
     push_rate: f32,
     slop: f32,
@@ -307,8 +358,18 @@ impl Rates {
     }
 }
 
-/// The bodies as blocks see them: the velocity, push and displacement
-/// arrays.
+/// How blocks reach the bodies: velocities, pushes and displacements by
+/// dynamic index. An index out of range ([`NONE`]) reads as zero and
+/// writes nothing: one bounds check serves as the padding check.
+pub(crate) trait View {
+    fn vel(&self, i: u32) -> Vec2;
+    fn set_vel(&mut self, i: u32, v: Vec2);
+    fn push(&self, i: u32) -> Vec2;
+    fn set_push(&mut self, i: u32, v: Vec2);
+    fn delta(&self, i: u32) -> Vec2;
+}
+
+/// The bodies' arrays, borrowed from the solver's view of them.
 pub(crate) struct Bodies<'a> {
     vel: &'a mut [Vec2],
     push: &'a mut [Vec2],
@@ -316,17 +377,16 @@ pub(crate) struct Bodies<'a> {
 }
 
 impl<'a> Bodies<'a> {
-    fn new(bodies: &'a mut SolverBodies<'_>) -> Self {
+    pub(crate) fn new(bodies: &'a mut SolverBodies<'_>) -> Self {
         Self {
             vel: &mut *bodies.vel,
             push: &mut *bodies.push,
             delta: bodies.delta,
         }
     }
+}
 
-    // An index out of range ([`NONE`]) reads as zero and writes nothing:
-    // one bounds check serves as the padding check.
-
+impl View for Bodies<'_> {
     #[inline(always)]
     fn vel(&self, i: u32) -> Vec2 {
         self.vel.get(i as usize).copied().unwrap_or(Vec2::ZERO)
@@ -398,7 +458,7 @@ impl Lanes {
 }
 
 /// Warm start and push carry of one block (see [`solver::begin_substep`]).
-fn warm_start(k: &mut Block, bodies: &mut Bodies<'_>, warm: bool, carry: bool) {
+fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, carry: bool) {
     let carries = carry && k.carry.iter().any(|&c| c);
     if carries {
         let mut p = Lanes::gather(k, |i| bodies.push(i));
@@ -431,7 +491,7 @@ fn warm_start(k: &mut Block, bodies: &mut Bodies<'_>, warm: bool, carry: bool) {
 /// displacement along the normal since the step began (see
 /// `SolverBodies::separation`). The bodies move only between the passes,
 /// so the passes of a substep share it.
-fn measure(k: &mut Block, bodies: &mut Bodies<'_>) {
+fn measure<V: View>(k: &mut Block, bodies: &mut V) {
     let d = Lanes::gather(k, |i| bodies.delta(i));
     for l in 0..LANES {
         let (nx, ny) = (k.nx[l], k.ny[l]);
@@ -443,7 +503,7 @@ fn measure(k: &mut Block, bodies: &mut Bodies<'_>) {
 /// One Gauss-Seidel pass over a block's lanes (see [`solver::solve`]):
 /// the same rows in the same arithmetic, lane by lane.
 #[inline(always)]
-fn solve_block<const PUSH: bool>(k: &mut Block, bodies: &mut Bodies<'_>, r: &Rates) {
+fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut V, r: &Rates) {
     let mut v = Lanes::gather(k, |i| bodies.vel(i));
     let mut p = if PUSH {
         Lanes::gather(k, |i| bodies.push(i))
@@ -554,7 +614,7 @@ mod tests {
         // A chain 0-1-2-3-4: each link after the one before, as in the list.
         let chain: Vec<_> = (0..4).map(|i| row(i, Some(i + 1), 1.0)).collect();
         let mut c = Colouring::default();
-        c.build(&chain, 5, &[]);
+        c.build(&chain, 0..chain.len(), 5, &[]);
         assert_eq!(c.colour_of, [0, 1, 2, 3]);
         assert_colours_share_no_moved_body(&c, 5);
         // Ten bodies each on the ground and on a kinematic body 10: the
@@ -562,7 +622,7 @@ mod tests {
         let floor: Vec<_> = (0..10)
             .flat_map(|i| [row(i, None, 0.0), row(i, Some(10), 0.0)])
             .collect();
-        c.build(&floor, 11, &[]);
+        c.build(&floor, 0..floor.len(), 11, &[]);
         assert_eq!(c.colour_count(), 2, "each body's two contacts, two colours");
         assert_eq!(
             c.blocks.len(),
@@ -572,7 +632,7 @@ mod tests {
         assert_colours_share_no_moved_body(&c, 11);
         // A chain longer than the colours wraps round.
         let long: Vec<_> = (0..200).map(|i| row(i, Some(i + 1), 1.0)).collect();
-        c.build(&long, 201, &[]);
+        c.build(&long, 0..long.len(), 201, &[]);
         assert_eq!(c.colour_of[COLOURS - 1], (COLOURS - 1) as u8);
         assert_eq!(c.colour_of[COLOURS], 0);
         assert_colours_share_no_moved_body(&c, 201);
@@ -583,7 +643,7 @@ mod tests {
         // Body 0 touches 200 others: COLOURS coloured, the rest left over.
         let mut rows: Vec<_> = (1..=200).map(|i| row(0, Some(i), 1.0)).collect();
         let mut c = Colouring::default();
-        c.build(&rows, 201, &[]);
+        c.build(&rows, 0..rows.len(), 201, &[]);
         assert_eq!(c.colour_count(), COLOURS);
         assert_eq!(c.overflow.len(), 200 - COLOURS);
         assert_colours_share_no_moved_body(&c, 201);
@@ -646,7 +706,7 @@ mod tests {
         };
         // The scalar solver in the list's order.
         let mut colouring = Colouring::default();
-        colouring.build(&rows, 3, &[]);
+        colouring.build(&rows, 0..rows.len(), 3, &[]);
         assert_eq!(colouring.colour_count(), 3, "a chain of three");
         let mut scalar_rows = rows.clone();
         let (mut vel, mut push) = (vel0.clone(), vec![Vec2::ZERO; 3]);
@@ -666,9 +726,9 @@ mod tests {
             delta: &delta,
             deep: &[],
         };
-        colouring.measure(&mut bodies, false);
+        colouring.run(&mut bodies, &Pass::Measure);
         for p in [true, true, false] {
-            colouring.solve(&mut bodies, &params, p, false);
+            colouring.run(&mut bodies, &Pass::solve(&params, p));
         }
         let mut wide_rows = rows.clone();
         colouring.store(&mut wide_rows);

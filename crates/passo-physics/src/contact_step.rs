@@ -5,6 +5,7 @@
 //! each is skipped when the plan does not need it.
 
 use crate::bodies::SpeedLimits;
+use crate::colouring::Pass;
 use crate::constants::DEEP_OVERLAP;
 use crate::contact_world::{ContactWorld, StepParams};
 use crate::integrator::integrate_velocity;
@@ -136,6 +137,25 @@ impl World {
     /// The contact step: find the contacts, run the substeps, finish, and
     /// record what happened.
     pub(crate) fn step_with_contacts(&mut self, dt: f32, settings: &ContactSettings) {
+        // A large world steps on a worker of the thread pool: the stages hand
+        // work to the other workers dozens of times a step (the regions'
+        // passes, the chunks), which costs a few microseconds from a worker
+        // and ten times that from a thread outside the pool. (Rain of
+        // 10 000, two threads: 2.25 ms per step on a worker, 2.96 ms from
+        // outside, 2.98 ms on one thread.)
+        #[cfg(feature = "parallel")]
+        if self.parallel
+            && rayon::current_thread_index().is_none()
+            && self.dynamic.len() >= crate::constants::PARALLEL_MIN_ITEMS
+        {
+            rayon::scope(|_| self.step_with_contacts_here(dt, settings));
+            return;
+        }
+        self.step_with_contacts_here(dt, settings);
+    }
+
+    /// [`step_with_contacts`](Self::step_with_contacts) on this thread.
+    fn step_with_contacts_here(&mut self, dt: f32, settings: &ContactSettings) {
         let mut cw = self
             .contacts
             .take()
@@ -162,8 +182,8 @@ impl World {
                 .motion
                 .piles
                 .find(&cw.solved.rows, self.dynamic.len(), DEEP_OVERLAP);
-        cw.colouring
-            .build(&cw.solved.rows, self.dynamic.len(), &cw.motion.piles.deep);
+        cw.regions
+            .build(&cw.solved.rows, &cw.motion.start, &cw.motion.piles.deep);
         if plan.hold_kinematic {
             self.hold_kinematic();
         }
@@ -185,7 +205,7 @@ impl World {
             self.integrate_positions(&mut cw.motion, &plan, &correction);
             self.relax(&mut cw, &plan);
         }
-        cw.colouring.store(&mut cw.solved.rows);
+        cw.regions.store(&mut cw.solved.rows);
         if plan.substeps > 0 && plan.sweep {
             let stops = cw.sweep_fast_bodies(&mut self.dynamic, &self.statics);
             self.stats.swept_stops = self.stats.swept_stops.saturating_add(stops as u64);
@@ -271,13 +291,14 @@ impl World {
     /// the Gauss-Seidel passes with the push.
     fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
         let ContactWorld {
-            colouring, motion, ..
+            regions, motion, ..
         } = cw;
         motion.push.fill(Vec2::ZERO);
         let mut bodies = motion.bodies(&mut self.dynamic.vel);
-        colouring.begin_substep(&mut bodies, &plan.solver, self.parallel);
+        regions.run(&mut bodies, &Pass::Begin(plan.solver), self.parallel);
+        let pass = Pass::solve(&plan.solver, true);
         for _ in 0..plan.solver.iterations {
-            colouring.solve(&mut bodies, &plan.solver, true, self.parallel);
+            regions.run(&mut bodies, &pass, self.parallel);
         }
     }
 
@@ -314,12 +335,13 @@ impl World {
     /// Substep stage: velocity passes at the new positions.
     fn relax(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
         let ContactWorld {
-            colouring, motion, ..
+            regions, motion, ..
         } = cw;
         let mut bodies = motion.bodies(&mut self.dynamic.vel);
-        colouring.measure(&mut bodies, self.parallel);
+        regions.run(&mut bodies, &Pass::Measure, self.parallel);
+        let pass = Pass::solve(&plan.solver, false);
         for _ in 0..plan.solver.relax_iterations {
-            colouring.solve(&mut bodies, &plan.solver, false, self.parallel);
+            regions.run(&mut bodies, &pass, self.parallel);
         }
     }
 

@@ -5,13 +5,13 @@
 
 use crate::bodies::{Colliders, DynamicBodies, StaticBodies};
 use crate::collider::ColliderRef;
-use crate::colouring::Colouring;
 use crate::constraint::{Constraint, ContactInfo, ContactList, Merge};
 use crate::contact_state::{ContactState, names_bodies};
 use crate::continuous::Sweeps;
 use crate::events::EventTracker;
 use crate::narrow_phase::{Narrow, NarrowPhase, Outcome};
 use crate::proxies::{Proxies, ProxyMargin};
+use crate::regions::ContactRegions;
 use crate::sleeping::{SleepingContacts, has_awake_body};
 use crate::solver::Motion;
 use crate::{BodyId, ContactEvents, ContactSettings, SensorPair};
@@ -42,8 +42,8 @@ pub(crate) struct ContactWorld {
     pub sleeping: SleepingContacts,
     /// Per-body buffers of the substeps.
     pub motion: Motion,
-    /// The solved contacts in colours, as the substeps solve them.
-    pub colouring: Colouring,
+    /// The solved contacts by region and colour, as the substeps solve them.
+    pub regions: ContactRegions,
     sweeps: Sweeps,
     events: EventTracker,
     /// Room for merging contacts found again, kept between steps.

@@ -1,0 +1,399 @@
+//! The contacts of a large step in two regions solved side by side, then
+//! the contacts between them.
+//!
+//! A world of at least [`SPLIT_BODIES`] dynamic bodies splits them
+//! in two at the middle of their extent along its wider axis (positions at
+//! the start of the step). Each contact goes to the region
+//! of the bodies it moves, or between the regions when it moves a body of
+//! each; each group is coloured on its own (see `colouring`). A pass solves
+//! the two regions, on two threads with the `parallel` feature, then the
+//! contacts between them, then the contacts no colour took.
+//!
+//! The regions move disjoint sets of bodies and read only their own bodies
+//! and bodies no contact moves (static, kinematic, sleeping), so the order
+//! in which they run does not matter: the bits are the same on one thread
+//! or several. Whether a step splits depends on the world alone, never on
+//! threads or features, so the bits are also the same with
+//! `World::set_parallel` on or off, and in builds with the feature or
+//! without.
+
+#[cfg(feature = "parallel")]
+use crate::colouring::View;
+use crate::colouring::{Bodies, Colouring, Pass, moved};
+use crate::constraint::Constraint;
+use crate::solver::SolverBodies;
+use glam::Vec2;
+
+/// Dynamic bodies from which a step splits into regions: 4 096 (as the
+/// other stages go parallel, see `PARALLEL_MIN_ITEMS`), where a region's
+/// pass is long enough (tens of microseconds) that handing it to another
+/// thread pays. A count of bodies, not of contacts, so that a world splits
+/// or not for good: bodies far away, or contacts coming and going, do not
+/// change how a smaller world's contacts are solved.
+pub(crate) const SPLIT_BODIES: usize = crate::constants::PARALLEL_MIN_ITEMS;
+
+/// The step's contacts by region, in colours.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ContactRegions {
+    /// Region 0, region 1, and the contacts between them; all in the first
+    /// when the step does not split.
+    groups: [Colouring; 3],
+    split: bool,
+    /// Per dynamic body: its region.
+    region: Vec<u8>,
+    /// Each group's contacts, by index in the rows.
+    picked: [Vec<u32>; 3],
+}
+
+impl ContactRegions {
+    /// Splits (or not) and colours `rows`, over the dynamic bodies at
+    /// positions `pos`; `deep` as for [`Colouring::build`].
+    pub(crate) fn build(&mut self, rows: &[Constraint], pos: &[Vec2], deep: &[bool]) {
+        let bodies = pos.len();
+        self.split = bodies >= SPLIT_BODIES;
+        if !self.split {
+            self.groups[0].build(rows, 0..rows.len(), bodies, deep);
+            self.groups[1].clear();
+            self.groups[2].clear();
+            return;
+        }
+        self.split_bodies(pos);
+        let region = &self.region;
+        for g in &mut self.picked {
+            g.clear();
+        }
+        for (i, c) in rows.iter().enumerate() {
+            let g = match moved(c) {
+                (Some(a), Some(b)) if region[a] != region[b] => 2,
+                (Some(x), _) | (None, Some(x)) => region[x],
+                (None, None) => 0,
+            };
+            self.picked[g as usize].push(i as u32);
+        }
+        for (colouring, picked) in self.groups.iter_mut().zip(&self.picked) {
+            let picked = picked.iter().map(|&i| i as usize);
+            colouring.build(rows, picked, bodies, deep);
+        }
+        // What makes the regions safe to run side by side (see `Shared`).
+        #[cfg(debug_assertions)]
+        for r in 0..2 {
+            let moved = self.groups[r].moved_bodies();
+            assert!(
+                moved
+                    .into_iter()
+                    .all(|i| self.region[i as usize] == r as u8)
+            );
+        }
+    }
+
+    /// Each body's region: 0 below the middle of the bodies' extent along
+    /// its wider axis, 1 from it on. One pass (a median balanced uneven
+    /// piles better but cost 4 % of a step on one thread).
+    fn split_bodies(&mut self, pos: &[Vec2]) {
+        let (lo, hi) = pos.iter().fold((Vec2::MAX, Vec2::MIN), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
+        let axis = usize::from(hi.y - lo.y > hi.x - lo.x);
+        let middle = 0.5 * lo[axis] + 0.5 * hi[axis];
+        self.region.clear();
+        self.region
+            .extend(pos.iter().map(|p| u8::from(p[axis] >= middle)));
+    }
+
+    /// Writes the impulses back to the rows.
+    pub(crate) fn store(&self, rows: &mut [Constraint]) {
+        for g in &self.groups {
+            g.store(rows);
+        }
+    }
+
+    /// Runs `pass` over every contact: the regions (side by side when
+    /// `parallel`), the contacts between them, the contacts left over.
+    pub(crate) fn run(&mut self, bodies: &mut SolverBodies<'_>, pass: &Pass, parallel: bool) {
+        let [first, second, between] = &mut self.groups;
+        if !self.split {
+            first.run(bodies, pass);
+            return;
+        }
+        both(first, second, bodies, pass, parallel);
+        first.overflow(bodies, pass);
+        second.overflow(bodies, pass);
+        between.run(bodies, pass);
+    }
+
+    /// Whether this step split (for tests).
+    #[cfg(test)]
+    pub(crate) fn is_split(&self) -> bool {
+        self.split
+    }
+}
+
+/// The blocks of the two regions: on two threads when `parallel` (and the
+/// feature is on), else one after the other; the same bits either way.
+fn both(
+    first: &mut Colouring,
+    second: &mut Colouring,
+    bodies: &mut SolverBodies<'_>,
+    pass: &Pass,
+    parallel: bool,
+) {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        let shared = Shared::new(bodies);
+        rayon::join(
+            || first.blocks(&mut { shared }, pass),
+            || second.blocks(&mut { shared }, pass),
+        );
+        return;
+    }
+    let _ = parallel;
+    let mut view = Bodies::new(bodies);
+    first.blocks(&mut view, pass);
+    second.blocks(&mut view, pass);
+}
+
+/// The bodies' arrays shared by the two regions' threads.
+///
+/// Soundness: built from a `&mut SolverBodies` that it borrows for its
+/// whole life (`'a`), so nothing else reads or writes the arrays meanwhile,
+/// and every access is checked against their length. Copies go to the two
+/// closures of one `rayon::join` in [`both`], each running the blocks of
+/// one region. A region's blocks write only the bodies of that region (a
+/// contact is in region `r` only if every body it moves is; checked in
+/// debug builds by [`ContactRegions::build`]) and read only those and
+/// bodies that no contact moves (inverse mass zero, the same for all of a
+/// body's contacts in a step). So no element is written by one thread while
+/// the other reads or writes it. Accesses go through raw pointers, never
+/// through references, so the two copies do not assert exclusive borrows.
+#[cfg(feature = "parallel")]
+#[derive(Clone, Copy)]
+struct Shared<'a> {
+    vel: *mut Vec2,
+    push: *mut Vec2,
+    delta: *const Vec2,
+    len: usize,
+    _borrow: std::marker::PhantomData<&'a mut [Vec2]>,
+}
+
+// SAFETY: see the type's documentation: the threads that share it touch
+// disjoint elements, except elements only read.
+#[cfg(feature = "parallel")]
+unsafe impl Send for Shared<'_> {}
+// SAFETY: as for `Send`.
+#[cfg(feature = "parallel")]
+unsafe impl Sync for Shared<'_> {}
+
+#[cfg(feature = "parallel")]
+impl<'a> Shared<'a> {
+    fn new(bodies: &'a mut SolverBodies<'_>) -> Self {
+        let len = bodies.vel.len();
+        assert!(bodies.push.len() == len && bodies.delta.len() == len);
+        Self {
+            vel: bodies.vel.as_mut_ptr(),
+            push: bodies.push.as_mut_ptr(),
+            delta: bodies.delta.as_ptr(),
+            len,
+            _borrow: std::marker::PhantomData,
+        }
+    }
+}
+
+#[cfg(feature = "parallel")]
+impl View for Shared<'_> {
+    // An index out of range ([`NONE`](crate::colouring)) reads as zero and
+    // writes nothing, as for `Bodies`.
+
+    #[inline(always)]
+    fn vel(&self, i: u32) -> Vec2 {
+        if (i as usize) < self.len {
+            // SAFETY: in bounds; no other thread writes it (see the type).
+            unsafe { self.vel.add(i as usize).read() }
+        } else {
+            Vec2::ZERO
+        }
+    }
+
+    #[inline(always)]
+    fn set_vel(&mut self, i: u32, v: Vec2) {
+        if (i as usize) < self.len {
+            // SAFETY: in bounds; this thread's region only (see the type).
+            unsafe { self.vel.add(i as usize).write(v) }
+        }
+    }
+
+    #[inline(always)]
+    fn push(&self, i: u32) -> Vec2 {
+        if (i as usize) < self.len {
+            // SAFETY: in bounds; no other thread writes it (see the type).
+            unsafe { self.push.add(i as usize).read() }
+        } else {
+            Vec2::ZERO
+        }
+    }
+
+    #[inline(always)]
+    fn set_push(&mut self, i: u32, v: Vec2) {
+        if (i as usize) < self.len {
+            // SAFETY: in bounds; this thread's region only (see the type).
+            unsafe { self.push.add(i as usize).write(v) }
+        }
+    }
+
+    #[inline(always)]
+    fn delta(&self, i: u32) -> Vec2 {
+        if (i as usize) < self.len {
+            // SAFETY: in bounds; only read while the view lives.
+            unsafe { self.delta.add(i as usize).read() }
+        } else {
+            Vec2::ZERO
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::collider::ColliderRef;
+    use crate::solver::SolverParams;
+
+    /// A `side` × `side` lattice of boxes, each touching its right and upper
+    /// neighbours, the bottom row on the ground, with some velocity and
+    /// overlap: a pile, in positions, velocities and contacts.
+    fn lattice(side: u32) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>) {
+        let index = |x: u32, y: u32| y * side + x;
+        let (mut pos, mut vel, mut rows) = (Vec::new(), Vec::new(), Vec::new());
+        for y in 0..side {
+            for x in 0..side {
+                pos.push(Vec2::new(x as f32, y as f32));
+                vel.push(Vec2::new(((x * 7 + y * 3) % 5) as f32 - 2.0, -1.0));
+            }
+        }
+        let contact = |a: u32, b: ColliderRef, normal: Vec2, depth: f32| Constraint {
+            a,
+            b,
+            normal,
+            base_separation: -depth,
+            inv_mass_a: 1.0,
+            inv_mass_b: if b.is_static() { 0.0 } else { 1.0 },
+            mass: if b.is_static() { 1.0 } else { 0.5 },
+            friction: 0.6,
+            normal_impulse: 0.1,
+            tangent_impulse: 0.01,
+            push_impulse: 0.0,
+            max_normal_impulse: 0.0,
+        };
+        for y in 0..side {
+            for x in 0..side {
+                let a = index(x, y);
+                let depth = ((x + y) % 4) as f32 * 0.004;
+                if y == 0 {
+                    rows.push(contact(a, ColliderRef::fixed(0), Vec2::Y, depth));
+                }
+                if x + 1 < side {
+                    rows.push(contact(
+                        a,
+                        ColliderRef::dynamic(index(x + 1, y)),
+                        Vec2::X,
+                        depth,
+                    ));
+                }
+                if y + 1 < side {
+                    rows.push(contact(
+                        a,
+                        ColliderRef::dynamic(index(x, y + 1)),
+                        Vec2::Y,
+                        depth,
+                    ));
+                }
+            }
+        }
+        (pos, vel, rows)
+    }
+
+    fn params() -> SolverParams {
+        SolverParams {
+            h: 1.0 / 240.0,
+            warm_starting: true,
+            iterations: 2,
+            relax_iterations: 1,
+            position_correction: 0.2,
+            push_out_speed: 3.0,
+            slop: 0.005,
+            restitution_threshold: 1.0,
+            carry_push: false,
+        }
+    }
+
+    /// Runs a substep's passes (warm start, two passes with the push, one
+    /// without) and returns the velocities, pushes and rows.
+    fn substep(side: u32, parallel: bool) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>, bool) {
+        let (pos, mut vel, mut rows) = lattice(side);
+        let mut regions = ContactRegions::default();
+        regions.build(&rows, &pos, &[]);
+        let mut push = vec![Vec2::ZERO; pos.len()];
+        let delta = vec![Vec2::ZERO; pos.len()];
+        let mut bodies = SolverBodies {
+            vel: &mut vel,
+            push: &mut push,
+            delta: &delta,
+            deep: &[],
+        };
+        let p = params();
+        regions.run(&mut bodies, &Pass::Begin(p), parallel);
+        for push in [true, true, false] {
+            regions.run(&mut bodies, &Pass::solve(&p, push), parallel);
+        }
+        regions.store(&mut rows);
+        (vel, push, rows, regions.is_split())
+    }
+
+    #[test]
+    fn a_large_pile_splits_in_halves_with_few_contacts_between() {
+        let (pos, _, rows) = lattice(80);
+        assert!(pos.len() >= SPLIT_BODIES);
+        let mut regions = ContactRegions::default();
+        regions.build(&rows, &pos, &[]);
+        assert!(regions.is_split());
+        let count = |g: usize| regions.picked[g].len();
+        // Split at x = 39.5: each half 40 columns, 80 contacts across.
+        assert_eq!(regions.region.iter().filter(|&&r| r == 0).count(), 3200);
+        assert_eq!(count(2), 80);
+        assert_eq!(count(0) + count(1) + count(2), rows.len());
+        // A small pile does not split.
+        let (pos, _, rows) = lattice(20);
+        regions.build(&rows, &pos, &[]);
+        assert!(!regions.is_split());
+    }
+
+    #[test]
+    fn every_contact_is_solved_once_whether_split_or_not() {
+        // Store writes every row back: mark the impulses and count.
+        for side in [20, 80] {
+            let (_, _, rows, _) = substep(side, false);
+            let (_, _, original) = lattice(side);
+            let changed = rows
+                .iter()
+                .zip(&original)
+                .filter(|(r, o)| r.normal_impulse != o.normal_impulse)
+                .count();
+            assert!(changed > rows.len() * 9 / 10, "{changed} of {}", rows.len());
+        }
+    }
+
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn the_regions_give_the_same_bits_on_any_number_of_threads() {
+        let one = substep(80, false);
+        assert!(one.3, "the pile splits");
+        for threads in [1, 2, 4] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let many = pool.install(|| substep(80, true));
+            assert_eq!(many.0, one.0, "velocities, {threads} threads");
+            assert_eq!(many.1, one.1, "pushes, {threads} threads");
+            assert_eq!(many.2, one.2, "impulses, {threads} threads");
+        }
+    }
+}
