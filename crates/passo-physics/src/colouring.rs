@@ -23,8 +23,12 @@
 //! arithmetic (plain loops over arrays, which the compiler turns into
 //! vector instructions), and scatters the bodies back. A colour's last
 //! block is padded with lanes that name no body and whose masses are
-//! zero. Contacts left over when a body has more than [`COLOURS`]
-//! contacts are solved one by one after the colours by the scalar solver.
+//! zero. A contact whose two bodies already have every one of the
+//! [`COLOURS`] between them is left over, and solved one by one after the
+//! colours by the scalar solver (`solver`), which has the same arithmetic
+//! and, like the blocks, never writes a body the contact does not move. So
+//! is a whole group whose blocks would be mostly padding (a stack: one
+//! contact a colour), where one by one is faster.
 
 use crate::constraint::Constraint;
 use crate::solver::{self, SolverBodies, SolverParams};
@@ -151,8 +155,9 @@ pub(crate) struct Colouring {
 }
 
 /// Lanes per contact above which the contacts are solved one by one
-/// instead: 2, blocks less than half full. A stack of ten boxes (one
-/// contact a colour) stepped in 5.1 µs in blocks and 3.6 µs one by one.
+/// instead: 2, blocks (counted eight lanes wide whatever [`LANES`] is)
+/// less than half full. A stack of ten boxes (one contact a colour)
+/// stepped in 5.1 µs in blocks and 3.7 µs one by one.
 const MAX_PADDING: usize = 2;
 
 /// The colour of a row left over, solved one by one.
@@ -229,14 +234,13 @@ impl Colouring {
             start = end;
         }
         self.blocks.clear();
+        // Judged at a fixed width, so that the choice (and the bits, once a
+        // chain wraps round) is the same with four lanes or eight.
         let coloured = self.colour_of.len() - self.overflow.len();
+        let lanes: usize = counts.iter().map(|&n| n.div_ceil(8) * 8).sum();
         #[cfg(test)]
-        let coloured = if self.blocks_always {
-            start * LANES
-        } else {
-            coloured
-        };
-        if start * LANES > MAX_PADDING * coloured {
+        let coloured = if self.blocks_always { lanes } else { coloured };
+        if lanes > MAX_PADDING * coloured {
             // Mostly padding (a stack: one contact a colour): one by one
             // in the list's order is faster, and gives the same bits while
             // no chain wraps round the colours.
@@ -292,6 +296,20 @@ impl Colouring {
         }
     }
 
+    /// Sets each contact's normal impulse to its row's index, in its lane
+    /// or in the overflow (to check that `store` puts every one back).
+    #[cfg(test)]
+    pub(crate) fn mark_rows(&mut self) {
+        for k in &mut self.blocks {
+            for l in 0..LANES {
+                k.normal_impulse[l] = k.row[l] as f32;
+            }
+        }
+        for (c, &row) in self.overflow.iter_mut().zip(&self.overflow_rows) {
+            c.normal_impulse = row as f32;
+        }
+    }
+
     /// Colours in use.
     #[cfg(test)]
     pub(crate) fn colour_count(&self) -> usize {
@@ -328,12 +346,22 @@ impl Colouring {
         self.overflow(bodies, pass);
     }
 
-    /// The dynamic bodies the blocks move, by colour (for checks).
+    /// The dynamic bodies the blocks move (for checks).
     #[cfg(debug_assertions)]
     pub(crate) fn moved_bodies(&self) -> impl Iterator<Item = u32> + '_ {
         self.blocks
             .iter()
             .flat_map(|k| k.write_a.iter().chain(&k.write_b))
+            .copied()
+            .filter(|&i| i != NONE)
+    }
+
+    /// The dynamic bodies the blocks read (for checks).
+    #[cfg(debug_assertions)]
+    pub(crate) fn read_bodies(&self) -> impl Iterator<Item = u32> + '_ {
+        self.blocks
+            .iter()
+            .flat_map(|k| k.a.iter().chain(&k.b))
             .copied()
             .filter(|&i| i != NONE)
     }
@@ -739,13 +767,24 @@ mod tests {
                 tangent_impulse: 0.1,
                 ..row(2, Some(1), 0.5)
             },
+            // Body 3 is kinematic (held): read, never written.
+            Constraint {
+                normal: Vec2::new(0.0, -1.0),
+                ..row(2, Some(3), 0.0)
+            },
         ];
         let vel0 = vec![
             Vec2::new(0.3, -2.0),
             Vec2::new(-1.0, 0.5),
             Vec2::new(0.2, 0.1),
+            Vec2::new(-0.0, 1.5),
         ];
-        let delta = vec![Vec2::new(0.0, -0.01), Vec2::ZERO, Vec2::new(0.001, 0.0)];
+        let delta = vec![
+            Vec2::new(0.0, -0.01),
+            Vec2::ZERO,
+            Vec2::new(0.001, 0.0),
+            Vec2::ZERO,
+        ];
         let params = SolverParams {
             h: 1.0 / 240.0,
             warm_starting: true,
@@ -762,11 +801,11 @@ mod tests {
             blocks_always: true,
             ..Colouring::default()
         };
-        colouring.build(&rows, 0..rows.len(), 3, &[]);
-        assert_eq!(colouring.colour_count(), 3, "a chain of three");
+        colouring.build(&rows, 0..rows.len(), 4, &[]);
+        assert_eq!(colouring.colour_count(), 4, "a chain of four");
         assert!(colouring.overflow.is_empty(), "every contact in a block");
         let mut scalar_rows = rows.clone();
-        let (mut vel, mut push) = (vel0.clone(), vec![Vec2::ZERO; 3]);
+        let (mut vel, mut push) = (vel0.clone(), vec![Vec2::ZERO; 4]);
         let mut bodies = SolverBodies {
             vel: &mut vel,
             push: &mut push,
@@ -776,7 +815,7 @@ mod tests {
         for p in [true, true, false] {
             solver::solve(&mut scalar_rows, &mut bodies, &params, p);
         }
-        let (mut wide_vel, mut wide_push) = (vel0, vec![Vec2::ZERO; 3]);
+        let (mut wide_vel, mut wide_push) = (vel0, vec![Vec2::ZERO; 4]);
         let mut bodies = SolverBodies {
             vel: &mut wide_vel,
             push: &mut wide_push,
@@ -789,8 +828,30 @@ mod tests {
         }
         let mut wide_rows = rows.clone();
         colouring.store(&mut wide_rows);
-        assert_eq!(wide_vel, vel);
-        assert_eq!(wide_push, push);
-        assert_eq!(wide_rows, scalar_rows);
+        assert_eq!(
+            wide_vel[3].x.to_bits(),
+            (-0.0f32).to_bits(),
+            "held body untouched"
+        );
+        // Bit for bit (`==` would let -0 pass for +0).
+        let bits = |v: &[Vec2]| {
+            v.iter()
+                .flat_map(|v| [v.x.to_bits(), v.y.to_bits()])
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&wide_vel), bits(&vel));
+        assert_eq!(bits(&wide_push), bits(&push));
+        for (w, s) in wide_rows.iter().zip(&scalar_rows) {
+            let impulses = |c: &Constraint| {
+                [
+                    c.normal_impulse,
+                    c.tangent_impulse,
+                    c.push_impulse,
+                    c.max_normal_impulse,
+                ]
+                .map(f32::to_bits)
+            };
+            assert_eq!(impulses(w), impulses(s));
+        }
     }
 }

@@ -17,9 +17,11 @@
 //! sweep the bodies that moved beyond their reach (see `continuous`)
 //! ```
 //!
-//! The passes run colour by colour, four or eight contacts wide (see `colouring`),
-//! in an order that keeps each body's contacts in the list's order; the
-//! functions here solve the contacts one by one, for those no colour took.
+//! The passes run colour by colour, four or eight contacts wide (see
+//! `colouring`), in an order that keeps each body's contacts in the list's
+//! order; the functions here solve contacts one by one, with the same
+//! arithmetic: for the contacts no colour took, and for groups whose blocks
+//! would be mostly padding.
 //!
 //! The normal row is a hard constraint `v_n >= 0` with accumulated-impulse
 //! clamping (`lambda >= 0`) and warm starting, so a resting contact's impulse
@@ -89,9 +91,13 @@ impl SolverBodies<'_> {
     }
 
     #[inline(always)]
+    /// Applies `impulse`: minus to A, plus to B, to the bodies the
+    /// contact moves (a held body is not written, as in the wide passes).
     fn apply(&mut self, c: &Constraint, impulse: Vec2) {
-        self.vel[c.a as usize] -= impulse * c.inv_mass_a;
-        if let Some(b) = c.b.dynamic_index() {
+        if c.inv_mass_a > 0.0 {
+            self.vel[c.a as usize] -= impulse * c.inv_mass_a;
+        }
+        if let Some(b) = c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0) {
             self.vel[b] += impulse * c.inv_mass_b;
         }
     }
@@ -130,8 +136,10 @@ pub(crate) fn begin_substep(
     for c in constraints {
         if carry && c.push_impulse > 0.0 && bodies.deep[c.a as usize] {
             let p = c.normal * c.push_impulse;
-            bodies.push[c.a as usize] -= p * c.inv_mass_a;
-            if let Some(b) = c.b.dynamic_index() {
+            if c.inv_mass_a > 0.0 {
+                bodies.push[c.a as usize] -= p * c.inv_mass_a;
+            }
+            if let Some(b) = c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0) {
                 bodies.push[b] += p * c.inv_mass_b;
             }
         } else {
@@ -157,16 +165,22 @@ pub(crate) fn solve(
     let inv_h = 1.0 / params.h;
     let push_rate = params.position_correction * inv_h;
     for c in constraints.iter_mut() {
-        // `ib` is only read for a dynamic B.
+        // `ib` is only read for a dynamic B. A body the contact does not
+        // move (inverse mass zero) is read, never written, as in the wide
+        // passes of `colouring`.
         let (ia, ib) = (c.a as usize, c.b.index());
         let b_static = c.is_static();
+        let (writes_a, writes_b) = (c.inv_mass_a > 0.0, !b_static && c.inv_mass_b > 0.0);
         let (mut va, mut vb) = bodies.velocity(c);
         let tangent = c.normal.perp();
 
         // Coulomb friction: |lambda_t| <= mu lambda_n.
         let vt = (vb - va).dot(tangent);
         let max_friction = c.friction * c.normal_impulse;
-        let new_t = (c.tangent_impulse - c.mass * vt).clamp(-max_friction, max_friction);
+        // `max` then `min`, as the wide passes (`clamp` differs for NaN).
+        let new_t = (c.tangent_impulse - c.mass * vt)
+            .max(-max_friction)
+            .min(max_friction);
         let impulse = tangent * (new_t - c.tangent_impulse);
         c.tangent_impulse = new_t;
         va -= impulse * c.inv_mass_a;
@@ -183,15 +197,21 @@ pub(crate) fn solve(
         c.normal_impulse = new_n;
         c.max_normal_impulse = c.max_normal_impulse.max(new_n);
         va -= impulse * c.inv_mass_a;
-        bodies.vel[ia] = va;
+        if writes_a {
+            bodies.vel[ia] = va;
+        }
         if !b_static {
             vb += impulse * c.inv_mass_b;
+        }
+        if writes_b {
             bodies.vel[ib] = vb;
         }
 
         // Push out of overlap deeper than the slop.
         if push {
-            let target = (push_rate * (-s - params.slop)).clamp(0.0, params.push_out_speed);
+            let target = (push_rate * (-s - params.slop))
+                .max(0.0)
+                .min(params.push_out_speed);
             let pa = bodies.push[ia];
             let pb = if b_static {
                 Vec2::ZERO
@@ -202,8 +222,10 @@ pub(crate) fn solve(
             let new_p = (c.push_impulse + c.mass * (target - pn)).max(0.0);
             let impulse = c.normal * (new_p - c.push_impulse);
             c.push_impulse = new_p;
-            bodies.push[ia] = pa - impulse * c.inv_mass_a;
-            if !b_static {
+            if writes_a {
+                bodies.push[ia] = pa - impulse * c.inv_mass_a;
+            }
+            if writes_b {
                 bodies.push[ib] = pb + impulse * c.inv_mass_b;
             }
         }
