@@ -189,6 +189,9 @@ impl ContactWorld {
         // Both bodies of every stored contact that woke get a proxy (those
         // from the sleep tree have none yet), the one still asleep too: a
         // speculative contact can join a woken body to another island.
+        // Proxies made from here on are of bodies woken now (or still
+        // asleep), whatever they record.
+        let first_new_proxy = self.proxies.boxes.len();
         for k in 0..self.sleeping.list.len() {
             let c = self.sleeping.list.rows[k];
             if has_awake_body(dynamic, &c) {
@@ -203,7 +206,8 @@ impl ContactWorld {
         let proxies = &self.proxies;
         let woke_now = |body: ColliderRef| {
             body.dynamic_index().is_some_and(|i| {
-                !dynamic.sleep[i].is_asleep() && proxies.asleep[proxies.of_body[i] as usize]
+                let p = proxies.of_body[i] as usize;
+                !dynamic.sleep[i].is_asleep() && (proxies.asleep[p] || p >= first_new_proxy)
             })
         };
         let keyed_pair = |c: &Constraint| {

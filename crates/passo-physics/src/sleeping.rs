@@ -218,7 +218,18 @@ impl SleepingContacts {
             }
         }
         if woke {
-            self.wake_marked(dynamic);
+            // The woken islands' stored contacts join the solved ones, so
+            // the step's record keeps their impulses for warm starting and
+            // sees them still touching (dropped, the next step began them
+            // afresh: a woken stack sagged and popped up, and every pair
+            // ended and began touching again).
+            self.wake_marked_islands(dynamic);
+            let mut merge = Merge::new(solved, &mut self.scratch);
+            self.list.retain(
+                |c| !has_awake_body(dynamic, c),
+                |c, info| merge.push(c, info),
+            );
+            merge.finish();
         }
         if self
             .islands

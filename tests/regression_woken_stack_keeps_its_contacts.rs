@@ -1,0 +1,145 @@
+//! An island woken at the end of a step (a body touching it) dropped its
+//! stored contacts: until the next step found them again, `contacts_of`
+//! showed none, the step reported every pair of the stack as no longer
+//! touching (and the next step as touching again), and the impulses the
+//! stack rested on were not there to warm start from.
+
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, BodyId, Shape, World};
+use passo_tests::add_ground;
+
+/// A stack of five boxes on the ground; a ball thrown down at its top.
+fn stack_and_ball(sleeping: bool) -> (World, Vec<BodyId>) {
+    let mut world = World::default();
+    let mut settings = *world.settings();
+    settings.contacts.as_mut().unwrap().sleeping = sleeping;
+    world.set_settings(settings).unwrap();
+    add_ground(&mut world, 20.0);
+    let boxes: Vec<_> = (0..5)
+        .map(|i| {
+            let def = BodyDef::new_dynamic(Vec2::new(0.0, 0.5 + i as f32), Shape::rect(1.0, 1.0));
+            world.add_body(def).unwrap()
+        })
+        .collect();
+    for _ in 0..180 {
+        world.step(1.0 / 60.0);
+    }
+    let ball = BodyDef {
+        velocity: Vec2::new(0.0, -3.0),
+        ..BodyDef::new_dynamic(Vec2::new(0.0, 5.6), Shape::circle(0.1))
+    };
+    world.add_body(ball).unwrap();
+    (world, boxes)
+}
+
+#[test]
+fn a_stack_woken_by_a_ball_keeps_its_contacts_in_the_step_it_wakes() {
+    let (mut world, boxes) = stack_and_ball(true);
+    assert!(boxes.iter().all(|&b| world.is_asleep(b) == Some(true)));
+    let mut woke = false;
+    for _ in 0..60 {
+        world.step(1.0 / 60.0);
+        if world.is_asleep(boxes[0]) == Some(false) {
+            woke = true;
+            break;
+        }
+    }
+    assert!(woke, "the ball woke the stack");
+    let stack_pair = |a: BodyId, b: BodyId| boxes.contains(&a) && boxes.contains(&b);
+    // Every box still touches the one below, and no pair of the stack
+    // stopped touching.
+    for k in 1..boxes.len() {
+        let below = boxes[k - 1];
+        assert!(
+            world
+                .contacts_of(boxes[k])
+                .any(|c| (c.a == below || c.b == below) && c.touching),
+            "box {k} touches the box below in the step it woke"
+        );
+    }
+    let ended = world
+        .events()
+        .end
+        .iter()
+        .filter(|p| stack_pair(p.a, p.b))
+        .count();
+    assert_eq!(ended, 0, "no pair of the stack ended touching");
+    // Nor does one begin in the next step: they never stopped.
+    world.step(1.0 / 60.0);
+    let events = world.events();
+    let began = events.begin.iter().filter(|p| stack_pair(p.a, p.b)).count();
+    let ended = events.end.iter().filter(|p| stack_pair(p.a, p.b)).count();
+    assert_eq!(
+        (began, ended),
+        (0, 0),
+        "the next step's events of the stack"
+    );
+}
+
+#[test]
+fn the_woken_stack_takes_the_blow_as_an_awake_one_does() {
+    // The ball's blow moves the woken stack about as it moves one that
+    // never slept (warm started from the impulses it slept with).
+    let speeds = |sleeping: bool| {
+        let (mut world, boxes) = stack_and_ball(sleeping);
+        let mut fastest: f32 = 0.0;
+        for _ in 0..40 {
+            world.step(1.0 / 60.0);
+            for &b in &boxes[..4] {
+                fastest = fastest.max(world.body(b).unwrap().velocity.length());
+            }
+        }
+        fastest
+    };
+    let (awake, woken) = (speeds(false), speeds(true));
+    assert!(awake > 0.1, "the blow reaches the lower boxes: {awake}");
+    assert!(
+        (woken - awake).abs() < 0.5 * awake,
+        "woken {woken} m/s against awake {awake} m/s"
+    );
+}
+
+#[test]
+fn a_stack_woken_at_the_start_of_a_step_is_solved_whole_in_it() {
+    // A fast ball reaches the stack's top within the step: the island
+    // wakes before the solver runs, and its boxes (which slept without
+    // proxies) must bring their contacts with each other and with the
+    // ground along. Then the stack takes the blow as one that never slept.
+    let fast_ball = |sleeping: bool| {
+        let (mut world, boxes) = stack_and_ball(sleeping);
+        let ball = world.bodies().last().unwrap().id;
+        world.set_velocity(ball, Vec2::new(0.0, -12.0));
+        (world, boxes)
+    };
+    let (mut world, boxes) = fast_ball(true);
+    let mut steps = 0;
+    while world.is_asleep(boxes[0]) == Some(true) && steps < 60 {
+        world.step(1.0 / 60.0);
+        steps += 1;
+    }
+    assert!(steps < 60, "the ball woke the stack");
+    let (mut awake, _) = fast_ball(false);
+    for _ in 0..steps {
+        awake.step(1.0 / 60.0);
+    }
+    for (k, &b) in boxes.iter().enumerate() {
+        let touches_below = world.contacts_of(b).any(|c| {
+            c.touching
+                && (if k == 0 {
+                    !boxes.contains(&c.b)
+                } else {
+                    c.b == boxes[k - 1]
+                })
+        });
+        assert!(touches_below, "box {k} stands on what is below it");
+        // Without its contacts a box fell freely: -g dt = -0.16 m/s.
+        let (v, v_awake) = (
+            world.body(b).unwrap().velocity.y,
+            awake.body(b).unwrap().velocity.y,
+        );
+        assert!(
+            (v - v_awake).abs() < 0.25 * v_awake.abs().max(0.1),
+            "box {k}: {v} m/s woken, {v_awake} m/s never asleep"
+        );
+    }
+}
