@@ -785,17 +785,7 @@ mod tests {
             Vec2::new(0.001, 0.0),
             Vec2::ZERO,
         ];
-        let params = SolverParams {
-            h: 1.0 / 240.0,
-            warm_starting: true,
-            iterations: 2,
-            relax_iterations: 1,
-            position_correction: 0.2,
-            push_out_speed: 3.0,
-            slop: 0.005,
-            restitution_threshold: 1.0,
-            carry_push: false,
-        };
+        let params = SolverParams::for_tests();
         // The scalar solver in the list's order.
         let mut colouring = Colouring {
             blocks_always: true,

@@ -335,20 +335,6 @@ mod tests {
         (pos, vel, rows)
     }
 
-    fn params() -> SolverParams {
-        SolverParams {
-            h: 1.0 / 240.0,
-            warm_starting: true,
-            iterations: 2,
-            relax_iterations: 1,
-            position_correction: 0.2,
-            push_out_speed: 3.0,
-            slop: 0.005,
-            restitution_threshold: 1.0,
-            carry_push: false,
-        }
-    }
-
     /// Runs a substep's passes (warm start, two passes with the push, one
     /// without) and returns the velocities, pushes and rows.
     fn substep(side: u32, parallel: bool) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>, bool) {
@@ -363,7 +349,7 @@ mod tests {
             delta: &delta,
             deep: &[],
         };
-        let p = params();
+        let p = SolverParams::for_tests();
         regions.run(&mut bodies, &Pass::Begin(p), parallel);
         for push in [true, true, false] {
             regions.run(&mut bodies, &Pass::solve(&p, push), parallel);

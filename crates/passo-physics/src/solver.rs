@@ -68,6 +68,24 @@ pub(crate) struct SolverParams {
     pub carry_push: bool,
 }
 
+impl SolverParams {
+    /// The default contact settings at 60 Hz with 4 substeps (for tests).
+    #[cfg(test)]
+    pub(crate) fn for_tests() -> Self {
+        Self {
+            h: 1.0 / 240.0,
+            warm_starting: true,
+            iterations: 2,
+            relax_iterations: 1,
+            position_correction: 0.2,
+            push_out_speed: 3.0,
+            slop: 0.005,
+            restitution_threshold: 1.0,
+            carry_push: false,
+        }
+    }
+}
+
 /// The solver's view of the bodies during one step.
 pub(crate) struct SolverBodies<'a> {
     pub vel: &'a mut [Vec2],
