@@ -121,9 +121,10 @@ impl World {
             .map(|(c, info)| public_contact(c, info))
     }
 
-    /// How many of the last step's contacts the solver worked on: those
-    /// with an awake body. The rest (between sleeping bodies, or sleeping
-    /// and static ones) are kept but cost no solver work.
+    /// How many of the last step's contacts have an awake body: those the
+    /// solver worked on, and those of an island that woke at the end of
+    /// the step (solved from the next). The rest (between sleeping bodies,
+    /// or sleeping and static ones) are kept but cost no solver work.
     pub fn solved_contacts(&self) -> usize {
         self.contacts.as_ref().map_or(0, |cw| cw.solved.len())
     }
