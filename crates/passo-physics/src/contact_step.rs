@@ -338,10 +338,11 @@ impl World {
             regions, motion, ..
         } = cw;
         let mut bodies = motion.bodies(&mut self.dynamic.vel);
-        regions.run(&mut bodies, &Pass::Measure, self.parallel);
-        let pass = Pass::solve(&plan.solver, false);
-        for _ in 0..plan.solver.relax_iterations {
-            regions.run(&mut bodies, &pass, self.parallel);
+        // The first pass measures the separations at the new positions.
+        let (first, rest) = (Pass::relax(&plan.solver), Pass::solve(&plan.solver, false));
+        for k in 0..plan.solver.relax_iterations {
+            let pass = if k == 0 { &first } else { &rest };
+            regions.run(&mut bodies, pass, self.parallel);
         }
     }
 
