@@ -348,22 +348,16 @@ impl Colouring {
         self.overflow(bodies, pass);
     }
 
-    /// The dynamic bodies the blocks move (for checks).
+    /// The dynamic bodies the blocks write (`written`) or read (for
+    /// checks).
     #[cfg(debug_assertions)]
-    pub(crate) fn moved_bodies(&self) -> impl Iterator<Item = u32> + '_ {
+    pub(crate) fn bodies_in_blocks(&self, written: bool) -> impl Iterator<Item = u32> + '_ {
         self.blocks
             .iter()
-            .flat_map(|k| k.write_a.iter().chain(&k.write_b))
-            .copied()
-            .filter(|&i| i != NONE)
-    }
-
-    /// The dynamic bodies the blocks read (for checks).
-    #[cfg(debug_assertions)]
-    pub(crate) fn read_bodies(&self) -> impl Iterator<Item = u32> + '_ {
-        self.blocks
-            .iter()
-            .flat_map(|k| k.a.iter().chain(&k.b))
+            .flat_map(move |k| match written {
+                true => k.write_a.iter().chain(&k.write_b),
+                false => k.a.iter().chain(&k.b),
+            })
             .copied()
             .filter(|&i| i != NONE)
     }
@@ -436,15 +430,23 @@ impl Rates {
     }
 }
 
+/// Which per-body array a block reads or writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Field {
+    Vel,
+    Push,
+    /// The displacement since the step began: only read.
+    Delta,
+}
+
 /// How blocks reach the bodies: velocities, pushes and displacements by
 /// dynamic index. An index out of range ([`NONE`]) reads as zero and
 /// writes nothing: one bounds check serves as the padding check.
 pub(crate) trait View {
-    fn vel(&self, i: u32) -> Vec2;
-    fn set_vel(&mut self, i: u32, v: Vec2);
-    fn push(&self, i: u32) -> Vec2;
-    fn set_push(&mut self, i: u32, v: Vec2);
-    fn delta(&self, i: u32) -> Vec2;
+    /// `field` of body `i`.
+    fn get(&self, field: Field, i: u32) -> Vec2;
+    /// Sets `field` of body `i` (`Delta` is never written).
+    fn set(&mut self, field: Field, i: u32, v: Vec2);
 }
 
 /// The bodies' arrays, borrowed from the solver's view of them.
@@ -466,32 +468,25 @@ impl<'a> Bodies<'a> {
 
 impl View for Bodies<'_> {
     #[inline(always)]
-    fn vel(&self, i: u32) -> Vec2 {
-        self.vel.get(i as usize).copied().unwrap_or(Vec2::ZERO)
+    fn get(&self, field: Field, i: u32) -> Vec2 {
+        let array: &[Vec2] = match field {
+            Field::Vel => self.vel,
+            Field::Push => self.push,
+            Field::Delta => self.delta,
+        };
+        array.get(i as usize).copied().unwrap_or(Vec2::ZERO)
     }
 
     #[inline(always)]
-    fn set_vel(&mut self, i: u32, v: Vec2) {
-        if let Some(slot) = self.vel.get_mut(i as usize) {
+    fn set(&mut self, field: Field, i: u32, v: Vec2) {
+        let array = match field {
+            Field::Vel => &mut *self.vel,
+            Field::Push => &mut *self.push,
+            Field::Delta => return,
+        };
+        if let Some(slot) = array.get_mut(i as usize) {
             *slot = v;
         }
-    }
-
-    #[inline(always)]
-    fn push(&self, i: u32) -> Vec2 {
-        self.push.get(i as usize).copied().unwrap_or(Vec2::ZERO)
-    }
-
-    #[inline(always)]
-    fn set_push(&mut self, i: u32, v: Vec2) {
-        if let Some(slot) = self.push.get_mut(i as usize) {
-            *slot = v;
-        }
-    }
-
-    #[inline(always)]
-    fn delta(&self, i: u32) -> Vec2 {
-        self.delta.get(i as usize).copied().unwrap_or(Vec2::ZERO)
     }
 }
 
@@ -539,7 +534,7 @@ impl Lanes {
 fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, carry: bool) {
     let carries = carry && k.carry.iter().any(|&c| c);
     if carries {
-        let mut p = Lanes::gather(k, |i| bodies.push(i));
+        let mut p = Lanes::gather(k, |i| bodies.get(Field::Push, i));
         for l in 0..LANES {
             let q = k.push_impulse[l];
             if k.carry[l] && q > 0.0 {
@@ -548,12 +543,12 @@ fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, carry: bool) {
                 k.push_impulse[l] = 0.0;
             }
         }
-        p.scatter(k, |i, v| bodies.set_push(i, v));
+        p.scatter(k, |i, v| bodies.set(Field::Push, i, v));
     } else {
         k.push_impulse = [0.0; LANES];
     }
     if warm {
-        let mut v = Lanes::gather(k, |i| bodies.vel(i));
+        let mut v = Lanes::gather(k, |i| bodies.get(Field::Vel, i));
         for l in 0..LANES {
             let (n, t) = (k.normal_impulse[l], k.tangent_impulse[l]);
             // normal * n + perp(normal) * t
@@ -561,7 +556,7 @@ fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, carry: bool) {
             let iy = k.ny[l] * n + k.nx[l] * t;
             v.apply(k, l, ix, iy);
         }
-        v.scatter(k, |i, v| bodies.set_vel(i, v));
+        v.scatter(k, |i, v| bodies.set(Field::Vel, i, v));
     }
 }
 
@@ -570,7 +565,7 @@ fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, carry: bool) {
 /// `SolverBodies::separation`). The bodies move only between the passes,
 /// so the passes of a substep share it.
 fn measure<V: View>(k: &mut Block, bodies: &mut V) {
-    let d = Lanes::gather(k, |i| bodies.delta(i));
+    let d = Lanes::gather(k, |i| bodies.get(Field::Delta, i));
     for l in 0..LANES {
         let (nx, ny) = (k.nx[l], k.ny[l]);
         k.separation[l] =
@@ -582,16 +577,16 @@ fn measure<V: View>(k: &mut Block, bodies: &mut V) {
 /// the same rows in the same arithmetic, lane by lane.
 #[inline(always)]
 fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut V, r: &Rates) {
-    let mut v = Lanes::gather(k, |i| bodies.vel(i));
+    let mut v = Lanes::gather(k, |i| bodies.get(Field::Vel, i));
     let mut p = if PUSH {
-        Lanes::gather(k, |i| bodies.push(i))
+        Lanes::gather(k, |i| bodies.get(Field::Push, i))
     } else {
         Lanes::default()
     };
     for l in 0..LANES {
         let (nx, ny) = (k.nx[l], k.ny[l]);
         let (tx, ty) = (-ny, nx);
-        let (mass, ia, ib) = (k.mass[l], k.inv_mass_a[l], k.inv_mass_b[l]);
+        let mass = k.mass[l];
 
         // Coulomb friction: |lambda_t| <= mu lambda_n.
         let vt = (v.bx[l] - v.ax[l]) * tx + (v.by[l] - v.ay[l]) * ty;
@@ -600,11 +595,7 @@ fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut V, r: &Rat
         let new_t = (t - mass * vt).max(-max_friction).min(max_friction);
         let dt = new_t - t;
         k.tangent_impulse[l] = new_t;
-        let (ix, iy) = (tx * dt, ty * dt);
-        v.ax[l] -= ix * ia;
-        v.ay[l] -= iy * ia;
-        v.bx[l] += ix * ib;
-        v.by[l] += iy * ib;
+        v.apply(k, l, tx * dt, ty * dt);
 
         // Non-penetration: v_n >= 0, or >= -s / h while still apart.
         let s = k.separation[l];
@@ -615,11 +606,7 @@ fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut V, r: &Rat
         let dn = new_n - n;
         k.normal_impulse[l] = new_n;
         k.max_normal_impulse[l] = k.max_normal_impulse[l].max(new_n);
-        let (ix, iy) = (nx * dn, ny * dn);
-        v.ax[l] -= ix * ia;
-        v.ay[l] -= iy * ia;
-        v.bx[l] += ix * ib;
-        v.by[l] += iy * ib;
+        v.apply(k, l, nx * dn, ny * dn);
 
         // Push out of overlap deeper than the slop.
         if PUSH {
@@ -629,16 +616,12 @@ fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut V, r: &Rat
             let new_q = (q + mass * (target - pn)).max(0.0);
             let dq = new_q - q;
             k.push_impulse[l] = new_q;
-            let (ix, iy) = (nx * dq, ny * dq);
-            p.ax[l] -= ix * ia;
-            p.ay[l] -= iy * ia;
-            p.bx[l] += ix * ib;
-            p.by[l] += iy * ib;
+            p.apply(k, l, nx * dq, ny * dq);
         }
     }
-    v.scatter(k, |i, x| bodies.set_vel(i, x));
+    v.scatter(k, |i, x| bodies.set(Field::Vel, i, x));
     if PUSH {
-        p.scatter(k, |i, x| bodies.set_push(i, x));
+        p.scatter(k, |i, x| bodies.set(Field::Push, i, x));
     }
 }
 

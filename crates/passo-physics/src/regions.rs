@@ -21,9 +21,9 @@
 //! `World::set_parallel` on or off, and in builds with the feature or
 //! without.
 
-#[cfg(feature = "parallel")]
-use crate::colouring::View;
 use crate::colouring::{Bodies, Colouring, Pass, moved};
+#[cfg(feature = "parallel")]
+use crate::colouring::{Field, View};
 use crate::constraint::Constraint;
 use crate::solver::SolverBodies;
 use glam::Vec2;
@@ -103,9 +103,13 @@ impl ContactRegions {
         #[cfg(debug_assertions)]
         for r in 0..2 {
             let own = |i: u32| self.region[i as usize] == r as u8;
-            assert!(self.groups[r].moved_bodies().all(own));
+            assert!(self.groups[r].bodies_in_blocks(true).all(own));
             let only_read = |i: u32| self.use_of[i as usize] == 2;
-            assert!(self.groups[r].read_bodies().all(|i| own(i) || only_read(i)));
+            assert!(
+                self.groups[r]
+                    .bodies_in_blocks(false)
+                    .all(|i| own(i) || only_read(i))
+            );
         }
     }
 
@@ -229,48 +233,30 @@ impl View for Shared<'_> {
     // writes nothing, as for `Bodies`.
 
     #[inline(always)]
-    fn vel(&self, i: u32) -> Vec2 {
+    fn get(&self, field: Field, i: u32) -> Vec2 {
+        let array = match field {
+            Field::Vel => self.vel.cast_const(),
+            Field::Push => self.push.cast_const(),
+            Field::Delta => self.delta,
+        };
         if (i as usize) < self.len {
             // SAFETY: in bounds; no other thread writes it (see the type).
-            unsafe { self.vel.add(i as usize).read() }
+            unsafe { array.add(i as usize).read() }
         } else {
             Vec2::ZERO
         }
     }
 
     #[inline(always)]
-    fn set_vel(&mut self, i: u32, v: Vec2) {
+    fn set(&mut self, field: Field, i: u32, v: Vec2) {
+        let array = match field {
+            Field::Vel => self.vel,
+            Field::Push => self.push,
+            Field::Delta => return,
+        };
         if (i as usize) < self.len {
             // SAFETY: in bounds; this thread's region only (see the type).
-            unsafe { self.vel.add(i as usize).write(v) }
-        }
-    }
-
-    #[inline(always)]
-    fn push(&self, i: u32) -> Vec2 {
-        if (i as usize) < self.len {
-            // SAFETY: in bounds; no other thread writes it (see the type).
-            unsafe { self.push.add(i as usize).read() }
-        } else {
-            Vec2::ZERO
-        }
-    }
-
-    #[inline(always)]
-    fn set_push(&mut self, i: u32, v: Vec2) {
-        if (i as usize) < self.len {
-            // SAFETY: in bounds; this thread's region only (see the type).
-            unsafe { self.push.add(i as usize).write(v) }
-        }
-    }
-
-    #[inline(always)]
-    fn delta(&self, i: u32) -> Vec2 {
-        if (i as usize) < self.len {
-            // SAFETY: in bounds; only read while the view lives.
-            unsafe { self.delta.add(i as usize).read() }
-        } else {
-            Vec2::ZERO
+            unsafe { array.add(i as usize).write(v) }
         }
     }
 }
@@ -279,6 +265,7 @@ impl View for Shared<'_> {
 mod tests {
     use super::*;
     use crate::collider::ColliderRef;
+    #[cfg(feature = "parallel")]
     use crate::solver::SolverParams;
 
     /// A `side` × `side` lattice of boxes, each touching its right and upper
@@ -337,6 +324,7 @@ mod tests {
 
     /// Runs a substep's passes (warm start, two passes with the push, one
     /// without) and returns the velocities, pushes and rows.
+    #[cfg(feature = "parallel")]
     fn substep(side: u32, parallel: bool) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>, bool) {
         let (pos, mut vel, mut rows) = lattice(side);
         let mut regions = ContactRegions::default();
