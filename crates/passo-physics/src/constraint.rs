@@ -164,6 +164,16 @@ impl Constraint {
         (row, info)
     }
 
+    /// The dynamic bodies this contact moves (inverse mass above zero):
+    /// A's and B's indices, `None` for a body it only reads (static,
+    /// kinematic or sleeping). The solver never writes the others.
+    #[inline(always)]
+    pub(crate) fn moved(&self) -> (Option<usize>, Option<usize>) {
+        let a = (self.inv_mass_a > 0.0).then_some(self.a as usize);
+        let b = self.b.dynamic_index().filter(|_| self.inv_mass_b > 0.0);
+        (a, b)
+    }
+
     /// Whether body B is static.
     #[inline(always)]
     pub(crate) fn is_static(&self) -> bool {

@@ -84,7 +84,9 @@ mod constraint;
 
 mod narrow_phase;
 mod solver;
-// Graph colouring and the wide (lane by lane) contact passes.
+// The wide (lane by lane) contact passes.
+mod lanes;
+// The contacts in colours, passed over a colour at a time.
 mod colouring;
 #[allow(unsafe_code)]
 mod regions;

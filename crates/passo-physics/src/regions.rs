@@ -21,10 +21,11 @@
 //! `World::set_parallel` on or off, and in builds with the feature or
 //! without.
 
-use crate::colouring::{Bodies, Colouring, Pass, moved};
-#[cfg(feature = "parallel")]
-use crate::colouring::{Field, View};
+use crate::colouring::{Colouring, Pass};
 use crate::constraint::Constraint;
+use crate::lanes::Bodies;
+#[cfg(feature = "parallel")]
+use crate::lanes::{Field, View};
 use crate::solver::SolverBodies;
 use glam::Vec2;
 
@@ -72,7 +73,7 @@ impl ContactRegions {
         self.use_of.clear();
         self.use_of.resize(bodies, 0);
         for c in rows {
-            let (a, b) = moved(c);
+            let (a, b) = c.moved();
             self.use_of[c.a as usize] |= if a.is_some() { 1 } else { 2 };
             if let Some(bi) = c.b.dynamic_index() {
                 self.use_of[bi] |= if b.is_some() { 1 } else { 2 };
@@ -85,7 +86,7 @@ impl ContactRegions {
         for (i, c) in rows.iter().enumerate() {
             let shared =
                 use_of[c.a as usize] == 3 || c.b.dynamic_index().is_some_and(|b| use_of[b] == 3);
-            let g = match moved(c) {
+            let g = match c.moved() {
                 _ if shared => 2,
                 (Some(a), Some(b)) if region[a] != region[b] => 2,
                 (Some(x), _) | (None, Some(x)) => region[x],
@@ -229,7 +230,7 @@ impl<'a> Shared<'a> {
 
 #[cfg(feature = "parallel")]
 impl View for Shared<'_> {
-    // An index out of range ([`NONE`](crate::colouring)) reads as zero and
+    // An index out of range ([`NONE`](crate::lanes::NONE)) reads as zero and
     // writes nothing, as for `Bodies`.
 
     #[inline(always)]

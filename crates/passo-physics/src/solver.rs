@@ -109,15 +109,8 @@ impl SolverBodies<'_> {
     }
 
     #[inline(always)]
-    /// Applies `impulse`: minus to A, plus to B, to the bodies the
-    /// contact moves (a held body is not written, as in the wide passes).
     fn apply(&mut self, c: &Constraint, impulse: Vec2) {
-        if c.inv_mass_a > 0.0 {
-            self.vel[c.a as usize] -= impulse * c.inv_mass_a;
-        }
-        if let Some(b) = c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0) {
-            self.vel[b] += impulse * c.inv_mass_b;
-        }
+        apply_impulse(self.vel, c, impulse);
     }
 
     /// Separation now: the step's separation plus the relative displacement
@@ -131,6 +124,20 @@ impl SolverBodies<'_> {
             None => Vec2::ZERO,
         };
         c.base_separation + (db - da).dot(c.normal)
+    }
+}
+
+/// Applies `impulse` to `array` (velocities or pushes): minus to A, plus
+/// to B, for the bodies the contact moves (a held body is not written, as
+/// in the wide passes).
+#[inline(always)]
+fn apply_impulse(array: &mut [Vec2], c: &Constraint, impulse: Vec2) {
+    let (a, b) = c.moved();
+    if let Some(a) = a {
+        array[a] -= impulse * c.inv_mass_a;
+    }
+    if let Some(b) = b {
+        array[b] += impulse * c.inv_mass_b;
     }
 }
 
@@ -153,13 +160,7 @@ pub(crate) fn begin_substep(
     let (warm, carry) = (params.warm_starting, params.carry_push);
     for c in constraints {
         if carry && c.push_impulse > 0.0 && bodies.deep[c.a as usize] {
-            let p = c.normal * c.push_impulse;
-            if c.inv_mass_a > 0.0 {
-                bodies.push[c.a as usize] -= p * c.inv_mass_a;
-            }
-            if let Some(b) = c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0) {
-                bodies.push[b] += p * c.inv_mass_b;
-            }
+            apply_impulse(bodies.push, c, c.normal * c.push_impulse);
         } else {
             c.push_impulse = 0.0;
         }
@@ -188,7 +189,7 @@ pub(crate) fn solve(
         // passes of `colouring`.
         let (ia, ib) = (c.a as usize, c.b.index());
         let b_static = c.is_static();
-        let (writes_a, writes_b) = (c.inv_mass_a > 0.0, !b_static && c.inv_mass_b > 0.0);
+        let (moved_a, moved_b) = c.moved();
         let (mut va, mut vb) = bodies.velocity(c);
         let tangent = c.normal.perp();
 
@@ -215,14 +216,14 @@ pub(crate) fn solve(
         c.normal_impulse = new_n;
         c.max_normal_impulse = c.max_normal_impulse.max(new_n);
         va -= impulse * c.inv_mass_a;
-        if writes_a {
-            bodies.vel[ia] = va;
+        if let Some(a) = moved_a {
+            bodies.vel[a] = va;
         }
         if !b_static {
             vb += impulse * c.inv_mass_b;
         }
-        if writes_b {
-            bodies.vel[ib] = vb;
+        if let Some(b) = moved_b {
+            bodies.vel[b] = vb;
         }
 
         // Push out of overlap deeper than the slop.
@@ -240,11 +241,11 @@ pub(crate) fn solve(
             let new_p = (c.push_impulse + c.mass * (target - pn)).max(0.0);
             let impulse = c.normal * (new_p - c.push_impulse);
             c.push_impulse = new_p;
-            if writes_a {
-                bodies.push[ia] = pa - impulse * c.inv_mass_a;
+            if let Some(a) = moved_a {
+                bodies.push[a] = pa - impulse * c.inv_mass_a;
             }
-            if writes_b {
-                bodies.push[ib] = pb + impulse * c.inv_mass_b;
+            if let Some(b) = moved_b {
+                bodies.push[b] = pb + impulse * c.inv_mass_b;
             }
         }
     }
