@@ -225,7 +225,7 @@ impl Colouring {
             return;
         }
         match *pass {
-            Pass::Begin(ref params) => solver::begin_substep(&mut self.overflow, bodies, params),
+            Pass::Begin(ref params, _) => solver::begin_substep(&mut self.overflow, bodies, params),
             // The scalar solver measures as it goes.
             #[cfg(test)]
             Pass::Measure => {}
@@ -259,9 +259,13 @@ impl Colouring {
 
 /// What a pass over the contacts does.
 pub(crate) enum Pass {
-    /// Start a substep: warm start, carry the push in deep piles, measure
-    /// the separations (see [`solver::begin_substep`]).
-    Begin(SolverParams),
+    /// Start a substep: warm start, carry the push in deep piles (see
+    /// [`solver::begin_substep`]), and with `true` measure the separations.
+    /// The step measures only when the bodies moved since the last
+    /// measure: a substep after a relax stage (which measured at the same
+    /// positions) does not, nor does the first (blocks are built with the
+    /// step's separations).
+    Begin(SolverParams, bool),
     /// Measure the separations after the bodies moved (for tests; the
     /// step measures in [`Pass::Begin`] and [`Pass::Relax`]).
     #[cfg(test)]
@@ -288,9 +292,11 @@ impl Pass {
     #[inline(always)]
     fn run<V: View>(&self, k: &mut Block, view: &mut V) {
         match *self {
-            Pass::Begin(ref params) => {
+            Pass::Begin(ref params, measures) => {
                 warm_start(k, view, params.warm_starting, params.carry_push);
-                measure(k, view);
+                if measures {
+                    measure(k, view);
+                }
             }
             #[cfg(test)]
             Pass::Measure => measure(k, view),

@@ -193,7 +193,7 @@ impl World {
             correction.resize(self.dynamic.len(), Vec2::ZERO);
         }
         let mut resets = 0;
-        for _ in 0..plan.substeps {
+        for substep in 0..plan.substeps {
             resets += self.integrate_velocities(&plan, &mut correction);
             if plan.hold_sleepers {
                 self.hold_sleepers(&mut correction, plan.corrects);
@@ -201,7 +201,10 @@ impl World {
             if plan.hold_kinematic {
                 self.keep_kinematic_velocity(&mut correction, plan.corrects);
             }
-            self.solve(&mut cw, &plan);
+            // The bodies moved since the separations were last measured
+            // unless this is the first substep or the relax stage measured.
+            let moved = substep > 0 && plan.solver.relax_iterations == 0;
+            self.solve(&mut cw, &plan, moved);
             self.integrate_positions(&mut cw.motion, &plan, &correction);
             self.relax(&mut cw, &plan);
         }
@@ -287,15 +290,16 @@ impl World {
         }
     }
 
-    /// Substep stages: warm start (with the push impulses cleared), then
-    /// the Gauss-Seidel passes with the push.
-    fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
+    /// Substep stages: warm start (with the push impulses cleared, and the
+    /// separations measured if the bodies `moved` since they last were),
+    /// then the Gauss-Seidel passes with the push.
+    fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, moved: bool) {
         let ContactWorld {
             regions, motion, ..
         } = cw;
         motion.push.fill(Vec2::ZERO);
         let mut bodies = motion.bodies(&mut self.dynamic.vel);
-        regions.run(&mut bodies, &Pass::Begin(plan.solver), self.parallel);
+        regions.run(&mut bodies, &Pass::Begin(plan.solver, moved), self.parallel);
         let pass = Pass::solve(&plan.solver, true);
         for _ in 0..plan.solver.iterations {
             regions.run(&mut bodies, &pass, self.parallel);

@@ -8,6 +8,7 @@ use crate::constants::ONE_WAY_DEPTH;
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::filter::CollisionFilter;
 use crate::manifold::{Faces, Manifold, collide_seamless};
+#[cfg(feature = "parallel")]
 use crate::parallel::for_chunks;
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::{BodyId, SensorPair, Shape};
@@ -195,11 +196,56 @@ fn one_way_allows(a: &Collider, b: &Collider, m: &Manifold) -> bool {
     outward > 0.0 && m.separation >= -ONE_WAY_DEPTH && !other.dropping
 }
 
+/// Sorts the pairs by key: a least-significant-digit radix sort over the
+/// bits the keys use (two body slot indices), stable, so the same input
+/// gives the same order (the keys of distinct pairs differ anyway). A
+/// rain of 10 000 circles sorts some 30 000 pairs a step, where a
+/// comparison sort took 7 % of the step.
+fn sort_by_key(pairs: &mut Vec<KeyedPair>, scratch: &mut Vec<KeyedPair>) {
+    const DIGIT: u32 = 10;
+    if pairs.len() < 512 {
+        pairs.sort_by_key(|k| k.0);
+        return;
+    }
+    // Keys are `lower << 32 | higher`: packed into `lower << bits | higher`,
+    // which orders the same.
+    let (lo_max, hi_max) = pairs.iter().fold((0u64, 0u64), |(l, h), k| {
+        (l | (k.0 & 0xFFFF_FFFF), h | (k.0 >> 32))
+    });
+    let bits = u64::BITS - (lo_max | hi_max).leading_zeros();
+    let packed = |key: u64| (key >> 32) << bits | (key & 0xFFFF_FFFF);
+    scratch.clear();
+    scratch.resize(pairs.len(), (0, 0, crate::collider::ColliderRef::fixed(0)));
+    let mut shift = 0;
+    while shift < 2 * bits {
+        let digit = |k: &KeyedPair| ((packed(k.0) >> shift) & ((1 << DIGIT) - 1)) as usize;
+        let mut starts = [0u32; 1 << DIGIT];
+        for k in pairs.iter() {
+            starts[digit(k)] += 1;
+        }
+        let mut sum = 0;
+        for s in &mut starts {
+            (*s, sum) = (sum, sum + *s);
+        }
+        for k in pairs.iter() {
+            let d = digit(k);
+            scratch[starts[d] as usize] = *k;
+            starts[d] += 1;
+        }
+        std::mem::swap(pairs, scratch);
+        shift += DIGIT;
+    }
+}
+
 /// The narrow phase's buffers, kept between steps.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct NarrowPhase {
     /// Candidate pairs in key order.
     pub keyed: Vec<KeyedPair>,
+    /// The radix sort's other buffer.
+    scratch: Vec<KeyedPair>,
+    /// Each pair's outcome, when the pairs are split across threads.
+    #[cfg(feature = "parallel")]
     outcomes: Vec<Outcome>,
     /// Sensor-visitor pairs close enough to overlap by the end of the step.
     pub sensor_candidates: Vec<SensorCandidate>,
@@ -222,27 +268,70 @@ impl NarrowPhase {
         for &(p, s) in &proxies.static_pairs {
             self.keyed.push(narrow.key(p, ColliderRef::fixed(s)));
         }
-        self.keyed.sort_unstable_by_key(|k| k.0);
-        self.outcomes.clear();
-        self.outcomes.resize(self.keyed.len(), Outcome::Skip);
-        for_chunks(
-            parallel,
-            (&mut self.outcomes[..], &self.keyed[..]),
-            |_, (out, pairs)| {
-                for (o, &(_, pa, pb)) in out.iter_mut().zip(pairs) {
-                    *o = narrow.pair(pa, pb);
-                }
-                0
-            },
-        );
+        sort_by_key(&mut self.keyed, &mut self.scratch);
         contacts.clear();
         self.sensor_candidates.clear();
-        for o in &self.outcomes {
-            match o {
+        let keep =
+            |o: Outcome, contacts: &mut ContactList, sensors: &mut Vec<SensorCandidate>| match o {
                 Outcome::Skip => {}
-                Outcome::Sensor(candidate) => self.sensor_candidates.push(*candidate),
-                Outcome::Contact(row, info) => contacts.push(*row, *info),
+                Outcome::Sensor(candidate) => sensors.push(candidate),
+                Outcome::Contact(row, info) => contacts.push(row, info),
+            };
+        #[cfg(feature = "parallel")]
+        if crate::parallel::goes_parallel(parallel, self.keyed.len()) {
+            self.outcomes.clear();
+            self.outcomes.resize(self.keyed.len(), Outcome::Skip);
+            for_chunks(
+                parallel,
+                (&mut self.outcomes[..], &self.keyed[..]),
+                |_, (out, pairs)| {
+                    for (o, &(_, pa, pb)) in out.iter_mut().zip(pairs) {
+                        *o = narrow.pair(pa, pb);
+                    }
+                    0
+                },
+            );
+            for &o in &self.outcomes {
+                keep(o, contacts, &mut self.sensor_candidates);
             }
+            return;
+        }
+        // On one thread each outcome goes straight to its list: no buffer
+        // of outcomes (a hundred bytes a pair) to fill and read back.
+        let _ = parallel;
+        for &(_, pa, pb) in &self.keyed {
+            keep(narrow.pair(pa, pb), contacts, &mut self.sensor_candidates);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(60))]
+        #[test]
+        fn the_radix_sort_orders_pairs_as_a_comparison_sort_does(
+            ids in prop::collection::vec((0u32..70_000, 0u32..70_000), 0..3000),
+            // Few slots: many pairs share a key, and the order must be stable.
+            slots in prop_oneof![Just(40u32), Just(70_000)],
+        ) {
+            // Keys as the narrow phase makes them: lower slot << 32 | higher.
+            let mut pairs: Vec<KeyedPair> = ids
+                .iter()
+                .enumerate()
+                .map(|(i, &(x, y))| {
+                    let (x, y) = (x % slots, y % slots);
+                    let key = u64::from(x.min(y)) << 32 | u64::from(x.max(y));
+                    (key, i as u32, ColliderRef::fixed(i as u32))
+                })
+                .collect();
+            let mut expected = pairs.clone();
+            expected.sort_by_key(|k| (k.0, k.1));
+            sort_by_key(&mut pairs, &mut Vec::new());
+            prop_assert_eq!(pairs, expected);
         }
     }
 }

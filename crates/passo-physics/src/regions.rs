@@ -339,7 +339,7 @@ mod tests {
             deep: &[],
         };
         let p = SolverParams::for_tests();
-        regions.run(&mut bodies, &Pass::Begin(p), parallel);
+        regions.run(&mut bodies, &Pass::Begin(p, true), parallel);
         for push in [true, true, false] {
             regions.run(&mut bodies, &Pass::solve(&p, push), parallel);
         }
