@@ -1,6 +1,18 @@
-//! Broad phase for moving bodies: a hashed uniform grid.
+//! Broad phase for moving bodies: a uniform grid.
 //!
-//! Each step every moving proxy (a body's bounding box, grown by how far it
+//! When the proxies are of similar sizes (none more than twice their mean
+//! size) and spread over a bounded region, each is binned once, by the cell
+//! of its lower-left corner, in a dense grid of cells as large as the
+//! largest proxy: two overlapping proxies then have their corners in the
+//! same or neighbouring cells, so each proxy is tested against the rest of
+//! its own cell, the cell to its right and the three above it (the other
+//! half of the neighbourhood finds it in turn), and every pair is found
+//! exactly once. The cells are laid out row by row, so those are two runs
+//! of contiguous memory. (A rain of 10 000 circles: the pair search went
+//! from 23 % to 11 % of a step that took 17 % less time.)
+//!
+//! Otherwise (a few large platforms among small bodies, bodies flung far
+//! apart, bodies piled on one spot) every moving proxy (a body's bounding box, grown by how far it
 //! can move this step) is binned into the grid cells it covers; cells are
 //! hashed into a table sized to the number of entries and grouped with a
 //! counting sort, so the whole pass is linear in the number of bodies for
@@ -33,6 +45,10 @@ pub(crate) const LARGE_PROXY_CELLS: i32 = 16;
 /// bucket and never meet it.
 pub(crate) const CROWDED_CELL: usize = 64;
 
+/// The corner grid holds at most this many cells per proxy (plus 1 024):
+/// bodies spread wider are binned in the hashed grid instead.
+const CORNER_CELLS_PER_PROXY: usize = 4;
+
 #[derive(Clone, Copy, Debug)]
 struct Entry {
     cell: (i32, i32),
@@ -49,6 +65,10 @@ pub(crate) struct BroadPhase {
     /// Buckets of the last search holding more than `CROWDED_CELL + 1`
     /// proxies, whose pairs were bounded.
     pub(crate) crowded: usize,
+    /// Corner grid: each proxy's cell, row by row.
+    cell_of: Vec<u32>,
+    /// Corner grid: the proxies sorted by cell (stable).
+    order: Vec<u32>,
     /// Pairs found by each parallel task, concatenated in task order.
     #[cfg(feature = "parallel")]
     task_pairs: Vec<Vec<(u32, u32)>>,
@@ -80,6 +100,10 @@ impl BroadPhase {
         }
         let mean_size =
             proxies.iter().map(|b| b.size().max_element()).sum::<f32>() / proxies.len() as f32;
+        if self.find_pairs_by_corner(proxies, asleep, parallel, mean_size, pairs) {
+            self.crowded = 0;
+            return;
+        }
         let cell_size = (2.0 * mean_size).max(1e-3);
         let inv = 1.0 / cell_size;
         let cell_of = |p: Vec2| (floor_i32(p.x * inv), floor_i32(p.y * inv));
@@ -210,6 +234,139 @@ impl BroadPhase {
             }
         }
     }
+
+    /// The corner grid (see the module's documentation): appends the pairs
+    /// and returns `true`, or returns `false` having appended nothing when
+    /// the proxies do not suit it: sizes too unequal, spread too far for a
+    /// dense grid of at most [`CORNER_CELLS_PER_PROXY`] cells a proxy, a
+    /// coordinate not finite, or a cell holding more than `CROWDED_CELL + 1`
+    /// proxies (the hashed grid bounds their pairs).
+    fn find_pairs_by_corner(
+        &mut self,
+        proxies: &[Aabb],
+        asleep: &[bool],
+        parallel: bool,
+        mean_size: f32,
+        pairs: &mut Vec<(u32, u32)>,
+    ) -> bool {
+        // In f64, where the differences of two f32s and their ratios to the
+        // cell are exact or nearly so: the cell must hold the largest proxy
+        // whatever the rounding.
+        let mut largest = 0.0f64;
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for b in proxies {
+            if !(b.min.is_finite() && b.max.is_finite()) {
+                return false;
+            }
+            let (min, max) = (
+                [b.min.x, b.min.y].map(f64::from),
+                [b.max.x, b.max.y].map(f64::from),
+            );
+            largest = largest.max(max[0] - min[0]).max(max[1] - min[1]);
+            for k in 0..2 {
+                lo[k] = lo[k].min(min[k]);
+                hi[k] = hi[k].max(min[k]);
+            }
+        }
+        if largest > 2.0 * f64::from(mean_size) || largest <= 0.0 {
+            return false;
+        }
+        // Overlapping proxies' lower-left corners are at most `largest` apart
+        // along each axis, less than one cell: neighbouring cells at most.
+        let cell = largest * (1.0 + 1e-6);
+        let inv = 1.0 / cell;
+        let (w, h) = (
+            ((hi[0] - lo[0]) * inv).floor() + 1.0,
+            ((hi[1] - lo[1]) * inv).floor() + 1.0,
+        );
+        if w * h > (CORNER_CELLS_PER_PROXY * proxies.len() + 1024) as f64 {
+            return false;
+        }
+        let (w, h) = (w as usize, h as usize);
+        let cells = w * h;
+
+        // Each proxy's cell, then the proxies sorted by cell (counting sort).
+        self.cell_of.clear();
+        self.starts.clear();
+        self.starts.resize(cells + 1, 0);
+        for b in proxies {
+            let axis =
+                |k: usize, v: f32, n: usize| (((f64::from(v) - lo[k]) * inv) as usize).min(n - 1);
+            let c = axis(1, b.min.y, h) * w + axis(0, b.min.x, w);
+            self.cell_of.push(c as u32);
+            self.starts[c + 1] += 1;
+        }
+        if self.starts.iter().any(|&n| n as usize > CROWDED_CELL + 1) {
+            return false;
+        }
+        for k in 1..=cells {
+            self.starts[k] += self.starts[k - 1];
+        }
+        self.order.clear();
+        self.order.resize(proxies.len(), 0);
+        for (i, &c) in self.cell_of.iter().enumerate() {
+            let slot = &mut self.starts[c as usize];
+            self.order[*slot as usize] = i as u32;
+            *slot += 1;
+        }
+        // `starts[c]` now holds the end of cell c: shift back to the starts.
+        for k in (1..=cells).rev() {
+            self.starts[k] = self.starts[k - 1];
+        }
+        self.starts[0] = 0;
+
+        let (order, starts, cell_of) = (&self.order, &self.starts, &self.cell_of);
+        let both_asleep =
+            |a: u32, b: u32| !asleep.is_empty() && asleep[a as usize] && asleep[b as usize];
+        // The pairs of the proxies at `range` of the sorted order, each with
+        // the later proxies of its cell, the cell to its right and the three
+        // cells above.
+        let search = |range: std::ops::Range<usize>, out: &mut Vec<(u32, u32)>| {
+            for k in range {
+                let a = order[k];
+                let c = cell_of[a as usize] as usize;
+                let (cx, cy) = (c % w, c / w);
+                let right_end = starts[c + 1 + usize::from(cx + 1 < w)] as usize;
+                let above = if cy + 1 < h {
+                    let row = c + w;
+                    let first = row - usize::from(cx > 0);
+                    let last = row + usize::from(cx + 1 < w);
+                    &order[starts[first] as usize..starts[last + 1] as usize]
+                } else {
+                    &[]
+                };
+                let box_a = &proxies[a as usize];
+                for &b in order[k + 1..right_end].iter().chain(above) {
+                    if proxies[b as usize].overlaps(box_a) && !both_asleep(a, b) {
+                        out.push(ordered(a, b));
+                    }
+                }
+            }
+        };
+        #[cfg(feature = "parallel")]
+        if crate::parallel::goes_parallel(parallel, proxies.len()) {
+            use rayon::prelude::*;
+            let chunk = crate::constants::PARALLEL_CHUNK;
+            let tasks = proxies.len().div_ceil(chunk);
+            if self.task_pairs.len() < tasks {
+                self.task_pairs.resize_with(tasks, Vec::new);
+            }
+            self.task_pairs[..tasks]
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(t, out)| {
+                    out.clear();
+                    search(t * chunk..((t + 1) * chunk).min(proxies.len()), out);
+                });
+            for out in &self.task_pairs[..tasks] {
+                pairs.extend_from_slice(out);
+            }
+            return true;
+        }
+        let _ = parallel;
+        search(0..proxies.len(), pairs);
+        true
+    }
 }
 
 /// `x.floor() as i32` without a call to `floorf` (x86-64's baseline has
@@ -291,6 +448,92 @@ mod tests {
                 .filter(|&(a, b)| !(asleep[a as usize] && asleep[b as usize]))
                 .collect();
             prop_assert_eq!(pairs, expected);
+        }
+    }
+
+    /// The pairs of the corner grid, sorted, checked to come once each;
+    /// `None` when it declines the proxies.
+    fn corner_pairs(proxies: &[Aabb], asleep: &[bool]) -> Option<Vec<(u32, u32)>> {
+        let mean =
+            proxies.iter().map(|b| b.size().max_element()).sum::<f32>() / proxies.len() as f32;
+        let mut pairs = Vec::new();
+        if !BroadPhase::default().find_pairs_by_corner(proxies, asleep, false, mean, &mut pairs) {
+            assert!(pairs.is_empty(), "declined after appending pairs");
+            return None;
+        }
+        let count = pairs.len();
+        pairs.sort_unstable();
+        pairs.dedup();
+        assert_eq!(pairs.len(), count, "a pair was reported twice");
+        Some(pairs)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        #[test]
+        fn the_corner_grid_finds_exactly_the_pairs_brute_force_finds(
+            proxies in prop::collection::vec(
+                ((-8.0f32..8.0, -8.0f32..8.0, 0.3f32..0.6, 0.3f32..0.6), any::<bool>()),
+                2..300,
+            ),
+            some_asleep in any::<bool>(),
+        ) {
+            let boxes: Vec<Aabb> = proxies
+                .iter()
+                .map(|&((x, y, w, h), _)| Aabb { min: Vec2::new(x, y), max: Vec2::new(x + w, y + h) })
+                .collect();
+            let asleep: Vec<bool> = match some_asleep {
+                true => proxies.iter().map(|p| p.1).collect(),
+                false => Vec::new(),
+            };
+            let expected: Vec<_> = brute_force(&boxes)
+                .into_iter()
+                .filter(|&(a, b)| asleep.is_empty() || !(asleep[a as usize] && asleep[b as usize]))
+                .collect();
+            // Sizes within a factor two of each other over a small region:
+            // the corner grid takes them.
+            prop_assert_eq!(corner_pairs(&boxes, &asleep), Some(expected));
+        }
+    }
+
+    #[test]
+    fn the_corner_grid_finds_boxes_touching_on_cell_boundaries() {
+        // A pyramid's boxes: unit squares side by side and half a box
+        // offset row to row, touching exactly; at the origin and far from it.
+        for origin in [Vec2::ZERO, Vec2::new(40_000.0, -30_000.0)] {
+            let unit = |x: f32, y: f32| Aabb {
+                min: origin + Vec2::new(x, y),
+                max: origin + Vec2::new(x + 1.0, y + 1.0),
+            };
+            let mut boxes = Vec::new();
+            for row in 0..12 {
+                for i in 0..12 - row {
+                    boxes.push(unit(i as f32 + 0.5 * row as f32, row as f32));
+                }
+            }
+            let pairs = corner_pairs(&boxes, &[]).expect("equal boxes suit the corner grid");
+            assert_eq!(pairs, brute_force(&boxes));
+            assert!(pairs.len() > 150, "{}", pairs.len());
+        }
+    }
+
+    #[test]
+    fn the_corner_grid_declines_unequal_far_or_crowded_proxies() {
+        let small = |x: f32| Aabb::from_centre(Vec2::new(x, 0.0), Vec2::splat(0.1));
+        let mut platform = vec![small(0.0), small(0.5), small(1.0)];
+        platform.push(Aabb::from_centre(Vec2::ZERO, Vec2::new(4.0, 0.1)));
+        assert_eq!(
+            corner_pairs(&platform, &[]),
+            None,
+            "a platform among circles"
+        );
+        let far = [small(0.0), small(0.1), small(1.0e6)];
+        assert_eq!(corner_pairs(&far, &[]), None, "a body flung far away");
+        let spot = vec![small(0.0); CROWDED_CELL + 2];
+        assert_eq!(corner_pairs(&spot, &[]), None, "bodies on one spot");
+        // Whatever grid finds them, the pairs are the same.
+        for boxes in [&platform[..], &far[..]] {
+            assert_eq!(grid_pairs(boxes), brute_force(boxes));
         }
     }
 
