@@ -182,8 +182,12 @@ impl World {
                 .motion
                 .piles
                 .find(&cw.solved.rows, self.dynamic.len(), DEEP_OVERLAP);
-        cw.regions
-            .build(&cw.solved.rows, &cw.motion.start, &cw.motion.piles.deep);
+        cw.regions.build(
+            &cw.solved.rows,
+            &cw.motion.start,
+            &cw.motion.piles.deep,
+            self.parallel,
+        );
         if plan.hold_kinematic {
             self.hold_kinematic();
         }

@@ -54,8 +54,15 @@ pub(crate) struct ContactRegions {
 
 impl ContactRegions {
     /// Splits (or not) and colours `rows`, over the dynamic bodies at
-    /// positions `pos`; `deep` as for [`Colouring::build`].
-    pub(crate) fn build(&mut self, rows: &[Constraint], pos: &[Vec2], deep: &[bool]) {
+    /// positions `pos`; `deep` as for [`Colouring::build`]. With `parallel`
+    /// (and the feature) the two regions are coloured side by side.
+    pub(crate) fn build(
+        &mut self,
+        rows: &[Constraint],
+        pos: &[Vec2],
+        deep: &[bool],
+        parallel: bool,
+    ) {
         let bodies = pos.len();
         self.split = bodies >= SPLIT_BODIES;
         if !self.split {
@@ -94,10 +101,25 @@ impl ContactRegions {
             };
             self.picked[g as usize].push(i as u32);
         }
-        for (colouring, picked) in self.groups.iter_mut().zip(&self.picked) {
-            let picked = picked.iter().map(|&i| i as usize);
-            colouring.build(rows, picked, bodies, deep);
+        let [first, second, between] = &mut self.groups;
+        let colour = |colouring: &mut Colouring, picked: &[u32]| {
+            colouring.build(rows, picked.iter().map(|&i| i as usize), bodies, deep);
+        };
+        let [in_first, in_second, in_between] = &self.picked;
+        #[cfg(feature = "parallel")]
+        if parallel {
+            rayon::join(|| colour(first, in_first), || colour(second, in_second));
+        } else {
+            colour(first, in_first);
+            colour(second, in_second);
         }
+        #[cfg(not(feature = "parallel"))]
+        {
+            let _ = parallel;
+            colour(first, in_first);
+            colour(second, in_second);
+        }
+        colour(between, in_between);
         // What makes the regions safe to run side by side (see `Shared`):
         // a region's blocks move only its bodies, and read only those and
         // bodies no contact moves.
@@ -329,7 +351,7 @@ mod tests {
     fn substep(side: u32, parallel: bool) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>, bool) {
         let (pos, mut vel, mut rows) = lattice(side);
         let mut regions = ContactRegions::default();
-        regions.build(&rows, &pos, &[]);
+        regions.build(&rows, &pos, &[], parallel);
         let mut push = vec![Vec2::ZERO; pos.len()];
         let delta = vec![Vec2::ZERO; pos.len()];
         let mut bodies = SolverBodies {
@@ -352,7 +374,7 @@ mod tests {
         let (pos, _, rows) = lattice(80);
         assert!(pos.len() >= SPLIT_BODIES);
         let mut regions = ContactRegions::default();
-        regions.build(&rows, &pos, &[]);
+        regions.build(&rows, &pos, &[], true);
         assert!(regions.is_split());
         let count = |g: usize| regions.picked[g].len();
         // Split at x = 39.5: each half 40 columns, 80 contacts across.
@@ -361,7 +383,7 @@ mod tests {
         assert_eq!(count(0) + count(1) + count(2), rows.len());
         // A small pile does not split.
         let (pos, _, rows) = lattice(20);
-        regions.build(&rows, &pos, &[]);
+        regions.build(&rows, &pos, &[], true);
         assert!(!regions.is_split());
     }
 
@@ -370,7 +392,7 @@ mod tests {
         for side in [20, 80] {
             let (pos, _, mut rows) = lattice(side);
             let mut regions = ContactRegions::default();
-            regions.build(&rows, &pos, &[]);
+            regions.build(&rows, &pos, &[], true);
             for g in &mut regions.groups {
                 g.mark_rows();
             }
@@ -391,7 +413,7 @@ mod tests {
         let (pos, _, mut rows) = lattice(80);
         rows[0].inv_mass_a = 0.0;
         let mut regions = ContactRegions::default();
-        regions.build(&rows, &pos, &[]);
+        regions.build(&rows, &pos, &[], true);
         let touching_0: Vec<u32> = (0..rows.len() as u32)
             .filter(|&i| {
                 let c = &rows[i as usize];
