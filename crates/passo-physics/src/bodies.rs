@@ -427,12 +427,16 @@ impl<'a> Colliders<'a> {
     /// order depends on ids, not on storage.
     #[inline(always)]
     pub(crate) fn pair_order(&self, a: ColliderRef, b: ColliderRef) -> u64 {
-        let (x, y) = (
-            u64::from(self.meta(a).id.index),
-            u64::from(self.meta(b).id.index),
-        );
-        x.min(y) << 32 | x.max(y)
+        pair_order(self.meta(a).id.index, self.meta(b).id.index)
     }
+}
+
+/// The order key of the pair of bodies in slots `x` and `y` (`BodyId`
+/// indices): the lower slot first.
+#[inline(always)]
+pub(crate) fn pair_order(x: u32, y: u32) -> u64 {
+    let (x, y) = (u64::from(x), u64::from(y));
+    x.min(y) << 32 | x.max(y)
 }
 
 /// Bytes a vector holds on the heap.

@@ -96,6 +96,8 @@ pub(crate) struct Proxies {
     spans: Vec<(f32, f32)>,
     /// Proxy -> dynamic index.
     pub body: Vec<u32>,
+    /// Proxy -> its body's slot (`BodyId` index), which orders pairs.
+    pub slot: Vec<u32>,
     /// Proxy boxes, grown by their margins.
     pub boxes: Vec<Aabb>,
     /// Per proxy: its body's travel margin this step.
@@ -139,6 +141,7 @@ impl Proxies {
         }
         self.find_faces_covered_by_kinematic(dynamic, statics);
         self.body.clear();
+        self.slot.clear();
         self.boxes.clear();
         self.margins.clear();
         self.asleep.clear();
@@ -303,6 +306,7 @@ impl Proxies {
         let p = self.boxes.len() as u32;
         self.of_body[i] = p;
         self.body.push(i as u32);
+        self.slot.push(dynamic.meta[i].id.index);
         self.boxes
             .push(Aabb::from_centre(dynamic.pos[i], shape.half_extents()).grown(margin));
         self.margins.push(margin);
