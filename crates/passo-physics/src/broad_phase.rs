@@ -240,7 +240,10 @@ impl BroadPhase {
     /// the proxies do not suit it: sizes too unequal, spread too far for a
     /// dense grid of at most [`CORNER_CELLS_PER_PROXY`] cells a proxy, a
     /// coordinate not finite, or a cell holding more than `CROWDED_CELL + 1`
-    /// proxies (the hashed grid bounds their pairs).
+    /// proxies (the hashed grid bounds their pairs). Its cells are at most
+    /// half the hashed grid's, so a pile can crowd a hashed bucket and no
+    /// corner cell: the corner grid then finds all of its pairs, where the
+    /// hashed grid would have kept each proxy's first `CROWDED_CELL`.
     fn find_pairs_by_corner(
         &mut self,
         proxies: &[Aabb],
