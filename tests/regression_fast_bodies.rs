@@ -81,9 +81,13 @@ fn a_rain_at_one_hertz_keeps_bounded_contacts_and_stays_above_the_floor() {
     let mut lowest = f32::MAX;
     for _ in 0..30 {
         world.step(1.0);
-        // Each circle meets at most those within two reaches (0.8 m) and a
-        // diameter: about 80 in a dense pile, half a contact each.
-        assert!(world.contacts().count() <= 40 * n);
+        // Each circle meets those within two reaches (0.8 m) and a
+        // diameter. One-second steps squeeze the pile: its busiest step has
+        // 43 contacts per circle (17 200 for 400), all of its pairs found.
+        // (Until the broad phase's corner grid, crowded grid buckets capped
+        // that step at 13 805.) Linear in the bodies, where a fast body once
+        // met everything along its path.
+        assert!(world.contacts().count() <= 50 * n);
         for b in world.bodies().filter(|b| b.kind == BodyKind::Dynamic) {
             assert!(b.position.is_finite());
             lowest = lowest.min(b.position.y);
