@@ -189,27 +189,13 @@ impl BroadPhase {
             .count();
         #[cfg(feature = "parallel")]
         if crate::parallel::goes_parallel(parallel, self.entries.len()) {
-            use rayon::prelude::*;
             // Runs of buckets holding about PARALLEL_CHUNK entries each.
             let tasks = self
                 .entries
                 .len()
                 .div_ceil(crate::constants::PARALLEL_CHUNK);
             let per_task = table.div_ceil(tasks);
-            let tasks = table.div_ceil(per_task);
-            if self.task_pairs.len() < tasks {
-                self.task_pairs.resize_with(tasks, Vec::new);
-            }
-            self.task_pairs[..tasks]
-                .par_iter_mut()
-                .enumerate()
-                .for_each(|(t, out)| {
-                    out.clear();
-                    search(t * per_task..((t + 1) * per_task).min(table), out);
-                });
-            for out in &self.task_pairs[..tasks] {
-                pairs.extend_from_slice(out);
-            }
+            in_tasks(&mut self.task_pairs, table, per_task, search, pairs);
         } else {
             search(0..table, pairs);
         }
@@ -348,27 +334,42 @@ impl BroadPhase {
         };
         #[cfg(feature = "parallel")]
         if crate::parallel::goes_parallel(parallel, proxies.len()) {
-            use rayon::prelude::*;
             let chunk = crate::constants::PARALLEL_CHUNK;
-            let tasks = proxies.len().div_ceil(chunk);
-            if self.task_pairs.len() < tasks {
-                self.task_pairs.resize_with(tasks, Vec::new);
-            }
-            self.task_pairs[..tasks]
-                .par_iter_mut()
-                .enumerate()
-                .for_each(|(t, out)| {
-                    out.clear();
-                    search(t * chunk..((t + 1) * chunk).min(proxies.len()), out);
-                });
-            for out in &self.task_pairs[..tasks] {
-                pairs.extend_from_slice(out);
-            }
+            in_tasks(&mut self.task_pairs, proxies.len(), chunk, search, pairs);
             return true;
         }
         let _ = parallel;
         search(0..proxies.len(), pairs);
         true
+    }
+}
+
+/// Runs `search` over `0..items` in runs of `per_task` on rayon's pool,
+/// each into its own buffer of `task_pairs`, and appends the buffers to
+/// `pairs` in order: the pairs and their order are those of one search over
+/// everything.
+#[cfg(feature = "parallel")]
+fn in_tasks(
+    task_pairs: &mut Vec<Vec<(u32, u32)>>,
+    items: usize,
+    per_task: usize,
+    search: impl Fn(std::ops::Range<usize>, &mut Vec<(u32, u32)>) + Sync,
+    pairs: &mut Vec<(u32, u32)>,
+) {
+    use rayon::prelude::*;
+    let tasks = items.div_ceil(per_task);
+    if task_pairs.len() < tasks {
+        task_pairs.resize_with(tasks, Vec::new);
+    }
+    task_pairs[..tasks]
+        .par_iter_mut()
+        .enumerate()
+        .for_each(|(t, out)| {
+            out.clear();
+            search(t * per_task..((t + 1) * per_task).min(items), out);
+        });
+    for out in &task_pairs[..tasks] {
+        pairs.extend_from_slice(out);
     }
 }
 
