@@ -223,7 +223,7 @@ impl RawMap {
                 .read(&to_world, scale, &mut level)
                 .map_err(|m| invalid(what.clone(), m))?;
             if let Some(spec) = level.bodies.last().filter(|_| level.bodies.len() > checked) {
-                crate::format::check_body(spec, shown, &what)?;
+                crate::validate::check_body(spec, shown, &what)?;
             }
             checked = level.bodies.len();
         }

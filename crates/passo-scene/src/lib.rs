@@ -29,6 +29,7 @@ mod level;
 mod map_ref;
 mod save;
 mod tiled_file;
+mod validate;
 
 pub use build::{BuiltScene, KINEMATIC_COLOUR, Platform, SceneBody};
 pub use error::SceneError;

@@ -1,0 +1,306 @@
+//! Validation of a parsed scene: every value against its allowed range,
+//! with errors that name the field.
+
+use crate::error::SceneError;
+use crate::format::{BodySpec, Generator, MAX_BODIES, SceneFile};
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyKind, Shape};
+
+struct Check<'a> {
+    source: &'a str,
+}
+
+impl Check<'_> {
+    fn fail(&self, field: &str, message: String) -> SceneError {
+        SceneError::Invalid {
+            source_name: self.source.to_owned(),
+            field: field.to_owned(),
+            message,
+        }
+    }
+
+    fn range(&self, field: &str, v: f32, ok: bool, allowed: &str) -> Result<(), SceneError> {
+        if !(v.is_finite() || v == f32::INFINITY && allowed.contains("inf")) {
+            return Err(self.fail(field, format!("must be finite ({allowed}), got {v}")));
+        }
+        if ok {
+            Ok(())
+        } else {
+            Err(self.fail(field, format!("must be {allowed}, got {v}")))
+        }
+    }
+
+    fn positive(&self, field: &str, v: f32, unit: &str) -> Result<(), SceneError> {
+        self.range(field, v, v > 0.0, &format!("> 0 {unit}"))
+    }
+
+    fn non_negative(&self, field: &str, v: f32, unit: &str) -> Result<(), SceneError> {
+        self.range(field, v, v >= 0.0, &format!(">= 0 {unit}"))
+    }
+
+    fn finite_vec(&self, field: &str, v: Vec2) -> Result<(), SceneError> {
+        if v.is_finite() {
+            Ok(())
+        } else {
+            Err(self.fail(field, format!("must be finite, got ({}, {})", v.x, v.y)))
+        }
+    }
+}
+
+impl SceneFile {
+    /// Checks every value; the error names the field and the allowed range.
+    pub fn validate(&self, source: &str) -> Result<(), SceneError> {
+        let c = Check { source };
+        if !(self.rate_hz.is_finite() && (1.0..=10_000.0).contains(&self.rate_hz)) {
+            return Err(c.fail(
+                "rate_hz",
+                format!("must be in [1, 10000] Hz, got {:?}", self.rate_hz),
+            ));
+        }
+        c.non_negative("min_speed", self.min_speed, "m/s")?;
+        c.range(
+            "max_speed",
+            self.max_speed,
+            self.max_speed > 0.0,
+            "> 0 m/s or inf",
+        )?;
+        self.validate_forces(&c)?;
+        if let Some(t) = &self.tilemap {
+            if t.file.is_some() == t.ascii.is_some() {
+                return Err(c.fail(
+                    "tilemap",
+                    "needs exactly one of `file` and `ascii`".to_owned(),
+                ));
+            }
+            c.positive("tilemap.cell", t.cell, "m")?;
+            c.finite_vec("tilemap.origin", t.origin)?;
+            if t.kind == BodyKind::Dynamic {
+                return Err(c.fail("tilemap.kind", "must be Static or Kinematic".to_owned()));
+            }
+            if let Some(path) = &t.path {
+                c.finite_vec("tilemap.path.by", path.by)?;
+                c.positive("tilemap.path.period", path.period, "s")?;
+                if t.kind != BodyKind::Kinematic {
+                    return Err(c.fail("tilemap.path", "is for `kind: Kinematic` maps".to_owned()));
+                }
+            }
+        }
+        if let Some(contacts) = &self.collisions {
+            contacts
+                .validate()
+                .map_err(|e| c.fail("collisions", physics_message(&e)))?;
+            if contacts.substeps > 64 {
+                return Err(c.fail(
+                    "collisions.substeps",
+                    format!("must be in [1, 64], got {}", contacts.substeps),
+                ));
+            }
+        }
+        if let Some(camera) = &self.camera {
+            c.finite_vec("camera.min", camera.min)?;
+            c.finite_vec("camera.max", camera.max)?;
+            if !(camera.min.x < camera.max.x && camera.min.y < camera.max.y) {
+                return Err(c.fail("camera", "must have min < max on both axes".to_owned()));
+            }
+        }
+        for (i, body) in self.bodies.iter().enumerate() {
+            body.validate(&c, &format!("bodies[{i}]"))?;
+        }
+        let mut total = self.bodies.len() as u64;
+        for (i, g) in self.generators.iter().enumerate() {
+            let path = format!("generators[{i}]");
+            g.validate(&c, &path)?;
+            total = total.saturating_add(g.count());
+        }
+        if total > MAX_BODIES as u64 {
+            return Err(c.fail(
+                "generators",
+                format!("make {total} bodies; at most {} are allowed", MAX_BODIES),
+            ));
+        }
+        Ok(())
+    }
+
+    fn validate_forces(&self, c: &Check<'_>) -> Result<(), SceneError> {
+        let f = &self.forces;
+        if let Some(g) = f.gravity {
+            c.finite_vec("forces.gravity", g)?;
+        }
+        if let Some(d) = &f.quadratic_drag {
+            c.non_negative("forces.quadratic_drag.density", d.density, "kg/m³")?;
+        }
+        if let Some(d) = &f.linear_drag {
+            c.non_negative("forces.linear_drag.coefficient", d.coefficient, "kg/s")?;
+        }
+        c.finite_vec("forces.wind", f.wind)?;
+        if let Some(s) = &f.surface_friction {
+            c.non_negative("forces.surface_friction.gravity", s.gravity, "m/s²")?;
+        }
+        if let Some(v) = f.force_field {
+            c.finite_vec("forces.force_field", v)?;
+        }
+        if let Some(s) = &f.spring {
+            c.finite_vec("forces.spring.anchor", s.anchor)?;
+            c.non_negative("forces.spring.stiffness", s.stiffness, "N/m")?;
+        }
+        if let Some(g) = &f.central_gravity {
+            c.finite_vec("forces.central_gravity.centre", g.centre)?;
+            c.range("forces.central_gravity.gm", g.gm, true, "finite m³/s²")?;
+        }
+        Ok(())
+    }
+}
+
+/// A physics error's message without the Rust type prefix.
+fn physics_message(e: &passo_physics::PhysicsError) -> String {
+    let text = e.to_string();
+    match text.split_once("::") {
+        Some((_, rest)) => format!("field {rest}"),
+        None => text,
+    }
+}
+
+/// Checks a body made elsewhere (a Tiled object) as a scene body is
+/// checked; errors name `source` and `path`.
+pub(crate) fn check_body(spec: &BodySpec, source: &str, path: &str) -> Result<(), SceneError> {
+    spec.validate(&Check { source }, path)
+}
+
+impl BodySpec {
+    fn validate(&self, c: &Check<'_>, path: &str) -> Result<(), SceneError> {
+        let at = |field: &str| format!("{path}.{field}");
+        if let Some(shape) = &self.shape {
+            match *shape {
+                Shape::Circle { radius } => c.positive(&at("shape.radius"), radius, "m")?,
+                Shape::Box { half_extents } => {
+                    c.positive(&at("shape.half_extents.x"), half_extents.x, "m")?;
+                    c.positive(&at("shape.half_extents.y"), half_extents.y, "m")?;
+                }
+            }
+        }
+        if self.mass.is_some() && self.density.is_some() {
+            return Err(c.fail(path, "gives both `mass` and `density`; give one".to_owned()));
+        }
+        if let Some(mass) = self.mass {
+            c.positive(&at("mass"), mass, "kg")?;
+        }
+        if let Some(density) = self.density {
+            c.positive(&at("density"), density, "kg/m²")?;
+            match &self.shape {
+                None => {
+                    return Err(c.fail(
+                        &at("density"),
+                        "needs a `shape` to give the area".to_owned(),
+                    ));
+                }
+                Some(shape) => {
+                    let mass = density * shape.area();
+                    if !(mass.is_finite() && mass > 0.0) {
+                        return Err(c.fail(
+                            &at("density"),
+                            format!("gives a mass of {mass} kg; it must be finite and > 0"),
+                        ));
+                    }
+                }
+            }
+        }
+        c.finite_vec(&at("position"), self.position)?;
+        c.finite_vec(&at("velocity"), self.velocity)?;
+        let m = &self.material;
+        c.range(
+            &at("material.restitution"),
+            m.restitution,
+            (0.0..=1.0).contains(&m.restitution),
+            "in [0, 1]",
+        )?;
+        c.non_negative(&at("material.friction"), m.friction, "")?;
+        c.non_negative(&at("material.drag_area"), m.drag_area, "m²")?;
+        if let Some(v) = self.min_speed {
+            c.non_negative(&at("min_speed"), v, "m/s")?;
+        }
+        if let Some(v) = self.max_speed {
+            c.range(&at("max_speed"), v, v > 0.0, "> 0 m/s or inf")?;
+        }
+        if self.sensor && self.shape.is_none() {
+            return Err(c.fail(&at("sensor"), "needs a `shape`".to_owned()));
+        }
+        if let Some(n) = self.one_way {
+            c.finite_vec(&at("one_way"), n)?;
+            if n == Vec2::ZERO || self.kind == BodyKind::Dynamic {
+                return Err(c.fail(
+                    &at("one_way"),
+                    "must be a non-zero direction on a Static or Kinematic body".to_owned(),
+                ));
+            }
+        }
+        if self.bullet && self.kind != BodyKind::Dynamic {
+            return Err(c.fail(&at("bullet"), "is for `kind: Dynamic` bodies".to_owned()));
+        }
+        if let Some(path) = &self.path {
+            c.finite_vec(&at("path.by"), path.by)?;
+            c.positive(&at("path.period"), path.period, "s")?;
+            if self.kind != BodyKind::Kinematic {
+                return Err(c.fail(&at("path"), "is for `kind: Kinematic` bodies".to_owned()));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Generator {
+    fn validate(&self, c: &Check<'_>, path: &str) -> Result<(), SceneError> {
+        let at = |field: &str| format!("{path}.{field}");
+        let count = |field: &str, n: u32| {
+            if n >= 1 {
+                Ok(())
+            } else {
+                Err(c.fail(&at(field), "must be >= 1, got 0".to_owned()))
+            }
+        };
+        match self {
+            Self::Grid {
+                origin,
+                columns,
+                rows,
+                spacing,
+                body,
+            } => {
+                count("columns", *columns)?;
+                count("rows", *rows)?;
+                c.finite_vec(&at("origin"), *origin)?;
+                c.finite_vec(&at("spacing"), *spacing)?;
+                body.validate(c, &at("body"))
+            }
+            Self::Pyramid {
+                base,
+                origin,
+                gap,
+                body,
+            } => {
+                count("base", *base)?;
+                c.finite_vec(&at("origin"), *origin)?;
+                c.non_negative(&at("gap"), *gap, "m")?;
+                if body.shape.is_none() {
+                    return Err(c.fail(&at("body.shape"), "is needed to stack bodies".to_owned()));
+                }
+                body.validate(c, &at("body"))
+            }
+            Self::Rain {
+                count: n,
+                origin,
+                columns,
+                spacing,
+                jitter,
+                body,
+                ..
+            } => {
+                count("count", *n)?;
+                count("columns", *columns)?;
+                c.finite_vec(&at("origin"), *origin)?;
+                c.finite_vec(&at("spacing"), *spacing)?;
+                c.non_negative(&at("jitter"), *jitter, "m")?;
+                body.validate(c, &at("body"))
+            }
+        }
+    }
+}
