@@ -4,6 +4,8 @@
 //! The files, each one concept, from the window down (a file imports only
 //! those below it):
 //! - `app`: the window, its events and the frame loop; `passo demo`'s options.
+//! - `running`: what exists while the window does (surface, renderer, egui,
+//!   scene, camera), what keys and clicks do to it, and drawing a frame.
 //! - `ui`: the panel.
 //! - `sim`: a running scene, its ticks and commands, recording and replay.
 //! - `catalogue`: the scene list.
@@ -20,6 +22,7 @@ mod controls;
 mod history;
 mod lanes;
 mod replay;
+mod running;
 mod scene_state;
 mod session;
 mod sim;

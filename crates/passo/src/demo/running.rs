@@ -1,0 +1,392 @@
+//! What exists while the demo's window does: the surface, the renderer,
+//! egui, the running scene and the camera; what keys and clicks do to it,
+//! and how a frame is drawn.
+
+use super::catalogue::Entry;
+use super::controls::Input;
+use super::replay::{Command, Replay};
+use super::sim::{Sim, load};
+use super::ui::{self, Actions, ViewOptions};
+use crate::draw::{BACKGROUND, DrawOptions, add_world};
+use anyhow::Result;
+use glam::Vec2;
+use passo_loop::RealClock;
+use passo_physics::BodyId;
+use passo_render::{Camera2D, DrawList, Gpu, Renderer, RgbaImage, WindowSurface, read_texture};
+use std::sync::Arc;
+use std::time::Duration;
+use winit::dpi::PhysicalSize;
+use winit::event::MouseButton;
+use winit::keyboard::KeyCode;
+use winit::window::Window;
+
+/// Keys the game reads every tick.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Keys {
+    pub(super) left: bool,
+    pub(super) right: bool,
+    pub(super) run: bool,
+    pub(super) glide: bool,
+    pub(super) jump: bool,
+}
+
+/// What the mouse is doing.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Mouse {
+    /// Cursor, physical pixels.
+    pub(super) at: Vec2,
+    /// A body being flung: its id and the world point the drag started at.
+    pub(super) fling: Option<(BodyId, Vec2)>,
+    /// Panning with the right or middle button.
+    pub(super) panning: bool,
+}
+
+/// Frames per second, averaged over about half a second.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Fps {
+    pub(super) frames: u32,
+    pub(super) elapsed: Duration,
+    pub(super) value: f64,
+}
+
+impl Fps {
+    pub(super) fn tick(&mut self, frame_time: Duration) {
+        self.frames += 1;
+        self.elapsed += frame_time;
+        if self.elapsed >= Duration::from_millis(500) {
+            self.value = f64::from(self.frames) / self.elapsed.as_secs_f64();
+            self.frames = 0;
+            self.elapsed = Duration::ZERO;
+        }
+    }
+}
+
+/// egui's three parts.
+pub(super) struct Egui {
+    pub(super) ctx: egui::Context,
+    pub(super) state: egui_winit::State,
+    pub(super) renderer: egui_wgpu::Renderer,
+}
+
+/// Everything that exists while the window does.
+pub(super) struct Running {
+    pub(super) window: Arc<Window>,
+    pub(super) gpu: Gpu,
+    pub(super) surface: WindowSurface,
+    pub(super) renderer: Renderer,
+    pub(super) egui: Egui,
+    pub(super) sim: Sim,
+    pub(super) entry: Entry,
+    pub(super) catalogue: Vec<(String, Entry)>,
+    pub(super) camera: Camera2D,
+    /// The user zoomed or panned: stop fitting the scene to the window.
+    pub(super) camera_moved: bool,
+    pub(super) list: DrawList,
+    pub(super) clock: RealClock,
+    pub(super) keys: Keys,
+    pub(super) mouse: Mouse,
+    pub(super) view: ViewOptions,
+    pub(super) fps: Fps,
+    /// Width of the panel, physical pixels (the scene is fitted beside it).
+    pub(super) panel_px: f32,
+    pub(super) message: Option<String>,
+    /// A frame time to use instead of the clock's for the next frame.
+    pub(super) hitch: Option<Duration>,
+    /// Where `--record` saves the replay on exit.
+    pub(super) record_to: Option<std::path::PathBuf>,
+    /// The last replay saved with the panel's button.
+    pub(super) last_replay: Option<Replay>,
+}
+
+impl Running {
+    /// The window test's rough handling, by frame number: a resize, a
+    /// minimise (the 0×0 size a minimised window reports), a restore, and a
+    /// 400 ms frame.
+    pub(super) fn stress(&mut self, frame: u64) {
+        let size = self.window.inner_size();
+        match frame {
+            5 => {
+                let _ = self
+                    .window
+                    .request_inner_size(PhysicalSize::new(size.width + 64, size.height + 32));
+            }
+            10 => self.surface.resize(&self.gpu.device, (0, 0)),
+            14 => self
+                .surface
+                .resize(&self.gpu.device, (size.width, size.height)),
+            18 => self.hitch = Some(Duration::from_millis(400)),
+            _ => {}
+        }
+    }
+
+    pub(super) fn key(&mut self, code: KeyCode, down: bool, repeat: bool) {
+        match code {
+            KeyCode::KeyA | KeyCode::ArrowLeft => self.keys.left = down,
+            KeyCode::KeyD | KeyCode::ArrowRight => self.keys.right = down,
+            KeyCode::ShiftLeft | KeyCode::ShiftRight => self.keys.run = down,
+            KeyCode::KeyG => self.keys.glide = down,
+            KeyCode::Space if down && !repeat => self.keys.jump = true,
+            KeyCode::KeyW if down && !repeat => {
+                let mut knobs = self.sim.session.knobs;
+                knobs.wind = !knobs.wind;
+                let command = Command::Knobs {
+                    knobs,
+                    friction: false,
+                    restitution: false,
+                    drag: false,
+                };
+                self.act(Actions {
+                    commands: vec![command],
+                    ..Default::default()
+                });
+            }
+            KeyCode::KeyP if down && !repeat => {
+                if self.sim.session.timestep.is_paused() {
+                    self.sim.session.timestep.resume();
+                } else {
+                    self.sim.session.timestep.pause();
+                }
+            }
+            KeyCode::KeyN if down => self.sim.session.timestep.step_once(),
+            KeyCode::Backspace => self.sim.rewinding = down,
+            KeyCode::KeyR if down && !repeat => self.act(Actions {
+                commands: vec![Command::Reset],
+                ..Default::default()
+            }),
+            KeyCode::KeyF if down && !repeat => self.camera_moved = false,
+            KeyCode::KeyV if down && !repeat => self.view.velocities = !self.view.velocities,
+            _ => {}
+        }
+    }
+
+    pub(super) fn click(&mut self, button: MouseButton, down: bool) {
+        let world_at = self
+            .camera
+            .pixel_to_world(self.mouse.at, self.surface.size());
+        match (button, down) {
+            (MouseButton::Left, true) => match self.sim.scene.pick(world_at) {
+                Some(id) => self.mouse.fling = Some((id, world_at)),
+                None => {
+                    let command = Command::Spawn {
+                        at: world_at.to_array(),
+                        round: !self.keys.run,
+                    };
+                    self.act(Actions {
+                        commands: vec![command],
+                        ..Default::default()
+                    });
+                }
+            },
+            (MouseButton::Left, false) => {
+                if let Some((id, from)) = self.mouse.fling.take() {
+                    // A slingshot: 4 m/s for every metre dragged.
+                    let command = Command::Fling {
+                        index: id.index(),
+                        generation: id.generation(),
+                        velocity: ((world_at - from) * 4.0).to_array(),
+                    };
+                    self.act(Actions {
+                        commands: vec![command],
+                        ..Default::default()
+                    });
+                }
+            }
+            (MouseButton::Right | MouseButton::Middle, pressed) => self.mouse.panning = pressed,
+            _ => {}
+        }
+    }
+
+    /// Switches scene, applies commands, records and replays.
+    pub(super) fn act(&mut self, actions: Actions) {
+        let mut result = Ok(());
+        if let Some(entry) = actions.switch_to {
+            result = load(&entry).map(|sim| {
+                self.sim = sim;
+                self.entry = entry;
+                self.camera_moved = false;
+                self.window
+                    .set_title(&format!("Passo: {}", self.sim.scene.name));
+            });
+        }
+        for command in actions.commands {
+            if result.is_ok() {
+                result = self.sim.command(command);
+            }
+        }
+        if actions.record {
+            result = result.and_then(|()| self.sim.start_recording());
+        }
+        if actions.stop_recording
+            && let Some(replay) = self.sim.stop_recording()
+        {
+            let dir = std::path::Path::new("replays");
+            let path = dir.join(format!("{}-{}.ron", replay.scene, replay.ticks));
+            result = result
+                .and_then(|()| std::fs::create_dir_all(dir).map_err(Into::into))
+                .and_then(|()| replay.save(&path));
+            if result.is_ok() {
+                self.message = Some(format!("replay saved to {}", path.display()));
+            }
+            self.last_replay = Some(replay);
+        }
+        if actions.replay_last
+            && let Some(replay) = self.last_replay.clone()
+        {
+            result = result.and_then(|()| self.sim.start_playback(replay));
+        }
+        if let Err(e) = result {
+            self.message = Some(format!("{e:#}"));
+        }
+    }
+
+    /// Fits the scene into the part of the window beside the panel.
+    pub(super) fn fit_camera(&mut self) {
+        let (w, h) = self.surface.size();
+        let free = ((w as f32 - self.panel_px).max(1.0) as u32, h);
+        let b = self.sim.scene.bounds;
+        let mut camera = Camera2D::fit(b.min, b.max, free);
+        camera.centre.x -= 0.5 * self.panel_px * camera.pixel_size((w, h));
+        self.camera = camera;
+    }
+
+    /// One frame: tick the simulation, build the panel, draw, present.
+    /// Returns `Ok(None)` when the frame was skipped, else whether a
+    /// screenshot was taken.
+    pub(super) fn redraw(&mut self, capture: bool) -> Result<Option<Option<RgbaImage>>> {
+        let frame_time = self.clock.frame_time();
+        let frame_time = self.hitch.take().unwrap_or(frame_time);
+        self.sim.scene.set_input(Input {
+            left: self.keys.left,
+            right: self.keys.right,
+            run: self.keys.run,
+            glide: self.keys.glide,
+            jump: std::mem::take(&mut self.keys.jump),
+        });
+        self.sim.frame(frame_time);
+        self.fps.tick(frame_time);
+
+        // The panel.
+        let raw = self.egui.state.take_egui_input(&self.window);
+        let mut actions = Actions::default();
+        let panel = ui::PanelInput {
+            catalogue: &self.catalogue,
+            current: &self.entry,
+            fps: self.fps.value,
+            message: self.message.as_deref(),
+            last_replay: self.last_replay.is_some(),
+        };
+        let camera = self.camera;
+        let size = self.surface.size();
+        let ppp = self.window.scale_factor() as f32;
+        let mut panel_width = 0.0;
+        let mut full = self.egui.ctx.run_ui(raw, |ui| {
+            panel_width = ui::panel(ui, &mut self.sim, &mut self.view, &panel, &mut actions);
+            ui::lane_labels(ui, &self.sim, &camera, size, ppp);
+        });
+        self.panel_px = panel_width * full.pixels_per_point;
+        self.egui
+            .state
+            .handle_platform_output(&self.window, full.platform_output);
+        let jobs = self.egui.ctx.tessellate(full.shapes, full.pixels_per_point);
+        self.act(actions);
+        if !self.camera_moved {
+            self.fit_camera();
+        }
+
+        // Draw. Textures are updated and freed whether or not the frame is drawn.
+        let (device, queue) = (&self.gpu.device, &self.gpu.queue);
+        let mut textures = std::mem::take(&mut full.textures_delta);
+        for (id, deltas) in textures.set.drain() {
+            for delta in &deltas {
+                self.egui.renderer.update_texture(device, queue, id, delta);
+            }
+        }
+        let result = match self.surface.acquire(device) {
+            None => Ok(None),
+            Some(frame) => {
+                let scene_view = self.surface.scene_view(&frame);
+                let view = frame
+                    .texture
+                    .create_view(&wgpu::TextureViewDescriptor::default());
+                self.list.clear(BACKGROUND);
+                for lane in &self.sim.scene.lanes {
+                    let options = DrawOptions {
+                        alpha: self.sim.session.stats.alpha,
+                        velocity_vectors: self.view.velocities,
+                        force_vectors: self.view.forces,
+                        contact_normals: self.view.contacts,
+                        dim_sleeping: self.view.sleeping,
+                        offset: lane.offset,
+                        ..Default::default()
+                    };
+                    add_world(&mut self.list, &lane.world, &lane.bodies, &options);
+                }
+                let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("passo demo frame"),
+                });
+                self.renderer
+                    .encode(&mut encoder, &scene_view, size, &self.camera, &self.list);
+                let screen = egui_wgpu::ScreenDescriptor {
+                    size_in_pixels: [size.0, size.1],
+                    pixels_per_point: full.pixels_per_point,
+                };
+                let extra =
+                    self.egui
+                        .renderer
+                        .update_buffers(device, queue, &mut encoder, &jobs, &screen);
+                {
+                    let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                        label: Some("passo panel"),
+                        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                            view: &view,
+                            depth_slice: None,
+                            resolve_target: None,
+                            ops: wgpu::Operations {
+                                load: wgpu::LoadOp::Load,
+                                store: wgpu::StoreOp::Store,
+                            },
+                        })],
+                        ..Default::default()
+                    });
+                    self.egui
+                        .renderer
+                        .render(&mut pass.forget_lifetime(), &jobs, &screen);
+                }
+                queue.submit(extra.into_iter().chain(Some(encoder.finish())));
+                let shot = if capture {
+                    Some(read_texture(&self.gpu, &frame.texture)?)
+                } else {
+                    None
+                };
+                queue.present(frame);
+                Ok(Some(shot))
+            }
+        };
+        for id in textures.free.drain() {
+            self.egui.renderer.free_texture(&id);
+        }
+        result
+    }
+
+    /// A line for tests and logs: frames, ticks, window, camera, the state
+    /// hash and how a replay ended.
+    pub(super) fn summary(&self, presented: u64, skipped: u64) -> String {
+        let (w, h) = self.surface.size();
+        let replay = match self.sim.session.playback_status() {
+            Some((_, _, Some(hash), recorded)) if hash == recorded => "; replay matched",
+            Some((_, _, Some(_), _)) => "; replay differed",
+            Some((_, _, None, _)) => "; replay unfinished",
+            None => "",
+        };
+        format!(
+            "presented {presented} frames; skipped {skipped}; ticks {}; dropped {:.3} s; window {w}x{h}; \
+             camera centre ({}, {}) height {}; hash {:016x}{replay}",
+            self.sim.session.timestep.tick(),
+            self.sim.session.timestep.dropped_total().as_secs_f64(),
+            self.camera.centre.x,
+            self.camera.centre.y,
+            self.camera.height,
+            self.sim.scene.state_hash()
+        )
+    }
+}
