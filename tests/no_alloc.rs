@@ -53,4 +53,54 @@ fn stepping_a_rain_scene_allocates_nothing_after_warm_up() {
         0,
         "allocations while stepping"
     );
+    small_awake_worlds_allocate_nothing();
+}
+
+/// Small awake worlds too: 33 and 428 candidate pairs a step, which the
+/// narrow phase sorts by insertion and by radix. (The standard library's
+/// stable sort, used below 512 pairs for a while, allocated a buffer every
+/// step of the second.) In this test function, not a test of its own: the
+/// count is global, and tests run side by side.
+fn small_awake_worlds_allocate_nothing() {
+    use passo_physics::{BodyDef, Shape, World};
+    let mut worlds = Vec::new();
+    for (rows, columns) in [(3, 4), (8, 15)] {
+        let mut world = World::default();
+        world
+            .add_body(BodyDef::new_static(
+                Vec2::new(0.0, -0.5),
+                Shape::rect(40.0, 1.0),
+            ))
+            .unwrap();
+        for k in 0..rows * columns {
+            let (i, j) = (k % columns, k / columns);
+            let def = BodyDef::new_dynamic(
+                Vec2::new(i as f32 * 0.2 - 2.5, 0.1 + j as f32 * 0.2),
+                Shape::circle(0.1),
+            );
+            world.add_body(def).unwrap();
+        }
+        let mut settings = *world.settings();
+        settings.contacts.as_mut().unwrap().sleeping = false;
+        world.set_settings(settings).unwrap();
+        world.set_parallel(false);
+        for _ in 0..120 {
+            world.step(1.0 / 60.0);
+        }
+        worlds.push(world);
+    }
+    ALLOCATIONS.store(0, Ordering::Relaxed);
+    COUNTING.store(true, Ordering::Relaxed);
+    for world in &mut worlds {
+        for _ in 0..120 {
+            world.step(1.0 / 60.0);
+        }
+    }
+    COUNTING.store(false, Ordering::Relaxed);
+    assert!(worlds[0].contacts().count() >= 12 && worlds[1].contacts().count() >= 200);
+    assert_eq!(
+        ALLOCATIONS.load(Ordering::Relaxed),
+        0,
+        "allocations while stepping small worlds"
+    );
 }

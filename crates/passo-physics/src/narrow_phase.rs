@@ -204,13 +204,20 @@ fn one_way_allows(a: &Collider, b: &Collider, m: &Manifold) -> bool {
 
 /// Sorts the pairs by key: a least-significant-digit radix sort over the
 /// bits the keys use (two body slot indices), stable, so the same input
-/// gives the same order (the keys of distinct pairs differ anyway). A
-/// rain of 10 000 circles sorts some 30 000 pairs a step, where a
-/// comparison sort took 7 % of the step.
+/// gives the same order (the keys of distinct pairs differ anyway), and
+/// without allocating once `scratch` has grown. A rain of 10 000 circles
+/// sorts 12 000–20 000 pairs a step, where a comparison sort took 7 % of
+/// the step. A few pairs are sorted by insertion (stable too).
 fn sort_by_key(pairs: &mut Vec<KeyedPair>, scratch: &mut Vec<KeyedPair>) {
     const DIGIT: u32 = 10;
-    if pairs.len() < 512 {
-        pairs.sort_by_key(|k| k.0);
+    if pairs.len() < 64 {
+        for i in 1..pairs.len() {
+            let mut j = i;
+            while j > 0 && pairs[j - 1].0 > pairs[j].0 {
+                pairs.swap(j - 1, j);
+                j -= 1;
+            }
+        }
         return;
     }
     // Keys are `lower << 32 | higher`: packed into `lower << bits | higher`,
