@@ -5,7 +5,7 @@ mod args;
 // The measurements, after the options they read.
 mod integration;
 mod scenes;
-// Uses the scenes' list of worlds.
+// Uses the scenes' type of world maker.
 mod stress;
 // Needs a GPU adapter (or lavapipe).
 mod render;

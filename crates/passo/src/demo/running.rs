@@ -23,11 +23,11 @@ use winit::window::Window;
 /// Keys the game reads every tick.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Keys {
-    pub(super) left: bool,
-    pub(super) right: bool,
-    pub(super) run: bool,
-    pub(super) glide: bool,
-    pub(super) jump: bool,
+    left: bool,
+    right: bool,
+    run: bool,
+    glide: bool,
+    jump: bool,
 }
 
 /// What the mouse is doing.
@@ -36,7 +36,7 @@ pub(super) struct Mouse {
     /// Cursor, physical pixels.
     pub(super) at: Vec2,
     /// A body being flung: its id and the world point the drag started at.
-    pub(super) fling: Option<(BodyId, Vec2)>,
+    fling: Option<(BodyId, Vec2)>,
     /// Panning with the right or middle button.
     pub(super) panning: bool,
 }
@@ -44,13 +44,13 @@ pub(super) struct Mouse {
 /// Frames per second, averaged over about half a second.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Fps {
-    pub(super) frames: u32,
-    pub(super) elapsed: Duration,
-    pub(super) value: f64,
+    frames: u32,
+    elapsed: Duration,
+    value: f64,
 }
 
 impl Fps {
-    pub(super) fn tick(&mut self, frame_time: Duration) {
+    fn tick(&mut self, frame_time: Duration) {
         self.frames += 1;
         self.elapsed += frame_time;
         if self.elapsed >= Duration::from_millis(500) {
@@ -197,7 +197,7 @@ impl Running {
     }
 
     /// Switches scene, applies commands, records and replays.
-    pub(super) fn act(&mut self, actions: Actions) {
+    fn act(&mut self, actions: Actions) {
         let mut result = Ok(());
         if let Some(entry) = actions.switch_to {
             result = load(&entry).map(|sim| {
@@ -240,7 +240,7 @@ impl Running {
     }
 
     /// Fits the scene into the part of the window beside the panel.
-    pub(super) fn fit_camera(&mut self) {
+    fn fit_camera(&mut self) {
         let (w, h) = self.surface.size();
         let free = ((w as f32 - self.panel_px).max(1.0) as u32, h);
         let b = self.sim.scene.bounds;
