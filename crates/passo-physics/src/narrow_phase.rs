@@ -331,13 +331,12 @@ mod tests {
             // Few slots: many pairs share a key, and the order must be stable.
             slots in prop_oneof![Just(40u32), Just(70_000)],
         ) {
-            // Keys as the narrow phase makes them: lower slot << 32 | higher.
+            // Keys as the narrow phase makes them (`pair_order`).
             let mut pairs: Vec<KeyedPair> = ids
                 .iter()
                 .enumerate()
                 .map(|(i, &(x, y))| {
-                    let (x, y) = (x % slots, y % slots);
-                    let key = u64::from(x.min(y)) << 32 | u64::from(x.max(y));
+                    let key = pair_order(x % slots, y % slots);
                     (key, i as u32, ColliderRef::fixed(i as u32))
                 })
                 .collect();
