@@ -314,6 +314,7 @@ impl Pass {
 mod tests {
     use super::*;
     use crate::collider::ColliderRef;
+    use crate::solver::BodyState;
     use glam::Vec2;
 
     fn row(a: u32, b: Option<u32>, inv_mass_b: f32) -> Constraint {
@@ -482,20 +483,19 @@ mod tests {
         assert_eq!(colouring.colour_count(), 4, "a chain of four");
         assert!(colouring.overflow.is_empty(), "every contact in a block");
         let mut scalar_rows = rows.clone();
-        let (mut vel, mut push) = (vel0.clone(), vec![Vec2::ZERO; 4]);
+        let mut state = BodyState::of(&vel0);
         let mut bodies = SolverBodies {
-            vel: &mut vel,
-            push: &mut push,
+            state: &mut state,
             delta: &delta,
             deep: &[],
         };
         for p in [true, true, false] {
             solver::solve(&mut scalar_rows, &mut bodies, &params, p);
         }
-        let (mut wide_vel, mut wide_push) = (vel0, vec![Vec2::ZERO; 4]);
+        let (vel, push) = BodyState::split(&state);
+        let mut wide_state = BodyState::of(&vel0);
         let mut bodies = SolverBodies {
-            vel: &mut wide_vel,
-            push: &mut wide_push,
+            state: &mut wide_state,
             delta: &delta,
             deep: &[],
         };
@@ -505,6 +505,7 @@ mod tests {
         }
         let mut wide_rows = rows.clone();
         colouring.store(&mut wide_rows);
+        let (wide_vel, wide_push) = BodyState::split(&wide_state);
         assert_eq!(
             wide_vel[3].x.to_bits(),
             (-0.0f32).to_bits(),

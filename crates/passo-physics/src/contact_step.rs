@@ -296,13 +296,15 @@ impl World {
 
     /// Substep stages: warm start (with the push impulses cleared, and the
     /// separations measured if the bodies `moved` since they last were),
-    /// then the Gauss-Seidel passes with the push.
+    /// then the Gauss-Seidel passes with the push. The passes work on the
+    /// solver's copy of the velocities (see [`Motion::load`]) until the
+    /// relax stage ends.
     fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, moved: bool) {
         let ContactWorld {
             regions, motion, ..
         } = cw;
-        motion.push.fill(Vec2::ZERO);
-        let mut bodies = motion.bodies(&mut self.dynamic.vel);
+        motion.load(&self.dynamic.vel);
+        let mut bodies = motion.bodies();
         regions.run(&mut bodies, &Pass::Begin(plan.solver, moved), self.parallel);
         let pass = Pass::solve(&plan.solver, true);
         for _ in 0..plan.solver.iterations {
@@ -320,38 +322,42 @@ impl World {
         correction: &[Vec2],
     ) {
         let (h, limits, corrects) = (plan.solver.h, plan.limits, plan.corrects);
-        let (pos, vel, arrays) = self.dynamic.split();
-        let (push, start) = (&motion.push[..], &motion.start[..]);
-        let parts = (pos, vel, &mut motion.delta[..]);
-        for_chunks(self.parallel, parts, |offset, (pos, vel, delta)| {
-            let bodies = pos.iter_mut().zip(vel.iter_mut()).zip(delta.iter_mut());
-            for (k, ((p, v), d)) in bodies.enumerate() {
+        let (pos, _, arrays) = self.dynamic.split();
+        let start = &motion.start[..];
+        // The bodies' states, without the rest state after them.
+        let state = &mut motion.state[..pos.len()];
+        let parts = (pos, state, &mut motion.delta[..]);
+        for_chunks(self.parallel, parts, |offset, (pos, state, delta)| {
+            let bodies = pos.iter_mut().zip(state.iter_mut()).zip(delta.iter_mut());
+            for (k, ((p, s), d)) in bodies.enumerate() {
                 let i = offset + k;
                 if let Some(uniform) = limits {
-                    uniform.unwrap_or(arrays.limits[i]).apply(v);
+                    uniform.unwrap_or(arrays.limits[i]).apply(&mut s.vel);
                 }
                 // Semi-implicit Euler adds an exact zero here, as the
                 // no-contact path does: the same bits either way.
                 let c = if corrects { correction[i] } else { Vec2::ZERO };
-                *p += (*v + push[i]) * h + c;
+                *p += (s.vel + s.push) * h + c;
                 *d = *p - start[i];
             }
             0
         });
     }
 
-    /// Substep stage: velocity passes at the new positions.
+    /// Substep stage: velocity passes at the new positions; then the
+    /// velocities go back to the bodies.
     fn relax(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
         let ContactWorld {
             regions, motion, ..
         } = cw;
-        let mut bodies = motion.bodies(&mut self.dynamic.vel);
+        let mut bodies = motion.bodies();
         // The first pass measures the separations at the new positions.
         let (first, rest) = (Pass::relax(&plan.solver), Pass::solve(&plan.solver, false));
         for k in 0..plan.solver.relax_iterations {
             let pass = if k == 0 { &first } else { &rest };
             regions.run(&mut bodies, pass, self.parallel);
         }
+        motion.unload(&mut self.dynamic.vel);
     }
 
     /// After the substeps and sweeps: restitution, each contact's final separation,
@@ -359,16 +365,15 @@ impl World {
     fn finish_contacts(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
         let ContactWorld { solved, motion, .. } = cw;
         let b = &mut self.dynamic;
-        let mut bodies = motion.bodies(&mut b.vel);
         if plan.restitution {
             solver::restitution(
                 &mut solved.rows,
                 &solved.infos,
-                &mut bodies,
+                &mut b.vel,
                 plan.solver.restitution_threshold,
             );
         }
-        solver::store_separations(&solved.rows, &mut solved.infos, &bodies);
+        solver::store_separations(&solved.rows, &mut solved.infos, &motion.delta);
         if let Some(uniform) = plan.limits {
             for (v, limits) in b.vel.iter_mut().zip(&b.limits) {
                 uniform.unwrap_or(*limits).apply(v);

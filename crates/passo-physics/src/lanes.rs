@@ -8,7 +8,7 @@
 //! business: the lanes of a block never move the same body.
 
 use crate::constraint::Constraint;
-use crate::solver::{SolverBodies, SolverParams};
+use crate::solver::{BodyState, SolverBodies, SolverParams};
 use glam::Vec2;
 
 /// Contacts solved side by side in a [`Block`]: the `f32`s of one vector
@@ -128,67 +128,71 @@ impl Rates {
     }
 }
 
-/// Which per-body array a block reads or writes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Field {
-    Vel,
-    Push,
-    /// The displacement since the step began: only read.
-    Delta,
-}
-
-/// How blocks reach the bodies: velocities, pushes and displacements by
-/// dynamic index. An index out of range ([`NONE`]) reads as zero and
-/// writes nothing: one bounds check serves as the padding check.
+/// How blocks reach the bodies: velocity and push (a [`BodyState`]) and
+/// displacement by dynamic index. An index out of range ([`NONE`]) reads
+/// as zero (the rest state of [`SolverBodies::state`]) and writes nothing.
 pub(crate) trait View {
-    /// `field` of body `i`.
-    fn get(&self, field: Field, i: u32) -> Vec2;
-    /// Sets `field` of body `i` (`Delta` is never written).
-    fn set(&mut self, field: Field, i: u32, v: Vec2);
+    /// Velocity and push of body `i`.
+    fn state(&self, i: u32) -> BodyState;
+    /// Sets velocity and push of body `i`.
+    fn set_state(&mut self, i: u32, s: BodyState);
+    /// Sets the velocity of body `i` (its push unchanged).
+    fn set_vel(&mut self, i: u32, v: Vec2);
+    /// Displacement of body `i` since the step began (only read).
+    fn delta(&self, i: u32) -> Vec2;
 }
 
 /// The bodies' arrays, borrowed from the solver's view of them.
 pub(crate) struct Bodies<'a> {
-    vel: &'a mut [Vec2],
-    push: &'a mut [Vec2],
+    state: &'a mut [BodyState],
     delta: &'a [Vec2],
 }
 
 impl<'a> Bodies<'a> {
     pub(crate) fn new(bodies: &'a mut SolverBodies<'_>) -> Self {
         Self {
-            vel: &mut *bodies.vel,
-            push: &mut *bodies.push,
+            state: &mut *bodies.state,
             delta: bodies.delta,
         }
+    }
+
+    /// Body `i`'s state, if `i` names a body (never the rest state).
+    #[inline(always)]
+    fn body(&mut self, i: u32) -> Option<&mut BodyState> {
+        let bodies = self.state.len() - 1;
+        self.state[..bodies].get_mut(i as usize)
     }
 }
 
 impl View for Bodies<'_> {
     #[inline(always)]
-    fn get(&self, field: Field, i: u32) -> Vec2 {
-        let array: &[Vec2] = match field {
-            Field::Vel => self.vel,
-            Field::Push => self.push,
-            Field::Delta => self.delta,
-        };
-        array.get(i as usize).copied().unwrap_or(Vec2::ZERO)
+    fn state(&self, i: u32) -> BodyState {
+        // Past the bodies: the rest state (branch-free).
+        self.state[(i as usize).min(self.state.len() - 1)]
     }
 
     #[inline(always)]
-    fn set(&mut self, field: Field, i: u32, v: Vec2) {
-        let array = match field {
-            Field::Vel => &mut *self.vel,
-            Field::Push => &mut *self.push,
-            Field::Delta => return,
-        };
-        if let Some(slot) = array.get_mut(i as usize) {
-            *slot = v;
+    fn set_state(&mut self, i: u32, s: BodyState) {
+        if let Some(slot) = self.body(i) {
+            *slot = s;
         }
+    }
+
+    #[inline(always)]
+    fn set_vel(&mut self, i: u32, v: Vec2) {
+        if let Some(slot) = self.body(i) {
+            slot.vel = v;
+        }
+    }
+
+    #[inline(always)]
+    fn delta(&self, i: u32) -> Vec2 {
+        self.delta.get(i as usize).copied().unwrap_or(Vec2::ZERO)
     }
 }
 
-/// Velocities (and pushes) of a block's lanes: A's and B's, by axis.
+/// Velocities (or pushes, or displacements) of a block's lanes: A's and
+/// B's, by axis.
 #[derive(Default)]
 struct Lanes {
     ax: [f32; LANES],
@@ -198,24 +202,21 @@ struct Lanes {
 }
 
 impl Lanes {
+    /// Sets lane `l` to `a` and `b`.
     #[inline(always)]
-    fn gather(k: &Block, get: impl Fn(u32) -> Vec2) -> Self {
-        let mut s = Self::default();
-        for l in 0..LANES {
-            let (a, b) = (get(k.a[l]), get(k.b[l]));
-            (s.ax[l], s.ay[l]) = (a.x, a.y);
-            (s.bx[l], s.by[l]) = (b.x, b.y);
-        }
-        s
+    fn set(&mut self, l: usize, a: Vec2, b: Vec2) {
+        (self.ax[l], self.ay[l]) = (a.x, a.y);
+        (self.bx[l], self.by[l]) = (b.x, b.y);
     }
 
-    /// Writes back the bodies the lanes move.
     #[inline(always)]
-    fn scatter(&self, k: &Block, mut set: impl FnMut(u32, Vec2)) {
-        for l in 0..LANES {
-            set(k.write_a[l], Vec2::new(self.ax[l], self.ay[l]));
-            set(k.write_b[l], Vec2::new(self.bx[l], self.by[l]));
-        }
+    fn a(&self, l: usize) -> Vec2 {
+        Vec2::new(self.ax[l], self.ay[l])
+    }
+
+    #[inline(always)]
+    fn b(&self, l: usize) -> Vec2 {
+        Vec2::new(self.bx[l], self.by[l])
     }
 
     /// Applies impulse `(ix, iy)` of lane `l`: minus to A, plus to B.
@@ -228,12 +229,63 @@ impl Lanes {
     }
 }
 
+/// The velocities and pushes of a block's lanes' bodies: each body read
+/// once.
+#[inline(always)]
+fn gather<V: View>(k: &Block, bodies: &V) -> (Lanes, Lanes) {
+    let (mut v, mut p) = (Lanes::default(), Lanes::default());
+    for l in 0..LANES {
+        let (a, b) = (bodies.state(k.a[l]), bodies.state(k.b[l]));
+        v.set(l, a.vel, b.vel);
+        p.set(l, a.push, b.push);
+    }
+    (v, p)
+}
+
+/// Writes back the velocities of the bodies the lanes move.
+#[inline(always)]
+fn scatter_vel<V: View>(k: &Block, bodies: &mut V, v: &Lanes) {
+    for l in 0..LANES {
+        bodies.set_vel(k.write_a[l], v.a(l));
+        bodies.set_vel(k.write_b[l], v.b(l));
+    }
+}
+
+/// Writes back the velocities and pushes of the bodies the lanes move:
+/// each body written once.
+#[inline(always)]
+fn scatter<V: View>(k: &Block, bodies: &mut V, v: &Lanes, p: &Lanes) {
+    for l in 0..LANES {
+        let (a, b) = (k.write_a[l], k.write_b[l]);
+        bodies.set_state(
+            a,
+            BodyState {
+                vel: v.a(l),
+                push: p.a(l),
+            },
+        );
+        bodies.set_state(
+            b,
+            BodyState {
+                vel: v.b(l),
+                push: p.b(l),
+            },
+        );
+    }
+}
+
 /// Warm start and push carry of one block (see
 /// [`solver::begin_substep`](crate::solver::begin_substep)).
 pub(crate) fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, carry: bool) {
     let carries = carry && k.carry.iter().any(|&c| c);
+    if !carries {
+        k.push_impulse = [0.0; LANES];
+        if !warm {
+            return;
+        }
+    }
+    let (mut v, mut p) = gather(k, bodies);
     if carries {
-        let mut p = Lanes::gather(k, |i| bodies.get(Field::Push, i));
         for l in 0..LANES {
             let q = k.push_impulse[l];
             if k.carry[l] && q > 0.0 {
@@ -242,12 +294,8 @@ pub(crate) fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, car
                 k.push_impulse[l] = 0.0;
             }
         }
-        p.scatter(k, |i, v| bodies.set(Field::Push, i, v));
-    } else {
-        k.push_impulse = [0.0; LANES];
     }
     if warm {
-        let mut v = Lanes::gather(k, |i| bodies.get(Field::Vel, i));
         for l in 0..LANES {
             let (n, t) = (k.normal_impulse[l], k.tangent_impulse[l]);
             // normal * n + perp(normal) * t
@@ -255,7 +303,11 @@ pub(crate) fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, car
             let iy = k.ny[l] * n + k.nx[l] * t;
             v.apply(k, l, ix, iy);
         }
-        v.scatter(k, |i, v| bodies.set(Field::Vel, i, v));
+    }
+    if carries {
+        scatter(k, bodies, &v, &p);
+    } else {
+        scatter_vel(k, bodies, &v);
     }
 }
 
@@ -263,8 +315,11 @@ pub(crate) fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, car
 /// displacement along the normal since the step began (see
 /// `SolverBodies::separation`). The bodies move only between the passes,
 /// so the passes of a substep share it.
-pub(crate) fn measure<V: View>(k: &mut Block, bodies: &mut V) {
-    let d = Lanes::gather(k, |i| bodies.get(Field::Delta, i));
+pub(crate) fn measure<V: View>(k: &mut Block, bodies: &V) {
+    let mut d = Lanes::default();
+    for l in 0..LANES {
+        d.set(l, bodies.delta(k.a[l]), bodies.delta(k.b[l]));
+    }
     for l in 0..LANES {
         let (nx, ny) = (k.nx[l], k.ny[l]);
         k.separation[l] =
@@ -277,12 +332,7 @@ pub(crate) fn measure<V: View>(k: &mut Block, bodies: &mut V) {
 /// the same rows in the same arithmetic, lane by lane.
 #[inline(always)]
 pub(crate) fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut V, r: &Rates) {
-    let mut v = Lanes::gather(k, |i| bodies.get(Field::Vel, i));
-    let mut p = if PUSH {
-        Lanes::gather(k, |i| bodies.get(Field::Push, i))
-    } else {
-        Lanes::default()
-    };
+    let (mut v, mut p) = gather(k, bodies);
     for l in 0..LANES {
         let (nx, ny) = (k.nx[l], k.ny[l]);
         let (tx, ty) = (-ny, nx);
@@ -319,8 +369,9 @@ pub(crate) fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut
             p.apply(k, l, nx * dq, ny * dq);
         }
     }
-    v.scatter(k, |i, x| bodies.set(Field::Vel, i, x));
     if PUSH {
-        p.scatter(k, |i, x| bodies.set(Field::Push, i, x));
+        scatter(k, bodies, &v, &p);
+    } else {
+        scatter_vel(k, bodies, &v);
     }
 }

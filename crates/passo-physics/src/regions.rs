@@ -25,7 +25,9 @@ use crate::colouring::{Colouring, Pass};
 use crate::constraint::Constraint;
 use crate::lanes::Bodies;
 #[cfg(feature = "parallel")]
-use crate::lanes::{Field, View};
+use crate::lanes::View;
+#[cfg(feature = "parallel")]
+use crate::solver::BodyState;
 use crate::solver::SolverBodies;
 use glam::Vec2;
 
@@ -220,11 +222,11 @@ fn both(
 #[cfg(feature = "parallel")]
 #[derive(Clone, Copy)]
 struct Shared<'a> {
-    vel: *mut Vec2,
-    push: *mut Vec2,
+    state: *mut BodyState,
     delta: *const Vec2,
+    /// States: the bodies, then the rest state.
     len: usize,
-    _borrow: std::marker::PhantomData<&'a mut [Vec2]>,
+    _borrow: std::marker::PhantomData<&'a mut [BodyState]>,
 }
 
 // SAFETY: see the type's documentation: the threads that share it touch
@@ -238,11 +240,11 @@ unsafe impl Sync for Shared<'_> {}
 #[cfg(feature = "parallel")]
 impl<'a> Shared<'a> {
     fn new(bodies: &'a mut SolverBodies<'_>) -> Self {
-        let len = bodies.vel.len();
-        assert!(bodies.push.len() == len && bodies.delta.len() == len);
+        let len = bodies.state.len();
+        // The bodies, then the rest state.
+        assert!(len == bodies.delta.len() + 1);
         Self {
-            vel: bodies.vel.as_mut_ptr(),
-            push: bodies.push.as_mut_ptr(),
+            state: bodies.state.as_mut_ptr(),
             delta: bodies.delta.as_ptr(),
             len,
             _borrow: std::marker::PhantomData,
@@ -252,34 +254,42 @@ impl<'a> Shared<'a> {
 
 #[cfg(feature = "parallel")]
 impl View for Shared<'_> {
-    // An index out of range ([`NONE`](crate::lanes::NONE)) reads as zero and
-    // writes nothing, as for `Bodies`.
+    // An index out of range ([`NONE`](crate::lanes::NONE)) reads the rest
+    // state (zero) and writes nothing, as for `Bodies`.
 
     #[inline(always)]
-    fn get(&self, field: Field, i: u32) -> Vec2 {
-        let array = match field {
-            Field::Vel => self.vel.cast_const(),
-            Field::Push => self.push.cast_const(),
-            Field::Delta => self.delta,
-        };
-        if (i as usize) < self.len {
-            // SAFETY: in bounds; no other thread writes it (see the type).
-            unsafe { array.add(i as usize).read() }
-        } else {
-            Vec2::ZERO
+    fn state(&self, i: u32) -> BodyState {
+        // Past the bodies: the rest state (branch-free).
+        let i = (i as usize).min(self.len - 1);
+        // SAFETY: in bounds (`len >= 1`, checked in `new`); no other
+        // thread writes it (see the type).
+        unsafe { self.state.add(i).read() }
+    }
+
+    #[inline(always)]
+    fn set_state(&mut self, i: u32, s: BodyState) {
+        if (i as usize) < self.len - 1 {
+            // SAFETY: in bounds; this thread's region only (see the type).
+            unsafe { self.state.add(i as usize).write(s) }
         }
     }
 
     #[inline(always)]
-    fn set(&mut self, field: Field, i: u32, v: Vec2) {
-        let array = match field {
-            Field::Vel => self.vel,
-            Field::Push => self.push,
-            Field::Delta => return,
-        };
-        if (i as usize) < self.len {
+    fn set_vel(&mut self, i: u32, v: Vec2) {
+        if (i as usize) < self.len - 1 {
             // SAFETY: in bounds; this thread's region only (see the type).
-            unsafe { array.add(i as usize).write(v) }
+            // Through a raw pointer to the field, never a reference.
+            unsafe { (&raw mut (*self.state.add(i as usize)).vel).write(v) }
+        }
+    }
+
+    #[inline(always)]
+    fn delta(&self, i: u32) -> Vec2 {
+        if (i as usize) < self.len - 1 {
+            // SAFETY: in bounds; never written while the passes run.
+            unsafe { self.delta.add(i as usize).read() }
+        } else {
+            Vec2::ZERO
         }
     }
 }
@@ -349,14 +359,13 @@ mod tests {
     /// without) and returns the velocities, pushes and rows.
     #[cfg(feature = "parallel")]
     fn substep(side: u32, parallel: bool) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>, bool) {
-        let (pos, mut vel, mut rows) = lattice(side);
+        let (pos, vel, mut rows) = lattice(side);
         let mut regions = ContactRegions::default();
         regions.build(&rows, &pos, &[], parallel);
-        let mut push = vec![Vec2::ZERO; pos.len()];
+        let mut state = BodyState::of(&vel);
         let delta = vec![Vec2::ZERO; pos.len()];
         let mut bodies = SolverBodies {
-            vel: &mut vel,
-            push: &mut push,
+            state: &mut state,
             delta: &delta,
             deep: &[],
         };
@@ -366,6 +375,7 @@ mod tests {
             regions.run(&mut bodies, &Pass::solve(&p, push), parallel);
         }
         regions.store(&mut rows);
+        let (vel, push) = BodyState::split(&state);
         (vel, push, rows, regions.is_split())
     }
 

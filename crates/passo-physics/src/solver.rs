@@ -86,11 +86,45 @@ impl SolverParams {
     }
 }
 
+/// A dynamic body's two velocities while the contact passes run, side by
+/// side so that a pass reads and writes each body once: its velocity, and
+/// its push velocity of this substep (split impulses). Sixteen bytes, one
+/// aligned load; a pass that kept the two in separate arrays gathered and
+/// scattered each body twice.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C, align(16))]
+pub(crate) struct BodyState {
+    pub vel: Vec2,
+    pub push: Vec2,
+}
+
+impl BodyState {
+    /// The states of bodies moving at `vel`, with no push, and the rest
+    /// state after them (for tests; see [`SolverBodies::state`]).
+    #[cfg(test)]
+    pub(crate) fn of(vel: &[Vec2]) -> Vec<Self> {
+        let push = Vec2::ZERO;
+        let states = vel.iter().map(|&vel| Self { vel, push });
+        states.chain([Self::default()]).collect()
+    }
+
+    /// The velocities and pushes of `states`, without the rest state
+    /// (for tests).
+    #[cfg(test)]
+    pub(crate) fn split(states: &[Self]) -> (Vec<Vec2>, Vec<Vec2>) {
+        let (rest, bodies) = states.split_last().expect("the rest state");
+        assert_eq!(*rest, Self::default(), "the rest state is never written");
+        bodies.iter().map(|s| (s.vel, s.push)).unzip()
+    }
+}
+
 /// The solver's view of the bodies during one step.
 pub(crate) struct SolverBodies<'a> {
-    pub vel: &'a mut [Vec2],
-    /// Push velocities of this substep (split impulses).
-    pub push: &'a mut [Vec2],
+    /// Velocity and push of each dynamic body, and one more state after
+    /// them: the rest state, zero and never written, which a lane that
+    /// names no body (padding, or a static B) reads. The wide passes then
+    /// read every lane's bodies without a branch.
+    pub state: &'a mut [BodyState],
     /// Displacement of each body since the step began.
     pub delta: &'a [Vec2],
     /// Per body, whether it is in a deep pile this step (empty: none is).
@@ -100,44 +134,46 @@ pub(crate) struct SolverBodies<'a> {
 impl SolverBodies<'_> {
     #[inline(always)]
     fn velocity(&self, c: &Constraint) -> (Vec2, Vec2) {
-        let va = self.vel[c.a as usize];
+        let va = self.state[c.a as usize].vel;
         let vb = match c.b.dynamic_index() {
-            Some(b) => self.vel[b],
+            Some(b) => self.state[b].vel,
             None => Vec2::ZERO,
         };
         (va, vb)
     }
-
-    #[inline(always)]
-    fn apply(&mut self, c: &Constraint, impulse: Vec2) {
-        apply_impulse(self.vel, c, impulse);
-    }
-
-    /// Separation now: the step's separation plus the relative displacement
-    /// along the normal since the step began (exact for boxes, first order
-    /// for circles; bodies do not rotate).
-    #[inline(always)]
-    fn separation(&self, c: &Constraint) -> f32 {
-        let da = self.delta[c.a as usize];
-        let db = match c.b.dynamic_index() {
-            Some(b) => self.delta[b],
-            None => Vec2::ZERO,
-        };
-        c.base_separation + (db - da).dot(c.normal)
-    }
 }
 
-/// Applies `impulse` to `array` (velocities or pushes): minus to A, plus
-/// to B, for the bodies the contact moves (a held body is not written, as
-/// in the wide passes).
+/// The velocities of a contact's two bodies (zero for a static B).
 #[inline(always)]
-fn apply_impulse(array: &mut [Vec2], c: &Constraint, impulse: Vec2) {
+fn velocities(vel: &[Vec2], c: &Constraint) -> (Vec2, Vec2) {
+    let vb = c.b.dynamic_index().map_or(Vec2::ZERO, |b| vel[b]);
+    (vel[c.a as usize], vb)
+}
+
+/// Separation now: the step's separation plus the relative displacement
+/// along the normal since the step began (exact for boxes, first order
+/// for circles; bodies do not rotate).
+#[inline(always)]
+fn separation(delta: &[Vec2], c: &Constraint) -> f32 {
+    c.base_separation + (velocities(delta, c).1 - delta[c.a as usize]).dot(c.normal)
+}
+
+/// Applies `impulse` to one of the bodies' velocities (`field` picks the
+/// velocity or the push): minus to A, plus to B, for the bodies the
+/// contact moves (a held body is not written, as in the wide passes).
+#[inline(always)]
+fn apply_impulse(
+    state: &mut [BodyState],
+    field: fn(&mut BodyState) -> &mut Vec2,
+    c: &Constraint,
+    impulse: Vec2,
+) {
     let (a, b) = c.moved();
     if let Some(a) = a {
-        array[a] -= impulse * c.inv_mass_a;
+        *field(&mut state[a]) -= impulse * c.inv_mass_a;
     }
     if let Some(b) = b {
-        array[b] += impulse * c.inv_mass_b;
+        *field(&mut state[b]) += impulse * c.inv_mass_b;
     }
 }
 
@@ -160,13 +196,14 @@ pub(crate) fn begin_substep(
     let (warm, carry) = (params.warm_starting, params.carry_push);
     for c in constraints {
         if carry && c.push_impulse > 0.0 && bodies.deep[c.a as usize] {
-            apply_impulse(bodies.push, c, c.normal * c.push_impulse);
+            apply_impulse(bodies.state, |s| &mut s.push, c, c.normal * c.push_impulse);
         } else {
             c.push_impulse = 0.0;
         }
         if warm {
             let tangent = c.normal.perp();
-            bodies.apply(c, c.normal * c.normal_impulse + tangent * c.tangent_impulse);
+            let impulse = c.normal * c.normal_impulse + tangent * c.tangent_impulse;
+            apply_impulse(bodies.state, |s| &mut s.vel, c, impulse);
         }
     }
 }
@@ -208,7 +245,7 @@ pub(crate) fn solve(
         }
 
         // Non-penetration: v_n >= 0, or >= -s / h while still apart.
-        let s = bodies.separation(c);
+        let s = separation(bodies.delta, c);
         let bias = if s > 0.0 { s * inv_h } else { 0.0 };
         let vn = (vb - va).dot(c.normal);
         let new_n = (c.normal_impulse - c.mass * (vn + bias)).max(0.0);
@@ -217,13 +254,13 @@ pub(crate) fn solve(
         c.max_normal_impulse = c.max_normal_impulse.max(new_n);
         va -= impulse * c.inv_mass_a;
         if let Some(a) = moved_a {
-            bodies.vel[a] = va;
+            bodies.state[a].vel = va;
         }
         if !b_static {
             vb += impulse * c.inv_mass_b;
         }
         if let Some(b) = moved_b {
-            bodies.vel[b] = vb;
+            bodies.state[b].vel = vb;
         }
 
         // Push out of overlap deeper than the slop.
@@ -231,46 +268,53 @@ pub(crate) fn solve(
             let target = (push_rate * (-s - params.slop))
                 .max(0.0)
                 .min(params.push_out_speed);
-            let pa = bodies.push[ia];
+            let pa = bodies.state[ia].push;
             let pb = if b_static {
                 Vec2::ZERO
             } else {
-                bodies.push[ib]
+                bodies.state[ib].push
             };
             let pn = (pb - pa).dot(c.normal);
             let new_p = (c.push_impulse + c.mass * (target - pn)).max(0.0);
             let impulse = c.normal * (new_p - c.push_impulse);
             c.push_impulse = new_p;
             if let Some(a) = moved_a {
-                bodies.push[a] = pa - impulse * c.inv_mass_a;
+                bodies.state[a].push = pa - impulse * c.inv_mass_a;
             }
             if let Some(b) = moved_b {
-                bodies.push[b] = pb + impulse * c.inv_mass_b;
+                bodies.state[b].push = pb + impulse * c.inv_mass_b;
             }
         }
     }
 }
 
 /// After the substeps: contacts hit faster than the threshold bounce,
-/// `u <- -e u_impact` (see [`Constraint::new`]).
+/// `u <- -e u_impact` (see [`Constraint::new`]). `vel` holds the dynamic
+/// bodies' velocities.
 pub(crate) fn restitution(
     constraints: &mut [Constraint],
     infos: &[ContactInfo],
-    bodies: &mut SolverBodies<'_>,
+    vel: &mut [Vec2],
     threshold: f32,
 ) {
     for (c, info) in constraints.iter_mut().zip(infos) {
         if info.restitution == 0.0 || info.impact_u > -threshold || c.max_normal_impulse == 0.0 {
             continue;
         }
-        let (va, vb) = bodies.velocity(c);
+        let (va, vb) = velocities(vel, c);
         let vn = (vb - va).dot(c.normal);
         let target = -info.restitution * info.impact_u - info.half_an_h;
         let new_n = (c.normal_impulse + c.mass * (target - vn)).max(0.0);
         let dn = new_n - c.normal_impulse;
         c.normal_impulse = new_n;
         c.max_normal_impulse = c.max_normal_impulse.max(new_n);
-        bodies.apply(c, c.normal * dn);
+        let (a, b) = c.moved();
+        if let Some(a) = a {
+            vel[a] -= c.normal * dn * c.inv_mass_a;
+        }
+        if let Some(b) = b {
+            vel[b] += c.normal * dn * c.inv_mass_b;
+        }
     }
 }
 
@@ -331,14 +375,15 @@ impl DeepPiles {
     }
 }
 
-/// Records each contact's separation at the end of the step.
+/// Records each contact's separation at the end of the step, from the
+/// bodies' displacements `delta` since it began.
 pub(crate) fn store_separations(
     constraints: &[Constraint],
     infos: &mut [ContactInfo],
-    bodies: &SolverBodies<'_>,
+    delta: &[Vec2],
 ) {
     for (c, info) in constraints.iter().zip(infos) {
-        info.separation = bodies.separation(c);
+        info.separation = separation(delta, c);
     }
 }
 
@@ -350,8 +395,10 @@ pub(crate) struct Motion {
     /// Displacement since the start of the step, per dynamic body
     /// (separations are updated from it).
     pub delta: Vec<Vec2>,
-    /// Push velocities of the current substep, per dynamic body.
-    pub push: Vec<Vec2>,
+    /// Velocity and push of each dynamic body while a substep's passes
+    /// run (see [`Motion::load`]), then the rest state (see
+    /// [`SolverBodies::state`]).
+    pub state: Vec<BodyState>,
     /// The deep piles of this step.
     pub piles: DeepPiles,
 }
@@ -363,15 +410,29 @@ impl Motion {
         self.start.extend_from_slice(pos);
         self.delta.clear();
         self.delta.resize(pos.len(), Vec2::ZERO);
-        self.push.clear();
-        self.push.resize(pos.len(), Vec2::ZERO);
     }
 
-    /// The solver's view of the bodies with velocities `vel`.
-    pub(crate) fn bodies<'a>(&'a mut self, vel: &'a mut [Vec2]) -> SolverBodies<'a> {
+    /// Starts the passes of a substep: the bodies' velocities `vel`, and
+    /// no push yet.
+    pub(crate) fn load(&mut self, vel: &[Vec2]) {
+        self.state.clear();
+        let push = Vec2::ZERO;
+        self.state
+            .extend(vel.iter().map(|&vel| BodyState { vel, push }));
+        self.state.push(BodyState::default());
+    }
+
+    /// Ends them: the velocities the passes left, back into `vel`.
+    pub(crate) fn unload(&self, vel: &mut [Vec2]) {
+        for (v, s) in vel.iter_mut().zip(&self.state) {
+            *v = s.vel;
+        }
+    }
+
+    /// The solver's view of the bodies.
+    pub(crate) fn bodies(&mut self) -> SolverBodies<'_> {
         SolverBodies {
-            vel,
-            push: &mut self.push,
+            state: &mut self.state,
             delta: &self.delta,
             deep: &self.piles.deep,
         }
