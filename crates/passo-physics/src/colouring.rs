@@ -437,22 +437,27 @@ mod tests {
     #[test]
     fn lanes_solve_as_the_scalar_solver_does() {
         // One box on the ground, one on top of it, a third beside: the
-        // wide passes give the bits of the scalar passes in the list's
-        // order.
+        // wide passes (a warm start that carries the push of the deep pile
+        // of bodies 0 and 1, then the Gauss-Seidel passes) give the bits of
+        // the scalar passes in the list's order.
         let rows = vec![
             Constraint {
                 base_separation: -0.02,
+                push_impulse: 0.3,
                 ..row(0, None, 0.0)
             },
             Constraint {
                 normal: Vec2::new(0.6, 0.8),
                 base_separation: 0.01,
+                push_impulse: 0.2,
                 ..row(0, Some(1), 1.0)
             },
+            // Body 2 is not in the deep pile: its push starts from nothing.
             Constraint {
                 normal: Vec2::X,
                 friction: 0.2,
                 tangent_impulse: 0.1,
+                push_impulse: 0.4,
                 ..row(2, Some(1), 0.5)
             },
             // Body 3 is kinematic (held): read, never written.
@@ -473,13 +478,17 @@ mod tests {
             Vec2::new(0.001, 0.0),
             Vec2::ZERO,
         ];
-        let params = SolverParams::for_tests();
+        let deep = [true, true, false, false];
+        let params = SolverParams {
+            carry_push: true,
+            ..SolverParams::for_tests()
+        };
         // The scalar solver in the list's order.
         let mut colouring = Colouring {
             blocks_always: true,
             ..Colouring::default()
         };
-        colouring.build(&rows, 0..rows.len(), 4, &[]);
+        colouring.build(&rows, 0..rows.len(), 4, &deep);
         assert_eq!(colouring.colour_count(), 4, "a chain of four");
         assert!(colouring.overflow.is_empty(), "every contact in a block");
         let mut scalar_rows = rows.clone();
@@ -487,8 +496,9 @@ mod tests {
         let mut bodies = SolverBodies {
             state: &mut state,
             delta: &delta,
-            deep: &[],
+            deep: &deep,
         };
+        solver::begin_substep(&mut scalar_rows, &mut bodies, &params);
         for p in [true, true, false] {
             solver::solve(&mut scalar_rows, &mut bodies, &params, p);
         }
@@ -497,8 +507,9 @@ mod tests {
         let mut bodies = SolverBodies {
             state: &mut wide_state,
             delta: &delta,
-            deep: &[],
+            deep: &deep,
         };
+        colouring.run(&mut bodies, &Pass::Begin(params, false));
         colouring.run(&mut bodies, &Pass::Measure);
         for p in [true, true, false] {
             colouring.run(&mut bodies, &Pass::solve(&params, p));
@@ -519,6 +530,8 @@ mod tests {
         };
         assert_eq!(bits(&wide_vel), bits(&vel));
         assert_eq!(bits(&wide_push), bits(&push));
+        assert!(push[0] != Vec2::ZERO, "the carried push moved body 0");
+        assert_eq!(wide_rows[2].push_impulse, scalar_rows[2].push_impulse);
         for (w, s) in wide_rows.iter().zip(&scalar_rows) {
             let impulses = |c: &Constraint| {
                 [

@@ -208,9 +208,13 @@ impl World {
             // The bodies moved since the separations were last measured
             // unless this is the first substep or the relax stage measured.
             let moved = substep > 0 && plan.solver.relax_iterations == 0;
+            // From here to the end of the relax stage the passes work on
+            // the solver's copy of the velocities (see `Motion::load`).
+            cw.motion.load(&self.dynamic.vel);
             self.solve(&mut cw, &plan, moved);
             self.integrate_positions(&mut cw.motion, &plan, &correction);
             self.relax(&mut cw, &plan);
+            cw.motion.unload(&mut self.dynamic.vel);
         }
         cw.regions.store(&mut cw.solved.rows);
         if plan.substeps > 0 && plan.sweep {
@@ -296,14 +300,12 @@ impl World {
 
     /// Substep stages: warm start (with the push impulses cleared, and the
     /// separations measured if the bodies `moved` since they last were),
-    /// then the Gauss-Seidel passes with the push. The passes work on the
-    /// solver's copy of the velocities (see [`Motion::load`]) until the
-    /// relax stage ends.
+    /// then the Gauss-Seidel passes with the push, on the solver's copy
+    /// of the velocities (see [`Motion::load`]).
     fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, moved: bool) {
         let ContactWorld {
             regions, motion, ..
         } = cw;
-        motion.load(&self.dynamic.vel);
         let mut bodies = motion.bodies();
         regions.run(&mut bodies, &Pass::Begin(plan.solver, moved), self.parallel);
         let pass = Pass::solve(&plan.solver, true);
@@ -344,8 +346,7 @@ impl World {
         });
     }
 
-    /// Substep stage: velocity passes at the new positions; then the
-    /// velocities go back to the bodies.
+    /// Substep stage: velocity passes at the new positions.
     fn relax(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
         let ContactWorld {
             regions, motion, ..
@@ -357,7 +358,6 @@ impl World {
             let pass = if k == 0 { &first } else { &rest };
             regions.run(&mut bodies, pass, self.parallel);
         }
-        motion.unload(&mut self.dynamic.vel);
     }
 
     /// After the substeps and sweeps: restitution, each contact's final separation,

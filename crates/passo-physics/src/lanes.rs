@@ -150,6 +150,10 @@ pub(crate) struct Bodies<'a> {
 
 impl<'a> Bodies<'a> {
     pub(crate) fn new(bodies: &'a mut SolverBodies<'_>) -> Self {
+        debug_assert!(
+            !bodies.state.is_empty(),
+            "the rest state follows the bodies"
+        );
         Self {
             state: &mut *bodies.state,
             delta: bodies.delta,
@@ -313,7 +317,7 @@ pub(crate) fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, car
 
 /// Separation now of each lane: the step's separation plus the relative
 /// displacement along the normal since the step began (see
-/// `SolverBodies::separation`). The bodies move only between the passes,
+/// `solver::separation`). The bodies move only between the passes,
 /// so the passes of a substep share it.
 pub(crate) fn measure<V: View>(k: &mut Block, bodies: &V) {
     let mut d = Lanes::default();

@@ -209,7 +209,11 @@ fn both(
 ///
 /// Soundness: built from a `&mut SolverBodies` that it borrows for its
 /// whole life (`'a`), so nothing else reads or writes the arrays meanwhile,
-/// and every access is checked against their length. Copies go to the two
+/// and every access stays in bounds: a write or a displacement read only
+/// below the bodies' count (`len - 1`), a state read at an index clamped
+/// to `len - 1` (`len >= 1`, asserted in `new`). The element at `len - 1`
+/// is the rest state, which nothing writes, so both threads may read it
+/// (every lane that names no body does). Copies go to the two
 /// closures of one `rayon::join` in [`both`], each running the blocks of
 /// one region. A region's blocks write only the bodies of that region (a
 /// contact is in region `r` only if every body it moves is; checked in

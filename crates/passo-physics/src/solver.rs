@@ -155,7 +155,8 @@ fn velocities(vel: &[Vec2], c: &Constraint) -> (Vec2, Vec2) {
 /// for circles; bodies do not rotate).
 #[inline(always)]
 fn separation(delta: &[Vec2], c: &Constraint) -> f32 {
-    c.base_separation + (velocities(delta, c).1 - delta[c.a as usize]).dot(c.normal)
+    let db = c.b.dynamic_index().map_or(Vec2::ZERO, |b| delta[b]);
+    c.base_separation + (db - delta[c.a as usize]).dot(c.normal)
 }
 
 /// Applies `impulse` to one of the bodies' velocities (`field` picks the
@@ -424,6 +425,11 @@ impl Motion {
 
     /// Ends them: the velocities the passes left, back into `vel`.
     pub(crate) fn unload(&self, vel: &mut [Vec2]) {
+        debug_assert_eq!(
+            self.state.last(),
+            Some(&BodyState::default()),
+            "the rest state"
+        );
         for (v, s) in vel.iter_mut().zip(&self.state) {
             *v = s.vel;
         }
