@@ -3,7 +3,7 @@
 //! interleaved, so a change can be compared with the code before it in
 //! the same conditions.
 //!
-//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|sleep|integration|rays`
+//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|sleep|integration|rays|tuning`
 //! (and `--features parallel ... -- threads`: one thread against the pool)
 
 use passo_benches::{pyramid_world, rain_world, with_sleeping};
@@ -152,8 +152,42 @@ fn main() {
                 ms_per_step(w, 0, 300)
             );
         }
+        "tuning" => {
+            // Substeps against iterations: cost and the deepest overlap
+            // at the end (ticks 0-360 of the pyramid, 60-300 of the rain).
+            for (substeps, iterations) in [(4, 2), (4, 1), (5, 1), (6, 1), (8, 1), (8, 2)] {
+                let tuned = |world: &World| {
+                    let mut world = with_sleeping(world, false);
+                    let mut settings = *world.settings();
+                    if let Some(c) = &mut settings.contacts {
+                        (c.substeps, c.iterations) = (substeps, iterations);
+                    }
+                    world.set_settings(settings).expect("valid settings");
+                    world
+                };
+                let mut line = format!("substeps {substeps}, iterations {iterations}:");
+                for (name, world, warm, ticks) in [
+                    ("pyramid 50", tuned(&pyramid_world(50)), 60, 300),
+                    ("rain 10000", tuned(&rain_world(10_000)), 60, 240),
+                ] {
+                    let mut world = world;
+                    world.set_parallel(false);
+                    for _ in 0..warm {
+                        world.step(1.0 / 60.0);
+                    }
+                    let start = Instant::now();
+                    for _ in 0..ticks {
+                        world.step(1.0 / 60.0);
+                    }
+                    let ms = start.elapsed().as_secs_f64() * 1e3 / f64::from(ticks);
+                    let overlap = passo_benches::exact_max_overlap(&world) * 1e3;
+                    line += &format!(" {name} {ms:.3} ms/step, overlap {overlap:.2} mm;");
+                }
+                println!("{line}");
+            }
+        }
         _ => {
-            eprintln!("usage: steps integration|rain|pyramid|sleep|settle|rays|threads");
+            eprintln!("usage: steps integration|rain|pyramid|sleep|settle|rays|threads|tuning");
             std::process::exit(2);
         }
     }
