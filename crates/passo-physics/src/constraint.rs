@@ -28,7 +28,8 @@ pub(crate) struct Constraint {
     pub friction: f32,
     pub normal_impulse: f32,
     pub tangent_impulse: f32,
-    /// Push (position) impulse of the current substep.
+    /// Push (position) impulse of the current substep (carried on from
+    /// substep to substep in a deep pile).
     pub push_impulse: f32,
     pub max_normal_impulse: f32,
 }

@@ -298,10 +298,10 @@ impl World {
         }
     }
 
-    /// Substep stages: warm start (with the push impulses cleared, and the
-    /// separations measured if the bodies `moved` since they last were),
-    /// then the Gauss-Seidel passes with the push, on the solver's copy
-    /// of the velocities (see [`Motion::load`]).
+    /// Substep stages: warm start (with the push impulses cleared, or
+    /// carried in a deep pile, and the separations measured if the bodies
+    /// `moved` since they last were), then the Gauss-Seidel passes with the
+    /// push, on the solver's copy of the velocities (see [`Motion::load`]).
     fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, moved: bool) {
         let ContactWorld {
             regions, motion, ..
