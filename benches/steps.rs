@@ -11,13 +11,13 @@ use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, ForceModels, QuadraticDrag, World, WorldSettings};
 use std::time::Instant;
 
-fn ms_per_step(world: World, warm: u32, ticks: u32) -> f64 {
-    ms_per_step_on(world, false, warm, ticks)
+fn ms_per_step(mut world: World, warm: u32, ticks: u32) -> f64 {
+    ms_per_step_on(&mut world, false, warm, ticks)
 }
 
 /// Milliseconds per step on the calling thread alone, or (`parallel`)
 /// with the thread pool.
-fn ms_per_step_on(mut world: World, parallel: bool, warm: u32, ticks: u32) -> f64 {
+fn ms_per_step_on(world: &mut World, parallel: bool, warm: u32, ticks: u32) -> f64 {
     world.set_parallel(parallel);
     for _ in 0..warm {
         world.step(1.0 / 60.0);
@@ -103,11 +103,11 @@ fn main() {
                 } else {
                     "one thread"
                 };
-                let w = with_sleeping(&rain_world(10_000), false);
-                let ms = ms_per_step_on(w, parallel, 60, 240);
+                let mut w = with_sleeping(&rain_world(10_000), false);
+                let ms = ms_per_step_on(&mut w, parallel, 60, 240);
                 println!("rain 10000 awake, {on}: {ms:.2} ms/step");
-                let w = with_sleeping(&pyramid_world(100), false);
-                let ms = ms_per_step_on(w, parallel, 60, 240);
+                let mut w = with_sleeping(&pyramid_world(100), false);
+                let ms = ms_per_step_on(&mut w, parallel, 60, 240);
                 println!("pyramid 100 awake, {on}: {ms:.2} ms/step");
             }
         }
@@ -153,8 +153,8 @@ fn main() {
             );
         }
         "tuning" => {
-            // Substeps against iterations: cost and the deepest overlap
-            // at the end (ticks 0-360 of the pyramid, 60-300 of the rain).
+            // Substeps against iterations: cost (ticks 60-360 of the
+            // pyramid, 60-300 of the rain) and the deepest overlap at the end.
             for (substeps, iterations) in [(4, 2), (4, 1), (5, 1), (6, 1), (8, 1), (8, 2)] {
                 let tuned = |world: &World| {
                     let mut world = with_sleeping(world, false);
@@ -166,20 +166,11 @@ fn main() {
                     world
                 };
                 let mut line = format!("substeps {substeps}, iterations {iterations}:");
-                for (name, world, warm, ticks) in [
-                    ("pyramid 50", tuned(&pyramid_world(50)), 60, 300),
-                    ("rain 10000", tuned(&rain_world(10_000)), 60, 240),
+                for (name, mut world, ticks) in [
+                    ("pyramid 50", tuned(&pyramid_world(50)), 300),
+                    ("rain 10000", tuned(&rain_world(10_000)), 240),
                 ] {
-                    let mut world = world;
-                    world.set_parallel(false);
-                    for _ in 0..warm {
-                        world.step(1.0 / 60.0);
-                    }
-                    let start = Instant::now();
-                    for _ in 0..ticks {
-                        world.step(1.0 / 60.0);
-                    }
-                    let ms = start.elapsed().as_secs_f64() * 1e3 / f64::from(ticks);
+                    let ms = ms_per_step_on(&mut world, false, 60, ticks);
                     let overlap = passo_benches::exact_max_overlap(&world) * 1e3;
                     line += &format!(" {name} {ms:.3} ms/step, overlap {overlap:.2} mm;");
                 }
