@@ -171,7 +171,7 @@ fn main() {
                     ("rain 10000", tuned(&rain_world(10_000)), 240),
                 ] {
                     let ms = ms_per_step_on(&mut world, false, 60, ticks);
-                    let overlap = passo_benches::exact_max_overlap(&world) * 1e3;
+                    let overlap = world.max_penetration() * 1e3;
                     line += &format!(" {name} {ms:.3} ms/step, overlap {overlap:.2} mm;");
                 }
                 println!("{line}");
