@@ -76,7 +76,9 @@ impl ContactInfo {
 
 impl Constraint {
     /// The solver row and the rest of a new contact between dynamic body
-    /// `a` and body `b`, from their manifold.
+    /// `a` and body `b`, from their manifold. (Inlined into the narrow
+    /// phase's `pair`, whose outcome it builds.)
+    #[inline(always)]
     pub(crate) fn new(
         m: &Manifold,
         a: u32,

@@ -100,6 +100,12 @@ impl Narrow<'_> {
     }
 
     /// The contact (or sensor candidate) of proxy `pa` with `pb`.
+    ///
+    /// Inlined, with [`Constraint::new`], into the loops over the pairs:
+    /// the outcome (a hundred bytes) is then built where it is kept instead
+    /// of being returned through memory and copied (the pyramid of base 50's
+    /// pairs took 98 µs a step that way and take 76).
+    #[inline(always)]
     pub(crate) fn pair(&self, pa: u32, pb: ColliderRef) -> Outcome {
         let margins = &self.proxies.margins;
         let a_body = ColliderRef::dynamic(self.proxies.body[pa as usize]);
