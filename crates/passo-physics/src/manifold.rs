@@ -48,6 +48,10 @@ impl Manifold {
 
 /// The manifold of two shapes, or `None` if they are farther apart than
 /// `margin` metres (a speculative contact is kept up to that distance).
+// Inlined: the narrow phase calls it for every pair, and the manifold is
+// then built in registers rather than returned through memory (a rain of
+// 10 000 circles: the pairs loop 334 -> 286 µs a step).
+#[inline(always)]
 pub fn collide(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Option<Manifold> {
     let m = match (*sa, *sb) {
         (Shape::Circle { radius: ra }, Shape::Circle { radius: rb }) => {
@@ -192,6 +196,7 @@ impl Faces {
 /// [`collide`] with static shape B's covered faces: a normal that would
 /// leave B through a covered face leaves through the other axis's face
 /// instead. With no covered face this is exactly [`collide`].
+#[inline(always)]
 pub(crate) fn collide_seamless(
     sa: &Shape,
     pa: Vec2,
