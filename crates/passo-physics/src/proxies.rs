@@ -293,6 +293,7 @@ impl Proxies {
 
     /// Adds a proxy for dynamic body `i` (which has a shape); `track_sleep`
     /// records whether it sleeps.
+    #[inline(always)]
     pub(crate) fn add(&mut self, dynamic: &DynamicBodies, i: usize, track_sleep: bool) -> u32 {
         let shape = dynamic.meta[i].shape.expect("a proxy's body has a shape");
         // A kinematic body is never swept (it goes where it is told), so

@@ -111,6 +111,7 @@ impl StaticTree {
     }
 
     /// Calls `f` with every item whose box overlaps `aabb`, in tree order.
+    #[inline(always)]
     pub(crate) fn query(&self, aabb: &Aabb, mut f: impl FnMut(u32)) {
         if self.nodes.is_empty() {
             return;
