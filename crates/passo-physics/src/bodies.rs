@@ -18,7 +18,7 @@ const AWAKE: u32 = u32::MAX;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct SleepState {
-    /// Seconds the body has been slower than [`SLEEP_SPEED`].
+    /// Seconds the body has been slower than [`SLEEP_SPEED`](crate::constants::SLEEP_SPEED).
     pub rest_time: f32,
     /// The island the body sleeps in (the slot index of one of its bodies),
     /// or [`AWAKE`].

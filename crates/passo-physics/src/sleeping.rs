@@ -5,7 +5,8 @@
 //! solver only confirms that the weights are carried. So the contact stage
 //! groups dynamic bodies into islands (bodies joined by touching contacts)
 //! and puts an island to sleep when every body in it has been slower than
-//! [`SLEEP_SPEED`] for [`TIME_TO_SLEEP`]. A sleeping body keeps its
+//! [`SLEEP_SPEED`](crate::constants::SLEEP_SPEED) for
+//! [`TIME_TO_SLEEP`](crate::constants::TIME_TO_SLEEP). A sleeping body keeps its
 //! position, has zero velocity and is not integrated. Its contacts with
 //! other sleeping bodies and with static ones are stored as they were when
 //! it fell asleep (so `contacts`, `is_standing` and events still see them)
