@@ -58,7 +58,7 @@ pub struct SceneFile {
     /// Bodies made by pattern.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub generators: Vec<Generator>,
-    /// A level on a grid: a Tiled map or ASCII art (see [`TileMapRef`]).
+    /// A level on a grid: a Tiled map or ASCII art (see [`TileMapRef`](crate::TileMapRef)).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilemap: Option<crate::map_ref::TileMapRef>,
 }
