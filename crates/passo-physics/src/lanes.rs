@@ -8,7 +8,7 @@
 //! business: the lanes of a block never move the same body.
 
 use crate::constraint::Constraint;
-use crate::solver::{BodyState, SolverBodies, SolverParams};
+use crate::solver::{BodyState, SolverBodies, SolverParams, clamp, greater, lesser};
 use glam::Vec2;
 
 /// Contacts solved side by side in a [`Block`]: the `f32`s of one vector
@@ -346,7 +346,7 @@ pub(crate) fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut
         let vt = (v.bx[l] - v.ax[l]) * tx + (v.by[l] - v.ay[l]) * ty;
         let max_friction = k.friction[l] * k.normal_impulse[l];
         let t = k.tangent_impulse[l];
-        let new_t = (t - mass * vt).max(-max_friction).min(max_friction);
+        let new_t = clamp(t - mass * vt, -max_friction, max_friction);
         let dt = new_t - t;
         k.tangent_impulse[l] = new_t;
         v.apply(k, l, tx * dt, ty * dt);
@@ -359,12 +359,12 @@ pub(crate) fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut
         let new_n = (n - mass * (vn + bias)).max(0.0);
         let dn = new_n - n;
         k.normal_impulse[l] = new_n;
-        k.max_normal_impulse[l] = k.max_normal_impulse[l].max(new_n);
+        k.max_normal_impulse[l] = greater(k.max_normal_impulse[l], new_n);
         v.apply(k, l, nx * dn, ny * dn);
 
         // Push out of overlap deeper than the slop.
         if PUSH {
-            let target = (r.push_rate * (-s - r.slop)).max(0.0).min(r.push_out_speed);
+            let target = lesser((r.push_rate * (-s - r.slop)).max(0.0), r.push_out_speed);
             let pn = (p.bx[l] - p.ax[l]) * nx + (p.by[l] - p.ay[l]) * ny;
             let q = k.push_impulse[l];
             let new_q = (q + mass * (target - pn)).max(0.0);
