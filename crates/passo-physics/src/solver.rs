@@ -180,7 +180,8 @@ fn apply_impulse(
 
 /// The greater of `x` and `y` as a compare and a select: one vector
 /// instruction (`maxps`) where `f32::max` needs four more to handle NaN. A
-/// NaN `x` gives `y`.
+/// NaN `x` gives `y`, and of two zeros it gives `y` (which `f32::max` leaves
+/// open).
 #[inline(always)]
 pub(crate) fn greater(x: f32, y: f32) -> f32 {
     if x > y { x } else { y }
