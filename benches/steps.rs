@@ -3,7 +3,7 @@
 //! interleaved, so a change can be compared with the code before it in
 //! the same conditions.
 //!
-//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|sleep|integration|rays|tuning`
+//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|sleep|settle|integration|rays|tuning`
 //! (and `--features parallel ... -- threads`: one thread against the pool)
 
 use passo_benches::{pyramid_world, rain_world, with_sleeping};

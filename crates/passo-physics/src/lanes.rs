@@ -171,7 +171,8 @@ impl<'a> Bodies<'a> {
 impl View for Bodies<'_> {
     #[inline(always)]
     fn state(&self, i: u32) -> BodyState {
-        // Past the bodies: the rest state (branch-free).
+        // Past the bodies: the rest state. The index is clamped, not
+        // tested (the bounds check that remains is never taken).
         self.state[(i as usize).min(self.state.len() - 1)]
     }
 

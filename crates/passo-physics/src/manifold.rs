@@ -48,11 +48,17 @@ impl Manifold {
 
 /// The manifold of two shapes, or `None` if they are farther apart than
 /// `margin` metres (a speculative contact is kept up to that distance).
-// Inlined: the narrow phase calls it for every pair, and the manifold is
-// then built in registers rather than returned through memory (a rain of
-// 10 000 circles: the pairs loop 334 -> 286 µs a step).
-#[inline(always)]
+#[inline]
 pub fn collide(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Option<Manifold> {
+    collide_shapes(sa, pa, sb, pb, margin)
+}
+
+/// [`collide`], inlined into the narrow phase's loop over the pairs
+/// (through [`collide_seamless`]): the manifold is then built in registers
+/// rather than returned through memory (a rain of 10 000 circles: the
+/// pairs loop 334 -> 286 µs a step).
+#[inline(always)]
+fn collide_shapes(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Option<Manifold> {
     let m = match (*sa, *sb) {
         (Shape::Circle { radius: ra }, Shape::Circle { radius: rb }) => {
             circle_circle(pa, ra, pb, rb)
@@ -195,7 +201,8 @@ impl Faces {
 
 /// [`collide`] with static shape B's covered faces: a normal that would
 /// leave B through a covered face leaves through the other axis's face
-/// instead. With no covered face this is exactly [`collide`].
+/// instead. With no covered face this is exactly [`collide`]. (Inlined
+/// into the narrow phase, with the one copy of [`collide`] it calls.)
 #[inline(always)]
 pub(crate) fn collide_seamless(
     sa: &Shape,
@@ -205,17 +212,14 @@ pub(crate) fn collide_seamless(
     margin: f32,
     faces_b: Faces,
 ) -> Option<Manifold> {
-    if faces_b.0 == 0 {
-        return collide(sa, pa, sb, pb, margin);
-    }
     let m = match (*sa, *sb) {
-        (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb }) => {
+        (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb }) if faces_b.0 != 0 => {
             box_box_faces(pa, ha, pb, hb, faces_b)
         }
-        (Shape::Circle { radius }, Shape::Box { half_extents }) => {
+        (Shape::Circle { radius }, Shape::Box { half_extents }) if faces_b.0 != 0 => {
             box_circle_faces(pb, half_extents, pa, radius, faces_b).flipped()
         }
-        _ => return collide(sa, pa, sb, pb, margin),
+        _ => return collide_shapes(sa, pa, sb, pb, margin),
     };
     (m.separation <= margin).then_some(m)
 }
@@ -233,14 +237,16 @@ pub(crate) fn circle_circle(pa: Vec2, ra: f32, pb: Vec2, rb: f32) -> Manifold {
 
 /// Two axis-aligned boxes: along the axis of least overlap (most
 /// separation); on a tie, the y axis. Two points span the shared face.
+#[inline(always)]
 pub(crate) fn box_box(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2) -> Manifold {
     box_box_faces(pa, ha, pb, hb, Faces::default())
 }
 
 /// [`box_box`] where B's covered faces are not crossed.
-// Inlined into `collide`, as `collide` is into the narrow phase: a
-// pyramid of boxes' pairs loop took 77 µs a step with it called and takes
-// 61.
+// Inlined into its callers (the box-box case of `collide`, through
+// `box_box`, and of `collide_seamless`), and with them into the narrow
+// phase: a pyramid of boxes' pairs loop took 77 µs a step with it called
+// and takes 61.
 #[inline(always)]
 fn box_box_faces(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2, faces_b: Faces) -> Manifold {
     let d = pb - pa;

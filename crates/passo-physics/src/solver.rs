@@ -180,21 +180,25 @@ fn apply_impulse(
 
 /// The greater of `x` and `y` as a compare and a select: one vector
 /// instruction (`maxps`) where `f32::max` needs four more to handle NaN. A
-/// NaN `x` gives `y`, and of two zeros it gives `y` (which `f32::max` leaves
+/// NaN `x` gives `y` (as `f32::max` does), but a NaN `y` gives NaN (where
+/// `f32::max` gives `x`); of two zeros it gives `y` (which `f32::max` leaves
 /// open).
 #[inline(always)]
 pub(crate) fn greater(x: f32, y: f32) -> f32 {
     if x > y { x } else { y }
 }
 
-/// The lesser of `x` and `y` (see [`greater`]; `minps`). A NaN `x` gives `y`.
+/// The lesser of `x` and `y` (see [`greater`]; `minps`). A NaN `x` gives
+/// `y`, a NaN `y` gives NaN.
 #[inline(always)]
 pub(crate) fn lesser(x: f32, y: f32) -> f32 {
     if x < y { x } else { y }
 }
 
-/// `x` clamped to `[lo, hi]` by [`greater`] then [`lesser`]: a NaN `x`
-/// gives `lo`, as `x.max(lo).min(hi)` does.
+/// `x` clamped to `[lo, hi]` by [`greater`] then [`lesser`]. A NaN `x` gives
+/// `lesser(lo, hi)`; unlike `x.max(lo).min(hi)`, a NaN bound is not
+/// skipped. (The solver's bounds are never NaN: the normal impulse is
+/// clamped at zero and the push speed is validated.)
 #[inline(always)]
 pub(crate) fn clamp(x: f32, lo: f32, hi: f32) -> f32 {
     lesser(greater(x, lo), hi)
@@ -256,7 +260,8 @@ pub(crate) fn solve(
         // Coulomb friction: |lambda_t| <= mu lambda_n.
         let vt = (vb - va).dot(tangent);
         let max_friction = c.friction * c.normal_impulse;
-        // `max` then `min`, as the wide passes (`clamp` differs for NaN).
+        // `greater` then `lesser`, as the wide passes (`f32::clamp` would
+        // pass a NaN through, and panic on bounds the wrong way round).
         let new_t = clamp(c.tangent_impulse - c.mass * vt, -max_friction, max_friction);
         let impulse = tangent * (new_t - c.tangent_impulse);
         c.tangent_impulse = new_t;
