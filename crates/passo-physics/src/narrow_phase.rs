@@ -219,30 +219,56 @@ fn sort_by_key(pairs: &mut Vec<KeyedPair>, scratch: &mut Vec<KeyedPair>, counts:
         insertion_sort(pairs);
         return;
     }
-    let slots = pairs.iter().map(|k| k.0 & 0xFFFF_FFFF).max().unwrap_or(0) as usize + 1;
-    if slots > 4 * pairs.len() + 1024 {
-        return radix_sort(pairs, scratch);
-    }
     scratch.clear();
     scratch.resize(pairs.len(), (0, 0, crate::collider::ColliderRef::fixed(0)));
-    for shift in [0, 32] {
-        let slot = |k: &KeyedPair| ((k.0 >> shift) & 0xFFFF_FFFF) as usize;
-        counts.clear();
-        counts.resize(slots, 0);
-        for k in pairs.iter() {
-            counts[slot(k)] += 1;
+    let slots = pairs.iter().map(|k| k.0 & 0xFFFF_FFFF).max().unwrap_or(0) as usize + 1;
+    if slots <= 4 * pairs.len() + 1024 {
+        for shift in [0, 32] {
+            let slot = |k: &KeyedPair| ((k.0 >> shift) & 0xFFFF_FFFF) as usize;
+            deal(pairs, scratch, counts, slots, slot);
         }
-        let mut sum = 0;
-        for n in counts.iter_mut() {
-            (*n, sum) = (sum, sum + *n);
-        }
-        for k in pairs.iter() {
-            let at = &mut counts[slot(k)];
-            scratch[*at as usize] = *k;
-            *at += 1;
-        }
-        std::mem::swap(pairs, scratch);
+        return;
     }
+    // Sparse slots: a least-significant-digit radix sort over the bits the
+    // keys use. Keys are `lower << 32 | higher`: packed into
+    // `lower << bits | higher`, which orders the same.
+    const DIGIT: u32 = 10;
+    let (lo_max, hi_max) = pairs.iter().fold((0u64, 0u64), |(l, h), k| {
+        (l | (k.0 & 0xFFFF_FFFF), h | (k.0 >> 32))
+    });
+    let bits = u64::BITS - (lo_max | hi_max).leading_zeros();
+    let packed = |key: u64| (key >> 32) << bits | (key & 0xFFFF_FFFF);
+    for shift in (0..2 * bits).step_by(DIGIT as usize) {
+        let digit = |k: &KeyedPair| ((packed(k.0) >> shift) & ((1 << DIGIT) - 1)) as usize;
+        deal(pairs, scratch, counts, 1 << DIGIT, digit);
+    }
+}
+
+/// One stable counting pass: deals `pairs` into `buckets` buckets by
+/// `bucket` (through `scratch`, which it leaves in `pairs`' place), keeping
+/// their order within a bucket. `counts` holds the counters.
+fn deal(
+    pairs: &mut Vec<KeyedPair>,
+    scratch: &mut Vec<KeyedPair>,
+    counts: &mut Vec<u32>,
+    buckets: usize,
+    bucket: impl Fn(&KeyedPair) -> usize,
+) {
+    counts.clear();
+    counts.resize(buckets, 0);
+    for k in pairs.iter() {
+        counts[bucket(k)] += 1;
+    }
+    let mut sum = 0;
+    for n in counts.iter_mut() {
+        (*n, sum) = (sum, sum + *n);
+    }
+    for k in pairs.iter() {
+        let at = &mut counts[bucket(k)];
+        scratch[*at as usize] = *k;
+        *at += 1;
+    }
+    std::mem::swap(pairs, scratch);
 }
 
 /// Sorts by key by insertion (stable): `O(n + inversions)`.
@@ -253,40 +279,6 @@ fn insertion_sort(pairs: &mut [KeyedPair]) {
             pairs.swap(j - 1, j);
             j -= 1;
         }
-    }
-}
-
-/// Sorts by key: a stable least-significant-digit radix sort over the bits
-/// the keys use (two body slot indices).
-fn radix_sort(pairs: &mut Vec<KeyedPair>, scratch: &mut Vec<KeyedPair>) {
-    const DIGIT: u32 = 10;
-    // Keys are `lower << 32 | higher`: packed into `lower << bits | higher`,
-    // which orders the same.
-    let (lo_max, hi_max) = pairs.iter().fold((0u64, 0u64), |(l, h), k| {
-        (l | (k.0 & 0xFFFF_FFFF), h | (k.0 >> 32))
-    });
-    let bits = u64::BITS - (lo_max | hi_max).leading_zeros();
-    let packed = |key: u64| (key >> 32) << bits | (key & 0xFFFF_FFFF);
-    scratch.clear();
-    scratch.resize(pairs.len(), (0, 0, crate::collider::ColliderRef::fixed(0)));
-    let mut shift = 0;
-    while shift < 2 * bits {
-        let digit = |k: &KeyedPair| ((packed(k.0) >> shift) & ((1 << DIGIT) - 1)) as usize;
-        let mut starts = [0u32; 1 << DIGIT];
-        for k in pairs.iter() {
-            starts[digit(k)] += 1;
-        }
-        let mut sum = 0;
-        for s in &mut starts {
-            (*s, sum) = (sum, sum + *s);
-        }
-        for k in pairs.iter() {
-            let d = digit(k);
-            scratch[starts[d] as usize] = *k;
-            starts[d] += 1;
-        }
-        std::mem::swap(pairs, scratch);
-        shift += DIGIT;
     }
 }
 

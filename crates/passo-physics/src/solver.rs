@@ -131,23 +131,12 @@ pub(crate) struct SolverBodies<'a> {
     pub deep: &'a [bool],
 }
 
-impl SolverBodies<'_> {
-    #[inline(always)]
-    fn velocity(&self, c: &Constraint) -> (Vec2, Vec2) {
-        let va = self.state[c.a as usize].vel;
-        let vb = match c.b.dynamic_index() {
-            Some(b) => self.state[b].vel,
-            None => Vec2::ZERO,
-        };
-        (va, vb)
-    }
-}
-
-/// The velocities of a contact's two bodies (zero for a static B).
+/// What `get` reads of a contact's two bodies in `bodies` (per dynamic
+/// body: a velocity, a state, a displacement); zero for a static B.
 #[inline(always)]
-fn velocities(vel: &[Vec2], c: &Constraint) -> (Vec2, Vec2) {
-    let vb = c.b.dynamic_index().map_or(Vec2::ZERO, |b| vel[b]);
-    (vel[c.a as usize], vb)
+fn of_pair<T>(bodies: &[T], c: &Constraint, get: impl Fn(&T) -> Vec2) -> (Vec2, Vec2) {
+    let b = c.b.dynamic_index().map_or(Vec2::ZERO, |b| get(&bodies[b]));
+    (get(&bodies[c.a as usize]), b)
 }
 
 /// Separation now: the step's separation plus the relative displacement
@@ -155,26 +144,27 @@ fn velocities(vel: &[Vec2], c: &Constraint) -> (Vec2, Vec2) {
 /// for circles; bodies do not rotate).
 #[inline(always)]
 fn separation(delta: &[Vec2], c: &Constraint) -> f32 {
-    let db = c.b.dynamic_index().map_or(Vec2::ZERO, |b| delta[b]);
-    c.base_separation + (db - delta[c.a as usize]).dot(c.normal)
+    let (da, db) = of_pair(delta, c, |d| *d);
+    c.base_separation + (db - da).dot(c.normal)
 }
 
-/// Applies `impulse` to one of the bodies' velocities (`field` picks the
-/// velocity or the push): minus to A, plus to B, for the bodies the
-/// contact moves (a held body is not written, as in the wide passes).
+/// Applies `impulse` to the velocity `field` picks of each body in
+/// `bodies` (a velocity, or a state's velocity or push): minus to A, plus
+/// to B, for the bodies the contact moves (a held body is not written, as
+/// in the wide passes).
 #[inline(always)]
-fn apply_impulse(
-    state: &mut [BodyState],
-    field: fn(&mut BodyState) -> &mut Vec2,
+fn apply_impulse<T>(
+    bodies: &mut [T],
+    field: fn(&mut T) -> &mut Vec2,
     c: &Constraint,
     impulse: Vec2,
 ) {
     let (a, b) = c.moved();
     if let Some(a) = a {
-        *field(&mut state[a]) -= impulse * c.inv_mass_a;
+        *field(&mut bodies[a]) -= impulse * c.inv_mass_a;
     }
     if let Some(b) = b {
-        *field(&mut state[b]) += impulse * c.inv_mass_b;
+        *field(&mut bodies[b]) += impulse * c.inv_mass_b;
     }
 }
 
@@ -254,7 +244,7 @@ pub(crate) fn solve(
         let (ia, ib) = (c.a as usize, c.b.index());
         let b_static = c.is_static();
         let (moved_a, moved_b) = c.moved();
-        let (mut va, mut vb) = bodies.velocity(c);
+        let (mut va, mut vb) = of_pair(bodies.state, c, |s| s.vel);
         let tangent = c.normal.perp();
 
         // Coulomb friction: |lambda_t| <= mu lambda_n.
@@ -328,20 +318,14 @@ pub(crate) fn restitution(
         if info.restitution == 0.0 || info.impact_u > -threshold || c.max_normal_impulse == 0.0 {
             continue;
         }
-        let (va, vb) = velocities(vel, c);
+        let (va, vb) = of_pair(vel, c, |v| *v);
         let vn = (vb - va).dot(c.normal);
         let target = -info.restitution * info.impact_u - info.half_an_h;
         let new_n = (c.normal_impulse + c.mass * (target - vn)).max(0.0);
         let dn = new_n - c.normal_impulse;
         c.normal_impulse = new_n;
         c.max_normal_impulse = c.max_normal_impulse.max(new_n);
-        let (a, b) = c.moved();
-        if let Some(a) = a {
-            vel[a] -= c.normal * dn * c.inv_mass_a;
-        }
-        if let Some(b) = b {
-            vel[b] += c.normal * dn * c.inv_mass_b;
-        }
+        apply_impulse(vel, |v| v, c, c.normal * dn);
     }
 }
 
