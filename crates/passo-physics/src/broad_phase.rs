@@ -7,9 +7,13 @@
 //! same or neighbouring cells, so each proxy is tested against the rest of
 //! its own cell, the cell to its right and the three above it (the other
 //! half of the neighbourhood finds it in turn), and every pair is found
-//! exactly once. The cells are laid out row by row, so those are two runs
-//! of contiguous memory. (A rain of 10 000 circles: the pair search went
-//! from 23 % to 11 % of a step that took 17 % less time.)
+//! exactly once. The cells are laid out row by row, with an empty column
+//! on each side and an empty row on top so that every cell has those
+//! neighbours, and the boxes are copied in cell order, so those are two
+//! runs of contiguous boxes. (A rain of 10 000 circles: the pair search
+//! went from 23 % to 11 % of a step that took 17 % less time; the copy
+//! in cell order, the padding and a search with no early exit per box
+//! took it from 14 % to 10 %.)
 //!
 //! Otherwise (a few large platforms among small bodies, bodies flung far
 //! apart, bodies piled on one spot) every moving proxy (a body's bounding box, grown by how far it
@@ -69,6 +73,10 @@ pub(crate) struct BroadPhase {
     cell_of: Vec<u32>,
     /// Corner grid: the proxies sorted by cell (stable).
     order: Vec<u32>,
+    /// Corner grid: the boxes and cells of `order`, in its order, so the
+    /// search reads each cell's candidates from contiguous memory.
+    sorted_boxes: Vec<Aabb>,
+    sorted_cells: Vec<u32>,
     /// Pairs found by each parallel task, concatenated in task order.
     #[cfg(feature = "parallel")]
     task_pairs: Vec<Vec<(u32, u32)>>,
@@ -251,10 +259,13 @@ impl BroadPhase {
                 [b.min.x, b.min.y].map(f64::from),
                 [b.max.x, b.max.y].map(f64::from),
             );
-            largest = largest.max(max[0] - min[0]).max(max[1] - min[1]);
+            // Compare and select: every value is finite here, so the NaN
+            // handling of `f64::max` and `min` would be wasted work.
+            let greater = |a: f64, b: f64| if b > a { b } else { a };
+            largest = greater(greater(largest, max[0] - min[0]), max[1] - min[1]);
             for k in 0..2 {
-                lo[k] = lo[k].min(min[k]);
-                hi[k] = hi[k].max(min[k]);
+                lo[k] = if min[k] < lo[k] { min[k] } else { lo[k] };
+                hi[k] = greater(hi[k], min[k]);
             }
         }
         if largest > 2.0 * f64::from(mean_size) || largest <= 0.0 {
@@ -271,8 +282,11 @@ impl BroadPhase {
         if w * h > (CORNER_CELLS_PER_PROXY * proxies.len() + 1024) as f64 {
             return false;
         }
+        // An empty column on each side and an empty row on top: every
+        // occupied cell has a right neighbour and three above, with no test.
         let (w, h) = (w as usize, h as usize);
-        let cells = w * h;
+        let row_len = w + 2;
+        let cells = row_len * (h + 1);
 
         // Each proxy's cell, then the proxies sorted by cell (counting sort).
         self.cell_of.clear();
@@ -281,7 +295,7 @@ impl BroadPhase {
         for b in proxies {
             let axis =
                 |k: usize, v: f32, n: usize| (((f64::from(v) - lo[k]) * inv) as usize).min(n - 1);
-            let c = axis(1, b.min.y, h) * w + axis(0, b.min.x, w);
+            let c = axis(1, b.min.y, h) * row_len + axis(0, b.min.x, w) + 1;
             self.cell_of.push(c as u32);
             self.starts[c + 1] += 1;
         }
@@ -293,9 +307,17 @@ impl BroadPhase {
         }
         self.order.clear();
         self.order.resize(proxies.len(), 0);
+        self.sorted_boxes.clear();
+        self.sorted_boxes
+            .resize(proxies.len(), Aabb::from_centre(Vec2::ZERO, Vec2::ZERO));
+        self.sorted_cells.clear();
+        self.sorted_cells.resize(proxies.len(), 0);
         for (i, &c) in self.cell_of.iter().enumerate() {
             let slot = &mut self.starts[c as usize];
-            self.order[*slot as usize] = i as u32;
+            let k = *slot as usize;
+            self.order[k] = i as u32;
+            self.sorted_boxes[k] = proxies[i];
+            self.sorted_cells[k] = c;
             *slot += 1;
         }
         // `starts[c]` now holds the end of cell c: shift back to the starts.
@@ -304,31 +326,20 @@ impl BroadPhase {
         }
         self.starts[0] = 0;
 
-        let (order, starts, cell_of) = (&self.order, &self.starts, &self.cell_of);
-        let both_asleep =
-            |a: u32, b: u32| !asleep.is_empty() && asleep[a as usize] && asleep[b as usize];
+        let (order, starts) = (&self.order, &self.starts);
+        let (boxes, sorted_cells) = (&self.sorted_boxes, &self.sorted_cells);
         // The pairs of the proxies at `range` of the sorted order, each with
         // the later proxies of its cell, the cell to its right and the three
-        // cells above.
+        // cells above: two runs of the sorted boxes.
         let search = |range: std::ops::Range<usize>, out: &mut Vec<(u32, u32)>| {
             for k in range {
-                let a = order[k];
-                let c = cell_of[a as usize] as usize;
-                let (cx, cy) = (c % w, c / w);
-                let right_end = starts[c + 1 + usize::from(cx + 1 < w)] as usize;
-                let above = if cy + 1 < h {
-                    let row = c + w;
-                    let first = row - usize::from(cx > 0);
-                    let last = row + usize::from(cx + 1 < w);
-                    &order[starts[first] as usize..starts[last + 1] as usize]
-                } else {
-                    &[]
-                };
-                let box_a = &proxies[a as usize];
-                for &b in order[k + 1..right_end].iter().chain(above) {
-                    if proxies[b as usize].overlaps(box_a) && !both_asleep(a, b) {
-                        out.push(ordered(a, b));
-                    }
+                let c = sorted_cells[k] as usize;
+                let (a, box_a) = (order[k], &boxes[k]);
+                let right = k + 1..starts[c + 2] as usize;
+                let above = starts[c + row_len - 1] as usize..starts[c + row_len + 2] as usize;
+                for run in [right, above] {
+                    let (ids, run) = (&order[run.clone()], &boxes[run]);
+                    pairs_in_run(a, box_a, ids, run, asleep, out);
                 }
             }
         };
@@ -380,6 +391,31 @@ fn in_tasks(
 fn floor_i32(x: f32) -> i32 {
     let t = x as i32;
     t.saturating_sub(i32::from((t as f32) > x))
+}
+
+/// Appends the pairs of proxy `a` (box `box_a`) with the proxies `ids`
+/// (boxes `boxes`) that touch it, unless both are marked in `asleep`.
+#[inline(always)]
+fn pairs_in_run(
+    a: u32,
+    box_a: &Aabb,
+    ids: &[u32],
+    boxes: &[Aabb],
+    asleep: &[bool],
+    out: &mut Vec<(u32, u32)>,
+) {
+    for (&b, other) in ids.iter().zip(boxes) {
+        let both_asleep = !asleep.is_empty() && asleep[a as usize] && asleep[b as usize];
+        if touch(other, box_a) && !both_asleep {
+            out.push(ordered(a, b));
+        }
+    }
+}
+
+/// [`Aabb::overlaps`] with no early exit: one branch, not four.
+#[inline(always)]
+fn touch(a: &Aabb, b: &Aabb) -> bool {
+    (a.min.x <= b.max.x) & (b.min.x <= a.max.x) & (a.min.y <= b.max.y) & (b.min.y <= a.max.y)
 }
 
 fn ordered(a: u32, b: u32) -> (u32, u32) {
