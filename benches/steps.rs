@@ -111,6 +111,12 @@ fn main() {
                 println!("pyramid 100 awake, {on}: {ms:.2} ms/step");
             }
         }
+        "pool" => {
+            // The rain of 10 000 on the pool alone, long enough to profile.
+            let mut w = with_sleeping(&rain_world(10_000), false);
+            let ms = ms_per_step_on(&mut w, true, 60, 1200);
+            println!("rain 10000 awake, thread pool: {ms:.2} ms/step");
+        }
         "rays" => {
             let mut w = rain_world(10_000);
             w.set_parallel(false);

@@ -8,8 +8,6 @@ use crate::constants::ONE_WAY_DEPTH;
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::filter::CollisionFilter;
 use crate::manifold::{Faces, Manifold, collide_seamless};
-#[cfg(feature = "parallel")]
-use crate::parallel::for_chunks;
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::{BodyId, SensorPair, Shape};
 use glam::Vec2;
@@ -291,9 +289,9 @@ pub(crate) struct NarrowPhase {
     scratch: Vec<KeyedPair>,
     /// The sort's counters, one a slot.
     counts: Vec<u32>,
-    /// Each pair's outcome, when the pairs are split across threads.
+    /// What each task found, when the pairs are split across threads.
     #[cfg(feature = "parallel")]
-    outcomes: Vec<Outcome>,
+    tasks: Vec<TaskFound>,
     /// Sensor-visitor pairs close enough to overlap by the end of the step.
     pub sensor_candidates: Vec<SensorCandidate>,
 }
@@ -316,40 +314,107 @@ impl NarrowPhase {
             self.keyed.push(narrow.key(p, ColliderRef::fixed(s)));
         }
         sort_by_key(&mut self.keyed, &mut self.scratch, &mut self.counts);
-        contacts.clear();
         self.sensor_candidates.clear();
-        let keep =
-            |o: Outcome, contacts: &mut ContactList, sensors: &mut Vec<SensorCandidate>| match o {
-                Outcome::Skip => {}
-                Outcome::Sensor(candidate) => sensors.push(candidate),
-                Outcome::Contact(row, info) => contacts.push(row, info),
-            };
         #[cfg(feature = "parallel")]
         if crate::parallel::goes_parallel(parallel, self.keyed.len()) {
-            self.outcomes.clear();
-            self.outcomes.resize(self.keyed.len(), Outcome::Skip);
-            for_chunks(
-                parallel,
-                (&mut self.outcomes[..], &self.keyed[..]),
-                |_, (out, pairs)| {
-                    for (o, &(_, pa, pb)) in out.iter_mut().zip(pairs) {
-                        *o = narrow.pair(pa, pb);
-                    }
-                    0
-                },
-            );
-            for &o in &self.outcomes {
-                keep(o, contacts, &mut self.sensor_candidates);
-            }
-            return;
+            let (keyed, tasks) = (&self.keyed, &mut self.tasks);
+            return in_tasks(narrow, keyed, tasks, contacts, &mut self.sensor_candidates);
         }
         // On one thread each outcome goes straight to its list: no buffer
         // of outcomes (a hundred bytes a pair) to fill and read back.
         let _ = parallel;
+        contacts.clear();
         for &(_, pa, pb) in &self.keyed {
             keep(narrow.pair(pa, pb), contacts, &mut self.sensor_candidates);
         }
     }
+}
+
+/// Puts a pair's outcome in its list.
+#[inline(always)]
+fn keep(outcome: Outcome, contacts: &mut ContactList, sensors: &mut Vec<SensorCandidate>) {
+    match outcome {
+        Outcome::Skip => {}
+        Outcome::Sensor(candidate) => sensors.push(candidate),
+        Outcome::Contact(row, info) => contacts.push(row, info),
+    }
+}
+
+/// The contacts and sensor candidates one task of the narrow phase found,
+/// in the order of its pairs.
+#[cfg(feature = "parallel")]
+#[derive(Clone, Debug, Default)]
+struct TaskFound {
+    contacts: ContactList,
+    sensors: Vec<SensorCandidate>,
+}
+
+/// The narrow phase over `keyed` on rayon's pool, in runs of
+/// `PARALLEL_CHUNK` pairs: each task keeps what it finds in its own lists,
+/// then, once the lists' lengths give each task its place, copies its
+/// contacts into `contacts` side by side with the others. The contacts
+/// come out in the pairs' order, as on one thread; no thread reads what
+/// another wrote but for the (rare) sensor candidates.
+///
+/// `contacts` is resized, not cleared and refilled: rows kept from the
+/// last step are overwritten, and only the growth is initialised.
+#[cfg(feature = "parallel")]
+fn in_tasks(
+    narrow: &Narrow<'_>,
+    keyed: &[KeyedPair],
+    tasks: &mut Vec<TaskFound>,
+    contacts: &mut ContactList,
+    sensors: &mut Vec<SensorCandidate>,
+) {
+    use rayon::prelude::*;
+    let chunk = crate::constants::PARALLEL_CHUNK;
+    let count = keyed.len().div_ceil(chunk);
+    if tasks.len() < count {
+        tasks.resize_with(count, TaskFound::default);
+    }
+    let tasks = &mut tasks[..count];
+    tasks
+        .par_iter_mut()
+        .zip(keyed.par_chunks(chunk))
+        .for_each(|(task, pairs)| {
+            task.contacts.clear();
+            task.sensors.clear();
+            for &(_, pa, pb) in pairs {
+                keep(narrow.pair(pa, pb), &mut task.contacts, &mut task.sensors);
+            }
+        });
+    let total: usize = tasks.iter().map(|t| t.contacts.len()).sum();
+    let Some(filler) = tasks.iter().find_map(|t| t.contacts.iter().next()) else {
+        contacts.clear();
+        return;
+    };
+    let (row, info) = (*filler.0, *filler.1);
+    contacts.rows.resize(total, row);
+    contacts.infos.resize(total, info);
+    for t in tasks.iter() {
+        sensors.extend_from_slice(&t.sensors);
+    }
+    copy_into(tasks, &mut contacts.rows, &mut contacts.infos);
+}
+
+/// Copies the tasks' contacts, in order, into `rows` and `infos` (as long
+/// as all of them): halves of the tasks into halves of the lists, on
+/// rayon's pool.
+#[cfg(feature = "parallel")]
+fn copy_into(tasks: &[TaskFound], rows: &mut [Constraint], infos: &mut [ContactInfo]) {
+    if let [task] = tasks {
+        rows.copy_from_slice(&task.contacts.rows);
+        infos.copy_from_slice(&task.contacts.infos);
+        return;
+    }
+    let (first, second) = tasks.split_at(tasks.len() / 2);
+    let n = first.iter().map(|t| t.contacts.len()).sum();
+    let (rows_first, rows_second) = rows.split_at_mut(n);
+    let (infos_first, infos_second) = infos.split_at_mut(n);
+    rayon::join(
+        || copy_into(first, rows_first, infos_first),
+        || copy_into(second, rows_second, infos_second),
+    );
 }
 
 #[cfg(test)]
