@@ -360,7 +360,7 @@ impl BroadPhase {
 /// `pairs` in order: the pairs and their order are those of one search over
 /// everything.
 #[cfg(feature = "parallel")]
-fn in_tasks(
+pub(crate) fn in_tasks(
     task_pairs: &mut Vec<Vec<(u32, u32)>>,
     items: usize,
     per_task: usize,

@@ -112,6 +112,9 @@ pub(crate) struct Proxies {
     pub pairs: Vec<(u32, u32)>,
     /// Pairs of a proxy and a static body (by static index).
     pub static_pairs: Vec<(u32, u32)>,
+    /// Static pairs found by each parallel task, concatenated in order.
+    #[cfg(feature = "parallel")]
+    task_pairs: Vec<Vec<(u32, u32)>>,
 }
 
 impl Proxies {
@@ -347,7 +350,7 @@ impl Proxies {
         // proxy then searches a small tree of them, not the whole level.
         // A level of a few static bodies is searched as it is.
         if self.tree.len() < NARROWED_LEVEL {
-            return self.pair_with_statics(false);
+            return self.pair_with_statics(false, parallel);
         }
         let mut region: Option<Aabb> = None;
         for p in 0..self.boxes.len() {
@@ -379,26 +382,39 @@ impl Proxies {
         if narrowed {
             self.near_tree.rebuild(self.near_boxes.iter().copied());
         }
-        self.pair_with_statics(narrowed);
+        self.pair_with_statics(narrowed, parallel);
     }
 
     /// Pairs each awake proxy with the static bodies its box overlaps, in
-    /// the tree of the nearby ones (`narrowed`) or the whole level's.
-    fn pair_with_statics(&mut self, narrowed: bool) {
+    /// the tree of the nearby ones (`narrowed`) or the whole level's; with
+    /// `parallel` (and the feature), in runs of proxies on rayon's pool,
+    /// giving the same pairs in the same order.
+    fn pair_with_statics(&mut self, narrowed: bool, parallel: bool) {
         let (tree, items) = if narrowed {
             (&self.near_tree, &self.near_items)
         } else {
             (&self.tree, &self.tree_items)
         };
-        for p in 0..self.boxes.len() {
-            if self.is_asleep(p) {
-                continue;
+        let (boxes, asleep) = (&self.boxes, &self.asleep);
+        let search = |range: std::ops::Range<usize>, pairs: &mut Vec<(u32, u32)>| {
+            for p in range {
+                if asleep.get(p) == Some(&true) {
+                    continue;
+                }
+                tree.query(&boxes[p], |item| {
+                    pairs.push((p as u32, items[item as usize]))
+                });
             }
-            let pairs = &mut self.static_pairs;
-            tree.query(&self.boxes[p], |item| {
-                pairs.push((p as u32, items[item as usize]))
-            });
+        };
+        #[cfg(feature = "parallel")]
+        if crate::parallel::goes_parallel(parallel, boxes.len()) {
+            let chunk = crate::constants::PARALLEL_CHUNK;
+            let (tasks, pairs) = (&mut self.task_pairs, &mut self.static_pairs);
+            crate::broad_phase::in_tasks(tasks, boxes.len(), chunk, search, pairs);
+            return;
         }
+        let _ = parallel;
+        search(0..boxes.len(), &mut self.static_pairs);
     }
 }
 
