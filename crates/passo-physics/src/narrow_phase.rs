@@ -211,15 +211,21 @@ fn one_way_allows(a: &Collider, b: &Collider, m: &Manifold) -> bool {
 /// Two counting passes, one counter a slot (`counts`): by the higher slot,
 /// then, stably, by the lower one. When the slots are sparse (more than a
 /// few per pair) a radix sort over the bits of the two slots does it
-/// instead, and a few pairs are sorted by insertion.
-fn sort_by_key(pairs: &mut Vec<KeyedPair>, scratch: &mut Vec<KeyedPair>, counts: &mut Vec<u32>) {
+/// instead, and a few pairs are sorted by insertion. `slots` is one more
+/// than the highest slot in the keys (the caller finds it while making
+/// them).
+fn sort_by_key(
+    pairs: &mut Vec<KeyedPair>,
+    slots: usize,
+    scratch: &mut Vec<KeyedPair>,
+    counts: &mut Vec<u32>,
+) {
     if pairs.len() < 64 {
         insertion_sort(pairs);
         return;
     }
     scratch.clear();
     scratch.resize(pairs.len(), (0, 0, crate::collider::ColliderRef::fixed(0)));
-    let slots = pairs.iter().map(|k| k.0 & 0xFFFF_FFFF).max().unwrap_or(0) as usize + 1;
     if slots <= 4 * pairs.len() + 1024 {
         for shift in [0, 32] {
             let slot = |k: &KeyedPair| ((k.0 >> shift) & 0xFFFF_FFFF) as usize;
@@ -307,13 +313,23 @@ impl NarrowPhase {
     pub(crate) fn run(&mut self, narrow: &Narrow<'_>, parallel: bool, contacts: &mut ContactList) {
         let proxies = narrow.proxies;
         self.keyed.clear();
-        for &(pa, pb) in &proxies.pairs {
-            self.keyed.push(narrow.key(pa, ColliderRef::dynamic(pb)));
+        // The highest slot, for the sort, found on the way.
+        let mut highest = 0;
+        let dynamic = proxies
+            .pairs
+            .iter()
+            .map(|&(a, b)| (a, ColliderRef::dynamic(b)));
+        let fixed = proxies
+            .static_pairs
+            .iter()
+            .map(|&(p, s)| (p, ColliderRef::fixed(s)));
+        for (pa, pb) in dynamic.chain(fixed) {
+            let keyed = narrow.key(pa, pb);
+            highest = highest.max(keyed.0 & 0xFFFF_FFFF);
+            self.keyed.push(keyed);
         }
-        for &(p, s) in &proxies.static_pairs {
-            self.keyed.push(narrow.key(p, ColliderRef::fixed(s)));
-        }
-        sort_by_key(&mut self.keyed, &mut self.scratch, &mut self.counts);
+        let slots = highest as usize + 1;
+        sort_by_key(&mut self.keyed, slots, &mut self.scratch, &mut self.counts);
         self.sensor_candidates.clear();
         #[cfg(feature = "parallel")]
         if crate::parallel::goes_parallel(parallel, self.keyed.len()) {
@@ -443,7 +459,8 @@ mod tests {
                 .collect();
             let mut expected = pairs.clone();
             expected.sort_by_key(|k| (k.0, k.1));
-            sort_by_key(&mut pairs, &mut Vec::new(), &mut Vec::new());
+            let highest = pairs.iter().map(|k| k.0 & 0xFFFF_FFFF).max().unwrap_or(0);
+            sort_by_key(&mut pairs, highest as usize + 1, &mut Vec::new(), &mut Vec::new());
             prop_assert_eq!(pairs, expected);
         }
     }
