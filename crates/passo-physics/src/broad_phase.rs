@@ -49,8 +49,10 @@ pub(crate) const LARGE_PROXY_CELLS: i32 = 16;
 /// bucket and never meet it.
 pub(crate) const CROWDED_CELL: usize = 64;
 
-/// The corner grid holds at most this many cells per proxy (plus 1 024):
-/// bodies spread wider are binned in the hashed grid instead.
+/// The corner grid spans at most this many cells per proxy (plus 1 024),
+/// before its padding (a column each side and a row on top, which at most
+/// sextuple a grid one cell wide): bodies spread wider are binned in the
+/// hashed grid instead.
 const CORNER_CELLS_PER_PROXY: usize = 4;
 
 #[derive(Clone, Copy, Debug)]
@@ -232,7 +234,8 @@ impl BroadPhase {
     /// The corner grid (see the module's documentation): appends the pairs
     /// and returns `true`, or returns `false` having appended nothing when
     /// the proxies do not suit it: sizes too unequal, spread too far for a
-    /// dense grid of at most [`CORNER_CELLS_PER_PROXY`] cells a proxy, a
+    /// dense grid of at most [`CORNER_CELLS_PER_PROXY`] cells a proxy (before
+    /// padding), a
     /// coordinate not finite, or a cell holding more than `CROWDED_CELL + 1`
     /// proxies (the hashed grid bounds their pairs). Its cells are at most
     /// half the hashed grid's, so a pile can crowd a hashed bucket and no

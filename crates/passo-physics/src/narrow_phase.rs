@@ -399,6 +399,9 @@ fn in_tasks(
                 keep(narrow.pair(pa, pb), &mut task.contacts, &mut task.sensors);
             }
         });
+    for t in tasks.iter() {
+        sensors.extend_from_slice(&t.sensors);
+    }
     let total: usize = tasks.iter().map(|t| t.contacts.len()).sum();
     let Some(filler) = tasks.iter().find_map(|t| t.contacts.iter().next()) else {
         contacts.clear();
@@ -407,9 +410,6 @@ fn in_tasks(
     let (row, info) = (*filler.0, *filler.1);
     contacts.rows.resize(total, row);
     contacts.infos.resize(total, info);
-    for t in tasks.iter() {
-        sensors.extend_from_slice(&t.sensors);
-    }
     copy_into(tasks, &mut contacts.rows, &mut contacts.infos);
 }
 
