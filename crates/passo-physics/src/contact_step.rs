@@ -144,11 +144,8 @@ impl World {
         // 10 000, two threads: 2.25 ms per step on a worker, 2.96 ms from
         // outside, 2.98 ms on one thread.)
         #[cfg(feature = "parallel")]
-        if self.parallel
-            && rayon::current_thread_index().is_none()
-            && self.dynamic.len() >= crate::constants::PARALLEL_MIN_ITEMS
-        {
-            rayon::scope(|_| self.step_with_contacts_here(dt, settings));
+        if self.parallel && self.dynamic.len() >= crate::constants::PARALLEL_MIN_ITEMS {
+            crate::parallel::on_pool(|| self.step_with_contacts_here(dt, settings));
             return;
         }
         self.step_with_contacts_here(dt, settings);
