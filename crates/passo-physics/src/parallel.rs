@@ -184,4 +184,35 @@ mod tests {
             }
         }
     }
+
+    /// `on_pool` runs its closure once, on a worker, whether called from a
+    /// worker (of pools of one, two and four) or from outside any pool (the
+    /// global pool), and returns what it returns; after a panic inside, the
+    /// pool goes on serving.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn on_pool_runs_once_on_a_worker_and_returns_its_result() {
+        use super::on_pool;
+        use std::sync::atomic::{AtomicU32, Ordering};
+        let runs = AtomicU32::new(0);
+        let run = || {
+            runs.fetch_add(1, Ordering::Relaxed);
+            // Work handed out inside is done, by whichever worker.
+            let (a, b) = rayon::join(|| 20, || 22);
+            (rayon::current_thread_index().is_some(), a + b)
+        };
+        for threads in [1, 2, 4] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            assert_eq!(pool.install(|| on_pool(run)), (true, 42));
+            let panicked =
+                pool.install(|| std::panic::catch_unwind(|| on_pool(|| panic!("inside the step"))));
+            assert!(panicked.is_err());
+            assert_eq!(pool.install(|| on_pool(|| 7)), 7, "the pool still serves");
+        }
+        assert_eq!(on_pool(run), (true, 42), "from outside any pool");
+        assert_eq!(runs.load(Ordering::Relaxed), 4);
+    }
 }
