@@ -111,11 +111,15 @@ fn split_join<P: Parts>(offset: usize, parts: P, f: &(impl Fn(usize, P) -> u64 +
 /// it took about 23 µs on the benchmark machine (2 vCPUs), paid at each of
 /// the step's stages that follows a serial part longer than that (the
 /// narrow phase after the pair sort, the colouring after the regions'
-/// split, ...). Here each other worker runs a task that takes any work
-/// handed out (`rayon::yield_now`) and otherwise yields the core to the
-/// system, until `f` returns (or [`HELPER_LIMIT`] passes, a safety net).
-/// The work and its results are the same; only who picks it up, and when,
-/// changes.
+/// split, ...). Here each other worker runs a helper task from when it
+/// next looks for work until `f` returns (or [`HELPER_LIMIT`] passes, a
+/// safety net): it takes any work handed out (`rayon::yield_now`) and
+/// otherwise yields its core to the system. That is busy waiting: the
+/// other cores stay in use for the length of the step. A worker that is
+/// itself inside `on_pool` (stepping another world, or waiting inside its
+/// step) does not help, so steps run side by side on one pool never wait
+/// on each other's helpers. The work and its results are the same; only
+/// who picks it up, and when, changes.
 #[cfg(feature = "parallel")]
 pub(crate) fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     use std::sync::Arc;
@@ -126,19 +130,24 @@ pub(crate) fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     if rayon::current_num_threads() < 2 {
         return f();
     }
-    /// Tells the helpers to stop when dropped, even if `f` panics.
+    /// Marks this worker as stepping, and tells the helpers to stop, when
+    /// dropped (even if `f` panics).
     struct Done(Arc<AtomicBool>);
     impl Drop for Done {
         fn drop(&mut self) {
             self.0.store(true, Ordering::Release);
+            STEPPING.with(|s| s.set(s.get() - 1));
         }
     }
+    STEPPING.with(|s| s.set(s.get() + 1));
     let done = Done(Arc::new(AtomicBool::new(false)));
     let flag = Arc::clone(&done.0);
     rayon::spawn_broadcast(move |ctx| {
         // The stepping worker runs its own copy when it next looks for
-        // work: it has none to help with.
-        if ctx.index() == owner {
+        // work: it has none to help with. Nor does a worker inside a step
+        // of its own: it would not return to that step until this one
+        // ended.
+        if ctx.index() == owner || STEPPING.with(|s| s.get()) > 0 {
             return;
         }
         let start = std::time::Instant::now();
@@ -149,6 +158,12 @@ pub(crate) fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
         }
     });
     f()
+}
+
+#[cfg(feature = "parallel")]
+thread_local! {
+    /// How many calls of [`on_pool`] this thread is inside.
+    static STEPPING: std::cell::Cell<u32> = const { std::cell::Cell::new(0) };
 }
 
 /// How long a helper of [`on_pool`] looks for work at most: far longer
@@ -214,5 +229,30 @@ mod tests {
         }
         assert_eq!(on_pool(run), (true, 42), "from outside any pool");
         assert_eq!(runs.load(Ordering::Relaxed), 4);
+    }
+
+    /// A worker counts as stepping exactly while it is inside `on_pool`
+    /// (nested calls too, and after a panic it no longer is): the helper
+    /// of another step that such a worker picks up while it waits inside
+    /// its own returns at once, so two steps side by side on one pool
+    /// never spin waiting for each other.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn a_worker_counts_as_stepping_while_inside_on_pool() {
+        use super::{STEPPING, on_pool};
+        let stepping = || STEPPING.with(|s| s.get());
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            assert_eq!(stepping(), 0);
+            let inside = on_pool(|| (stepping(), on_pool(stepping), stepping()));
+            assert_eq!(inside, (1, 2, 1));
+            assert_eq!(stepping(), 0);
+            let panicked = std::panic::catch_unwind(|| on_pool(|| panic!("inside the step")));
+            assert!(panicked.is_err());
+            assert_eq!(stepping(), 0, "a panic leaves the worker not stepping");
+        });
     }
 }
