@@ -22,12 +22,16 @@ impl Aabb {
     }
 
     /// Whether the boxes overlap or touch.
+    ///
+    /// The four comparisons are all made and combined with `&`, not `&&`:
+    /// one branch instead of four, which the broad phase's search (where
+    /// about half the candidates touch) measured faster.
     #[inline]
     pub fn overlaps(&self, other: &Self) -> bool {
-        self.min.x <= other.max.x
-            && other.min.x <= self.max.x
-            && self.min.y <= other.max.y
-            && other.min.y <= self.max.y
+        (self.min.x <= other.max.x)
+            & (other.min.x <= self.max.x)
+            & (self.min.y <= other.max.y)
+            & (other.min.y <= self.max.y)
     }
 
     /// Whether `p` is inside or on the boundary.
