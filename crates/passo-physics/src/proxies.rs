@@ -330,7 +330,7 @@ impl Proxies {
 
     /// Whether proxy `p`'s body sleeps.
     pub(crate) fn is_asleep(&self, p: usize) -> bool {
-        self.asleep.get(p) == Some(&true)
+        marked_asleep(&self.asleep, p)
     }
 
     /// Crowded grid buckets in the last pair search (see `CROWDED_CELL`).
@@ -398,7 +398,7 @@ impl Proxies {
         let (boxes, asleep) = (&self.boxes, &self.asleep);
         let search = |range: std::ops::Range<usize>, pairs: &mut Vec<(u32, u32)>| {
             for p in range {
-                if asleep.get(p) == Some(&true) {
+                if marked_asleep(asleep, p) {
                     continue;
                 }
                 tree.query(&boxes[p], |item| {
@@ -416,6 +416,13 @@ impl Proxies {
         let _ = parallel;
         search(0..boxes.len(), &mut self.static_pairs);
     }
+}
+
+/// Whether proxy `p` is marked asleep in `asleep` (empty when no proxy
+/// sleeps).
+#[inline(always)]
+fn marked_asleep(asleep: &[bool], p: usize) -> bool {
+    asleep.get(p) == Some(&true)
 }
 
 /// Whether `coverer` can make the faces of `covered` seamless: a solid
