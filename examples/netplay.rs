@@ -278,13 +278,13 @@ impl NonBlockingSocket<SocketAddr> for LinkSocket {
 /// first still rolls back). Returns each peer's report once both have
 /// confirmed `frames` frames.
 pub fn p2p_loopback(frames: u64, link: Link) -> Result<[PeerReport; 2], String> {
-    let ports = [free_port()?, free_port()?];
+    let (ports, sockets) = bind_pair()?;
     let mut sessions = Vec::new();
-    for me in 0..2 {
+    for (me, socket) in sockets.into_iter().enumerate() {
         let other = 1 - me;
         let remote = SocketAddr::from(([127, 0, 0, 1], ports[other]));
         let socket = LinkSocket {
-            socket: UdpNonBlockingSocket::bind_to_port(ports[me]).map_err(|e| e.to_string())?,
+            socket,
             link,
             held: Default::default(),
             rng: 0x9e37_79b9_7f4a_7c15 ^ me as u64,
@@ -356,6 +356,23 @@ pub fn p2p_loopback(frames: u64, link: Link) -> Result<[PeerReport; 2], String> 
         }
     }
     Ok(reports)
+}
+
+/// Two GGRS sockets on UDP ports that were free, and their ports. A port
+/// found free can be taken by another program (or another test running at
+/// the same time) before it is bound again: then two other ports are
+/// tried, ten times at most.
+fn bind_pair() -> Result<([u16; 2], [UdpNonBlockingSocket; 2]), String> {
+    let mut last = String::new();
+    for _ in 0..10 {
+        let ports = [free_port()?, free_port()?];
+        let bind = |port| UdpNonBlockingSocket::bind_to_port(port).map_err(|e| e.to_string());
+        match (bind(ports[0]), bind(ports[1])) {
+            (Ok(a), Ok(b)) => return Ok((ports, [a, b])),
+            (Err(e), _) | (_, Err(e)) => last = e,
+        }
+    }
+    Err(format!("no two free UDP ports in ten tries: {last}"))
 }
 
 /// A UDP port of the loopback interface that is free now.
