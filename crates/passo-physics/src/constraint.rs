@@ -70,7 +70,7 @@ impl ContactInfo {
 
     /// Touching: the solver pushed the bodies apart this step, or they overlap.
     pub(crate) fn is_touching(&self, c: &Constraint) -> bool {
-        c.max_normal_impulse > 0.0 || self.separation < 0.0
+        (c.max_normal_impulse > 0.0) | (self.separation < 0.0)
     }
 }
 

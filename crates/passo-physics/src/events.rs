@@ -2,7 +2,7 @@
 //! contact carries (warm starting), who touched whom (begin and end
 //! events) and who is inside which sensor.
 
-use crate::bodies::{Colliders, DynamicBodies, StaticBodies};
+use crate::bodies::{Colliders, DynamicBodies, StaticBodies, pair_order};
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::manifold::collide;
 use crate::narrow_phase::SensorCandidate;
@@ -35,6 +35,12 @@ impl Cached {
     pub(crate) fn key(&self) -> (BodyId, BodyId) {
         self.key
     }
+
+    /// The pair's slots as one integer, in the key's order.
+    #[inline(always)]
+    fn order(&self) -> u64 {
+        u64::from(self.key.0.index) << 32 | u64::from(self.key.1.index)
+    }
 }
 
 /// The contact state carried from one step to the next, and the events of
@@ -58,17 +64,22 @@ impl EventTracker {
     /// the cache and the contacts are both sorted by key.
     pub(crate) fn warm_start(&self, contacts: &mut ContactList) {
         debug_assert!(contacts.infos.is_sorted_by_key(ContactInfo::key));
+        // Both lists are in the order of their pairs' slots (one step's
+        // pairs have distinct slots), so the merge compares one integer a
+        // pair; a slot's generation must match as well (a body removed
+        // and another added in its slot is another pair).
         let cache = &self.cache;
         let mut j = 0;
         for (c, info) in contacts.rows.iter_mut().zip(&contacts.infos) {
-            let k = info.key();
-            while j < cache.len() && cache[j].key < k {
+            let order = pair_order(info.id_a.index, info.id_b.index);
+            while j < cache.len() && cache[j].order() < order {
                 j += 1;
             }
-            if j < cache.len() && cache[j].key == k {
-                c.normal_impulse = cache[j].normal_impulse;
-                c.tangent_impulse = cache[j].tangent_impulse;
-                c.push_impulse = cache[j].push_impulse;
+            let Some(hit) = cache.get(j) else { break };
+            if hit.order() == order && hit.key == info.key() {
+                c.normal_impulse = hit.normal_impulse;
+                c.tangent_impulse = hit.tangent_impulse;
+                c.push_impulse = hit.push_impulse;
             }
         }
     }
@@ -103,8 +114,18 @@ impl EventTracker {
     /// each sorted by key.
     pub(crate) fn record(&mut self, solved: &ContactList, asleep: &ContactList, step: u64) {
         self.cache.clear();
+        // Every pair is written to `touching` and only those touching are
+        // kept: no branch on whether each one touches, which changes from
+        // contact to contact.
+        let total = solved.len() + asleep.len();
+        let none = BodyId {
+            index: u32::MAX,
+            generation: u32::MAX,
+        };
         self.touching.clear();
-        for (c, info) in merged(solved, asleep) {
+        self.touching.resize(total, (none, none));
+        let mut touching = 0;
+        let mut keep = |c: &Constraint, info: &ContactInfo| {
             let k = info.key();
             self.cache.push(Cached {
                 key: k,
@@ -112,10 +133,15 @@ impl EventTracker {
                 tangent_impulse: c.tangent_impulse,
                 push_impulse: c.push_impulse,
             });
-            if info.is_touching(c) {
-                self.touching.push(k);
-            }
+            self.touching[touching] = k;
+            touching += usize::from(info.is_touching(c));
+        };
+        if asleep.is_empty() {
+            solved.iter().for_each(|(c, info)| keep(c, info));
+        } else {
+            merged(solved, asleep).for_each(|(c, info)| keep(c, info));
         }
+        self.touching.truncate(touching);
         self.events.clear();
         self.events.step = step;
         let events = &mut self.events;
@@ -189,7 +215,119 @@ fn diff<T: Ord>(before: &[T], now: &[T], mut f: impl FnMut(&T, bool)) {
 
 #[cfg(test)]
 mod tests {
-    use super::diff;
+    use super::*;
+    use crate::collider::ColliderRef;
+
+    fn id(index: u32, generation: u32) -> BodyId {
+        BodyId { index, generation }
+    }
+
+    /// A contact between `a` and `b` (A given first, in either slot order),
+    /// with the impulses `n` and whether it touches.
+    fn contact(a: BodyId, b: BodyId, n: f32, touching: bool) -> (Constraint, ContactInfo) {
+        let row = Constraint {
+            a: 0,
+            b: ColliderRef::fixed(0),
+            normal: glam::Vec2::Y,
+            base_separation: 0.0,
+            inv_mass_a: 1.0,
+            inv_mass_b: 0.0,
+            mass: 1.0,
+            friction: 0.5,
+            normal_impulse: n,
+            tangent_impulse: -n,
+            push_impulse: 2.0 * n,
+            max_normal_impulse: if touching { n } else { 0.0 },
+        };
+        let info = ContactInfo {
+            id_a: a,
+            id_b: b,
+            separation: 0.01,
+            points: [glam::Vec2::ZERO; 2],
+            point_count: 1,
+            restitution: 0.0,
+            impact_u: 0.0,
+            half_an_h: 0.0,
+        };
+        (row, info)
+    }
+
+    fn list(contacts: &[(Constraint, ContactInfo)]) -> ContactList {
+        let mut list = ContactList::default();
+        for &(row, info) in contacts {
+            list.push(row, info);
+        }
+        list
+    }
+
+    #[test]
+    fn warm_start_matches_pairs_by_slot_and_generation() {
+        let mut tracker = EventTracker::default();
+        // Last step: pairs (1, 4), (2, 3) and (3, 9), each with its
+        // impulses; (2, 3) and (3, 9) touching.
+        let last = list(&[
+            contact(id(4, 0), id(1, 0), 1.0, false),
+            contact(id(2, 0), id(3, 0), 2.0, true),
+            contact(id(3, 0), id(9, 0), 3.0, true),
+        ]);
+        tracker.record(&last, &ContactList::default(), 1);
+        assert_eq!(
+            tracker.events.begin,
+            [
+                ContactPair {
+                    a: id(2, 0),
+                    b: id(3, 0)
+                },
+                ContactPair {
+                    a: id(3, 0),
+                    b: id(9, 0)
+                },
+            ]
+        );
+        // This step: (1, 4) again with A and B the other way round, (2, 3)
+        // where slot 3 now holds another body (a new generation), a new
+        // pair (2, 5), and (3, 9) again.
+        let mut now = list(&[
+            contact(id(1, 0), id(4, 0), 0.0, false),
+            contact(id(2, 0), id(3, 1), 0.0, false),
+            contact(id(2, 0), id(5, 0), 0.0, false),
+            contact(id(3, 0), id(9, 0), 0.0, false),
+        ]);
+        tracker.warm_start(&mut now);
+        let impulses: Vec<_> = now
+            .rows
+            .iter()
+            .map(|c| (c.normal_impulse, c.tangent_impulse, c.push_impulse))
+            .collect();
+        assert_eq!(
+            impulses,
+            [
+                (1.0, -1.0, 2.0),
+                (0.0, 0.0, 0.0),
+                (0.0, 0.0, 0.0),
+                (3.0, -3.0, 6.0),
+            ],
+            "the same pairs carry their impulses, another body in a slot does not"
+        );
+        // None of them touches now: the two touching pairs end.
+        tracker.record(&now, &ContactList::default(), 2);
+        assert!(tracker.events.begin.is_empty());
+        assert_eq!(
+            tracker.events.end,
+            [
+                ContactPair {
+                    a: id(2, 0),
+                    b: id(3, 0)
+                },
+                ContactPair {
+                    a: id(3, 0),
+                    b: id(9, 0)
+                },
+            ]
+        );
+        assert_eq!(tracker.touching_prev, []);
+        assert_eq!(tracker.cache.len(), 4);
+    }
 
     #[test]
     fn diff_reports_what_began_and_what_ended() {
