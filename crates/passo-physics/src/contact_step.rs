@@ -11,7 +11,7 @@ use crate::contact_world::{ContactWorld, StepParams};
 use crate::integrator::integrate_velocity;
 use crate::kernel::PointMassKernel;
 use crate::parallel::for_chunks;
-use crate::solver::{self, Motion, SolverParams};
+use crate::solver::{self, BodyState, Motion, SolverParams};
 use crate::world::{World, step_forces};
 use crate::{ContactSettings, Integrator};
 use glam::Vec2;
@@ -326,21 +326,19 @@ impl World {
         // The bodies' states, without the rest state after them.
         let state = &mut motion.state[..pos.len()];
         let parts = (pos, state, &mut motion.delta[..]);
-        for_chunks(self.parallel, parts, |offset, (pos, state, delta)| {
-            let bodies = pos.iter_mut().zip(state.iter_mut()).zip(delta.iter_mut());
-            for (k, ((p, s), d)) in bodies.enumerate() {
-                let i = offset + k;
-                if let Some(uniform) = limits {
-                    uniform.unwrap_or(arrays.limits[i]).apply(&mut s.vel);
-                }
-                // Semi-implicit Euler adds an exact zero here, as the
-                // no-contact path does: the same bits either way.
-                let c = if corrects { correction[i] } else { Vec2::ZERO };
-                *p += (s.vel + s.push) * h + c;
-                *d = *p - start[i];
-            }
-            0
-        });
+        // One loop for each kind of limit, chosen once: no test of the
+        // kind in the loop over the bodies.
+        let moves = Moves {
+            h,
+            correction: corrects.then_some(correction),
+            start,
+        };
+        let parallel = self.parallel;
+        match limits {
+            None => moves.run(parallel, parts, |_| None),
+            Some(Some(uniform)) => moves.run(parallel, parts, |_| Some(uniform)),
+            Some(None) => moves.run(parallel, parts, |i| Some(arrays.limits[i])),
+        }
     }
 
     /// Substep stage: velocity passes at the new positions.
@@ -376,5 +374,42 @@ impl World {
                 uniform.unwrap_or(*limits).apply(v);
             }
         }
+    }
+}
+
+/// What the position stage moves each body by: its velocity plus push
+/// over the substep, and the integrator's correction.
+struct Moves<'a> {
+    h: f32,
+    /// The integrator's corrections (all but semi-implicit Euler).
+    correction: Option<&'a [Vec2]>,
+    /// Positions at the start of the step.
+    start: &'a [Vec2],
+}
+
+impl Moves<'_> {
+    /// Applies each body's speed limits (`limit(i)`, if any), then moves
+    /// it, and keeps its displacement since the step began.
+    fn run(
+        &self,
+        parallel: bool,
+        parts: (&mut [Vec2], &mut [BodyState], &mut [Vec2]),
+        limit: impl Fn(usize) -> Option<SpeedLimits> + Sync,
+    ) {
+        for_chunks(parallel, parts, |offset, (pos, state, delta)| {
+            let bodies = pos.iter_mut().zip(state.iter_mut()).zip(delta.iter_mut());
+            for (k, ((p, s), d)) in bodies.enumerate() {
+                let i = offset + k;
+                if let Some(limits) = limit(i) {
+                    limits.apply(&mut s.vel);
+                }
+                // Semi-implicit Euler adds an exact zero here, as the
+                // no-contact path does: the same bits either way.
+                let c = self.correction.map_or(Vec2::ZERO, |c| c[i]);
+                *p += (s.vel + s.push) * self.h + c;
+                *d = *p - self.start[i];
+            }
+            0
+        });
     }
 }
