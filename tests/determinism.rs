@@ -179,6 +179,44 @@ fn big_rain(n: u32) -> World {
 }
 
 #[test]
+fn a_large_world_with_a_point_mass_and_a_kinematic_body_the_same_bits_on_the_pool() {
+    // A body without a shape gets no proxy, so the step cannot give every
+    // body a proxy of the same index on the pool and takes the one-by-one
+    // path; a kinematic body's proxy covers its whole travel. Without the
+    // point mass, every body gets a proxy of its own index.
+    let run = |parallel: bool, point_mass: bool| {
+        let mut world = big_rain(5000);
+        if point_mass {
+            world
+                .add_body(BodyDef::point_mass(Vec2::new(0.3, 40.0)))
+                .unwrap();
+        }
+        let sweeper = BodyDef::new_kinematic(
+            Vec2::new(-12.0, 1.0),
+            Shape::rect(0.5, 2.0),
+            Vec2::new(3.0, 0.0),
+        );
+        world.add_body(sweeper).unwrap();
+        world.set_parallel(parallel);
+        let hashes: Vec<u64> = (0..60)
+            .map(|_| {
+                world.step(1.0 / 60.0);
+                world.state_hash()
+            })
+            .collect();
+        assert!(world.contacts().count() >= 4096);
+        hashes
+    };
+    for point_mass in [false, true] {
+        assert_eq!(
+            run(true, point_mass),
+            run(false, point_mass),
+            "point mass: {point_mass}"
+        );
+    }
+}
+
+#[test]
 fn the_same_bits_whatever_the_number_of_threads() {
     // `threads`: step on a pool of that many workers; `None`: step from
     // this thread (with `parallel`, the step enters the global pool itself).

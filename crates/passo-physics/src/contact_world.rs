@@ -89,7 +89,7 @@ impl ContactWorld {
         };
         self.proxies.begin(dynamic, statics, margin);
         self.sleeping.begin(dynamic, any_asleep, &margin);
-        self.add_proxies(dynamic, any_asleep);
+        self.add_proxies(dynamic, any_asleep, step.parallel);
         self.proxies.find_pairs(step.parallel);
         if any_asleep {
             self.pair_with_sleepers(dynamic);
@@ -105,7 +105,7 @@ impl ContactWorld {
             self.wake_reached(dynamic, statics, step, settings.slop);
         }
         if settings.warm_starting {
-            self.events.warm_start(&mut self.solved);
+            self.events.warm_start(&mut self.solved, step.parallel);
         }
     }
 
@@ -129,7 +129,12 @@ impl ContactWorld {
     /// Proxies for the shaped dynamic bodies, grown by their possible
     /// travel. Sleeping bodies in the sleep tree get one only when an awake
     /// proxy reaches them (see [`pair_with_sleepers`](Self::pair_with_sleepers)).
-    fn add_proxies(&mut self, dynamic: &DynamicBodies, any_asleep: bool) {
+    fn add_proxies(&mut self, dynamic: &DynamicBodies, any_asleep: bool, parallel: bool) {
+        // Every body awake: one proxy a body, on the pool if many (unless
+        // some body has no shape).
+        if parallel && !any_asleep && self.proxies.add_all(dynamic, parallel) {
+            return;
+        }
         for (i, meta) in dynamic.meta.iter().enumerate() {
             if meta.shape.is_none() {
                 continue;

@@ -8,6 +8,7 @@ use crate::constants::ONE_WAY_DEPTH;
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::filter::CollisionFilter;
 use crate::manifold::{Faces, Manifold, collide_seamless};
+use crate::parallel::for_chunks_max;
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::{BodyId, SensorPair, Shape};
 use glam::Vec2;
@@ -312,22 +313,26 @@ impl NarrowPhase {
     /// pair alone, so the pairs can be split across threads.
     pub(crate) fn run(&mut self, narrow: &Narrow<'_>, parallel: bool, contacts: &mut ContactList) {
         let proxies = narrow.proxies;
+        // The keys, and the highest slot in them (for the sort).
+        let (pairs, statics) = (proxies.pairs.len(), proxies.static_pairs.len());
         self.keyed.clear();
-        // The highest slot, for the sort, found on the way.
-        let mut highest = 0;
-        let dynamic = proxies
-            .pairs
-            .iter()
-            .map(|&(a, b)| (a, ColliderRef::dynamic(b)));
-        let fixed = proxies
-            .static_pairs
-            .iter()
-            .map(|&(p, s)| (p, ColliderRef::fixed(s)));
-        for (pa, pb) in dynamic.chain(fixed) {
-            let keyed = narrow.key(pa, pb);
-            highest = highest.max(keyed.0 & 0xFFFF_FFFF);
-            self.keyed.push(keyed);
-        }
+        self.keyed
+            .resize(pairs + statics, (0, 0, ColliderRef::fixed(0)));
+        let (dynamic_keys, static_keys) = self.keyed.split_at_mut(pairs);
+        let highest = for_chunks_max(
+            parallel,
+            (dynamic_keys, &proxies.pairs[..]),
+            |(keys, pairs)| {
+                key_all(keys, pairs, |&(a, b)| {
+                    narrow.key(a, ColliderRef::dynamic(b))
+                })
+            },
+        )
+        .max(for_chunks_max(
+            parallel,
+            (static_keys, &proxies.static_pairs[..]),
+            |(keys, pairs)| key_all(keys, pairs, |&(p, s)| narrow.key(p, ColliderRef::fixed(s))),
+        ));
         let slots = highest as usize + 1;
         sort_by_key(&mut self.keyed, slots, &mut self.scratch, &mut self.counts);
         self.sensor_candidates.clear();
@@ -344,6 +349,22 @@ impl NarrowPhase {
             keep(narrow.pair(pa, pb), contacts, &mut self.sensor_candidates);
         }
     }
+}
+
+/// Writes each pair's key (`key`) to `keys` and returns the highest slot in
+/// them.
+#[inline(always)]
+fn key_all(
+    keys: &mut [KeyedPair],
+    pairs: &[(u32, u32)],
+    key: impl Fn(&(u32, u32)) -> KeyedPair,
+) -> u64 {
+    let mut highest = 0;
+    for (k, pair) in keys.iter_mut().zip(pairs) {
+        *k = key(pair);
+        highest = highest.max(k.0 & 0xFFFF_FFFF);
+    }
+    highest
 }
 
 /// Puts a pair's outcome in its list.

@@ -76,18 +76,44 @@ pub(crate) fn for_chunks<P: Parts>(
     parts: P,
     f: impl Fn(usize, P) -> u64 + Sync,
 ) -> u64 {
+    in_chunks(parallel, parts, &f, u64::wrapping_add)
+}
+
+/// As [`for_chunks`], without the offset, returning the largest of what `f`
+/// returns.
+pub(crate) fn for_chunks_max<P: Parts>(
+    parallel: bool,
+    parts: P,
+    f: impl Fn(P) -> u64 + Sync,
+) -> u64 {
+    in_chunks(parallel, parts, &|_, p| f(p), u64::max)
+}
+
+/// [`for_chunks`], with the chunks' results combined by `combine`
+/// (associative and commutative: the chunks may finish in any order).
+fn in_chunks<P: Parts>(
+    parallel: bool,
+    parts: P,
+    f: &(impl Fn(usize, P) -> u64 + Sync),
+    combine: fn(u64, u64) -> u64,
+) -> u64 {
     #[cfg(feature = "parallel")]
     if goes_parallel(parallel, parts.len()) {
-        return split_join(0, parts, &f);
+        return split_join(0, parts, f, combine);
     }
-    let _ = parallel;
+    let _ = (parallel, combine);
     f(0, parts)
 }
 
 /// Halves `parts` at a chunk boundary until a chunk is left, running the
 /// halves with `rayon::join`.
 #[cfg(feature = "parallel")]
-fn split_join<P: Parts>(offset: usize, parts: P, f: &(impl Fn(usize, P) -> u64 + Sync)) -> u64 {
+fn split_join<P: Parts>(
+    offset: usize,
+    parts: P,
+    f: &(impl Fn(usize, P) -> u64 + Sync),
+    combine: fn(u64, u64) -> u64,
+) -> u64 {
     let chunk = crate::constants::PARALLEL_CHUNK;
     let n = parts.len();
     if n <= chunk {
@@ -96,10 +122,10 @@ fn split_join<P: Parts>(offset: usize, parts: P, f: &(impl Fn(usize, P) -> u64 +
     let mid = n.div_ceil(chunk) / 2 * chunk;
     let (left, right) = parts.split_at(mid);
     let (a, b) = rayon::join(
-        || split_join(offset, left, f),
-        || split_join(offset + mid, right, f),
+        || split_join(offset, left, f, combine),
+        || split_join(offset + mid, right, f, combine),
     );
-    a + b
+    combine(a, b)
 }
 
 /// Runs `f` (a step) on a worker of rayon's pool, entering the pool if

@@ -8,6 +8,7 @@ use crate::broad_phase::BroadPhase;
 use crate::collider::ColliderRef;
 use crate::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE, SPECULATIVE_REACH};
 use crate::manifold::Faces;
+use crate::parallel::for_chunks;
 use crate::static_tree::StaticTree;
 use crate::{Aabb, Shape};
 use glam::Vec2;
@@ -53,6 +54,23 @@ impl ProxyMargin {
     /// continuous collision the step and gravity do not matter).
     pub(crate) fn grows_like(&self, other: &Self) -> bool {
         self.continuous == other.continuous && (!self.continuous || self == other)
+    }
+
+    /// The proxy box of dynamic body `i` and its margin; `None` if it has
+    /// no shape. A kinematic body is never swept (it goes where it is
+    /// told), so its proxy covers its whole travel: a fast wall meets the
+    /// resting bodies in its way. A level has few of them.
+    #[inline(always)]
+    fn proxy(&self, dynamic: &DynamicBodies, i: usize) -> Option<(Aabb, f32)> {
+        let meta = &dynamic.meta[i];
+        let shape = meta.shape?;
+        let margin = if meta.kinematic {
+            0.5 * SPECULATIVE_DISTANCE + self.travel(dynamic.vel[i])
+        } else {
+            self.of(dynamic.vel[i], &shape)
+        };
+        let aabb = Aabb::from_centre(dynamic.pos[i], shape.half_extents()).grown(margin);
+        Some((aabb, margin))
     }
 
     /// The margin a static body adds to a pair.
@@ -298,26 +316,68 @@ impl Proxies {
     /// records whether it sleeps.
     #[inline(always)]
     pub(crate) fn add(&mut self, dynamic: &DynamicBodies, i: usize, track_sleep: bool) -> u32 {
-        let shape = dynamic.meta[i].shape.expect("a proxy's body has a shape");
-        // A kinematic body is never swept (it goes where it is told), so
-        // its proxy covers its whole travel: a fast wall meets the resting
-        // bodies in its way. A level has few of them.
-        let margin = if dynamic.meta[i].kinematic {
-            0.5 * SPECULATIVE_DISTANCE + self.margin.travel(dynamic.vel[i])
-        } else {
-            self.margin.of(dynamic.vel[i], &shape)
-        };
+        let (aabb, margin) = self
+            .margin
+            .proxy(dynamic, i)
+            .expect("a proxy's body has a shape");
         let p = self.boxes.len() as u32;
         self.of_body[i] = p;
         self.body.push(i as u32);
         self.slot.push(dynamic.meta[i].id.index);
-        self.boxes
-            .push(Aabb::from_centre(dynamic.pos[i], shape.half_extents()).grown(margin));
+        self.boxes.push(aabb);
         self.margins.push(margin);
         if track_sleep {
             self.asleep.push(dynamic.sleep[i].is_asleep());
         }
         p
+    }
+
+    /// Adds a proxy for every dynamic body, proxy `i` for body `i`, in
+    /// chunks on the thread pool when `parallel` and the bodies are many
+    /// (the same proxies as [`add`](Self::add) in order). Returns `false`,
+    /// having added none, if some body has no shape.
+    pub(crate) fn add_all(&mut self, dynamic: &DynamicBodies, parallel: bool) -> bool {
+        debug_assert!(self.boxes.is_empty(), "no proxy yet this step");
+        let n = dynamic.len();
+        self.body.resize(n, 0);
+        self.slot.resize(n, 0);
+        self.boxes
+            .resize(n, Aabb::from_centre(Vec2::ZERO, Vec2::ZERO));
+        self.margins.resize(n, 0.0);
+        let margin = self.margin;
+        let parts = (
+            &mut self.body[..],
+            &mut self.slot[..],
+            &mut self.boxes[..],
+            &mut self.margins[..],
+            &mut self.of_body[..],
+        );
+        let shapeless = for_chunks(
+            parallel,
+            parts,
+            |offset, (body, slot, boxes, margins, of_body)| {
+                let mut shapeless = 0;
+                for k in 0..body.len() {
+                    let i = offset + k;
+                    let Some((aabb, m)) = margin.proxy(dynamic, i) else {
+                        shapeless += 1;
+                        continue;
+                    };
+                    (body[k], slot[k], of_body[k]) = (i as u32, dynamic.meta[i].id.index, i as u32);
+                    (boxes[k], margins[k]) = (aabb, m);
+                }
+                shapeless
+            },
+        );
+        if shapeless > 0 {
+            self.body.clear();
+            self.slot.clear();
+            self.boxes.clear();
+            self.margins.clear();
+            self.of_body.fill(NO_PROXY);
+            return false;
+        }
+        true
     }
 
     /// The proxy of dynamic body `i`, made now if it has none.
