@@ -209,8 +209,8 @@ fn one_way_allows(a: &Collider, b: &Collider, m: &Manifold) -> bool {
 /// buffers have grown. A rain of 10 000 circles sorts 12 000–20 000 pairs
 /// a step, where a comparison sort took 7 % of the step.
 ///
-/// Two counting passes, one counter a slot (`counts`): by the higher slot,
-/// then, stably, by the lower one. When the slots are sparse (more than a
+/// A counting pass by the lower slot, one counter a slot (`counts`), then
+/// an insertion sort, which only has to order each slot's few pairs. When the slots are sparse (more than a
 /// few per pair) a radix sort over the bits of the two slots does it
 /// instead, and a few pairs are sorted by insertion. `slots` is one more
 /// than the highest slot in the keys (the caller finds it while making
@@ -228,9 +228,15 @@ fn sort_by_key(
     scratch.clear();
     scratch.resize(pairs.len(), (0, 0, crate::collider::ColliderRef::fixed(0)));
     if slots <= 4 * pairs.len() + 1024 {
-        for shift in [0, 32] {
-            let slot = |k: &KeyedPair| ((k.0 >> shift) & 0xFFFF_FFFF) as usize;
-            deal(pairs, scratch, counts, slots, slot);
+        // By the lower slot, then by insertion within each lower slot's
+        // run (a body's pairs with higher slots, a few as a rule): one
+        // counting pass instead of two.
+        deal(pairs, scratch, counts, slots, |k| (k.0 >> 32) as usize);
+        if !insertion_sort_within(pairs, 32) {
+            // A long run out of order (the ground's pairs in a level, say):
+            // a comparison sort, with proxy A as a tie-breaker (distinct
+            // pairs have distinct keys, so the order is a stable sort's).
+            pairs.sort_unstable_by_key(|k| (k.0, k.1));
         }
         return;
     }
@@ -274,6 +280,23 @@ fn deal(
         *at += 1;
     }
     std::mem::swap(pairs, scratch);
+}
+
+/// Sorts by key by insertion (stable) unless some pair would move more
+/// than `reach` places: then stops, with `pairs` in some order, and returns
+/// `false`. `O(n reach)` at most.
+fn insertion_sort_within(pairs: &mut [KeyedPair], reach: usize) -> bool {
+    for i in 1..pairs.len() {
+        let mut j = i;
+        while j > 0 && pairs[j - 1].0 > pairs[j].0 {
+            if i - j == reach {
+                return false;
+            }
+            pairs.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    true
 }
 
 /// Sorts by key by insertion (stable): `O(n + inversions)`.
