@@ -129,17 +129,19 @@ impl Sweeps {
         proxies: &Proxies,
         motion: &Motion,
     ) -> Option<Mover<'a>> {
-        let meta = &bodies.meta[i];
-        let shape = meta.shape?;
-        if meta.kinematic || meta.sensor || bodies.sleep[i].is_asleep() {
-            return None;
-        }
+        // The distance first: most bodies stay within their reach, and the
+        // arrays it reads are small, where the body's cold data is not.
         let covered = match proxies.of_body.get(i) {
             Some(&p) if p != NO_PROXY => proxies.margins[p as usize] - ProxyMargin::STATIC,
             _ => 0.0,
         };
         let distance = motion.delta[i].length();
         if distance <= covered {
+            return None;
+        }
+        let meta = &bodies.meta[i];
+        let shape = meta.shape?;
+        if meta.kinematic || meta.sensor || bodies.sleep[i].is_asleep() {
             return None;
         }
         self.far.push(i as u32);
