@@ -31,6 +31,7 @@
 //! only on the input, so the step stays deterministic.
 
 use crate::Aabb;
+use crate::parallel::for_chunks;
 use glam::Vec2;
 
 /// A proxy covering more than this many cells along an axis is handled
@@ -249,28 +250,9 @@ impl BroadPhase {
         mean_size: f32,
         pairs: &mut Vec<(u32, u32)>,
     ) -> bool {
-        // In f64, where the differences of two f32s and their ratios to the
-        // cell are exact or nearly so: the cell must hold the largest proxy
-        // whatever the rounding.
-        let mut largest = 0.0f64;
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for b in proxies {
-            if !(b.min.is_finite() && b.max.is_finite()) {
-                return false;
-            }
-            let (min, max) = (
-                [b.min.x, b.min.y].map(f64::from),
-                [b.max.x, b.max.y].map(f64::from),
-            );
-            // Compare and select: every value is finite here, so the NaN
-            // handling of `f64::max` and `min` would be wasted work.
-            let greater = |a: f64, b: f64| if b > a { b } else { a };
-            largest = greater(greater(largest, max[0] - min[0]), max[1] - min[1]);
-            for k in 0..2 {
-                lo[k] = if min[k] < lo[k] { min[k] } else { lo[k] };
-                hi[k] = greater(hi[k], min[k]);
-            }
-        }
+        let Some(CornerBounds { largest, lo, hi }) = CornerBounds::find(proxies, parallel) else {
+            return false;
+        };
         if largest > 2.0 * f64::from(mean_size) || largest <= 0.0 {
             return false;
         }
@@ -296,18 +278,27 @@ impl BroadPhase {
         // its run and, once the proxies are dealt from the last to the
         // first, its start (`starts[cells]`: the end of the last).
         self.cell_of.clear();
+        self.cell_of.resize(proxies.len(), 0);
+        for_chunks(
+            parallel,
+            (&mut self.cell_of[..], proxies),
+            |_, (cells, boxes)| {
+                for (c, b) in cells.iter_mut().zip(boxes) {
+                    // The ratio is at least zero (`v >= lo`) and within the
+                    // grid (cells are limited, above): `i32` holds it, and
+                    // converts in one instruction where `usize` takes a dozen.
+                    let axis = |k: usize, v: f32, n: usize| {
+                        (((f64::from(v) - lo[k]) * inv) as i32 as usize).min(n - 1)
+                    };
+                    *c = (axis(1, b.min.y, h) * row_len + axis(0, b.min.x, w) + 1) as u32;
+                }
+                0
+            },
+        );
         self.starts.clear();
         self.starts.resize(cells + 1, 0);
-        for b in proxies {
-            // The ratio is at least zero (`v >= lo`) and within the grid
-            // (cells are limited, above): `i32` holds it, and converts in
-            // one instruction where `usize` takes a dozen.
-            let axis = |k: usize, v: f32, n: usize| {
-                (((f64::from(v) - lo[k]) * inv) as i32 as usize).min(n - 1)
-            };
-            let c = axis(1, b.min.y, h) * row_len + axis(0, b.min.x, w) + 1;
-            self.cell_of.push(c as u32);
-            self.starts[c] += 1;
+        for &c in &self.cell_of {
+            self.starts[c as usize] += 1;
         }
         let (mut end, mut crowded) = (0, false);
         for s in &mut self.starts[..cells] {
@@ -362,6 +353,77 @@ impl BroadPhase {
         search(0..proxies.len(), pairs);
         true
     }
+}
+
+/// Where the proxies' lower-left corners lie and the largest side of any
+/// proxy, in f64, where the differences of two f32s and their ratios to the
+/// cell are exact or nearly so: the cell must hold the largest proxy
+/// whatever the rounding.
+#[derive(Clone, Copy)]
+struct CornerBounds {
+    largest: f64,
+    lo: [f64; 2],
+    hi: [f64; 2],
+}
+
+impl CornerBounds {
+    const EMPTY: Self = Self {
+        largest: 0.0,
+        lo: [f64::INFINITY; 2],
+        hi: [f64::NEG_INFINITY; 2],
+    };
+
+    /// The bounds of `proxies`, in chunks on the pool when `parallel` and
+    /// they are many (the largest and smallest values are exact, so the
+    /// chunks give the same bounds); `None` if a coordinate is not finite.
+    fn find(proxies: &[Aabb], parallel: bool) -> Option<Self> {
+        #[cfg(feature = "parallel")]
+        if crate::parallel::goes_parallel(parallel, proxies.len()) {
+            use rayon::prelude::*;
+            return proxies
+                .par_chunks(crate::constants::PARALLEL_CHUNK)
+                .map(Self::of)
+                .try_reduce(|| Self::EMPTY, |a, b| Some(a.join(&b)));
+        }
+        let _ = parallel;
+        Self::of(proxies)
+    }
+
+    fn of(proxies: &[Aabb]) -> Option<Self> {
+        let mut bounds = Self::EMPTY;
+        for b in proxies {
+            if !(b.min.is_finite() && b.max.is_finite()) {
+                return None;
+            }
+            let (min, max) = (
+                [b.min.x, b.min.y].map(f64::from),
+                [b.max.x, b.max.y].map(f64::from),
+            );
+            let side = greater(max[0] - min[0], max[1] - min[1]);
+            bounds = bounds.join(&Self {
+                largest: side,
+                lo: min,
+                hi: min,
+            });
+        }
+        Some(bounds)
+    }
+
+    fn join(&self, other: &Self) -> Self {
+        let lesser = |a: f64, b: f64| if b < a { b } else { a };
+        Self {
+            largest: greater(self.largest, other.largest),
+            lo: [0, 1].map(|k| lesser(self.lo[k], other.lo[k])),
+            hi: [0, 1].map(|k| greater(self.hi[k], other.hi[k])),
+        }
+    }
+}
+
+/// The larger of two finite values, by compare and select: every value is
+/// finite here, so the NaN handling of `f64::max` would be wasted work.
+#[inline(always)]
+fn greater(a: f64, b: f64) -> f64 {
+    if b > a { b } else { a }
 }
 
 /// Runs `search` over `0..items` in runs of `per_task` on rayon's pool,
