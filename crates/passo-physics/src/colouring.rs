@@ -435,6 +435,88 @@ mod tests {
     }
 
     #[test]
+    fn a_replayed_warm_start_gives_the_velocities_of_a_pass_over_the_contacts() {
+        use crate::solver::{Motion, Start};
+        // Four boxes and the ground, in blocks (a chain) and, with
+        // `blocks_always` off, one by one: both paths.
+        let rows = vec![
+            row(0, None, 0.0),
+            Constraint {
+                normal: Vec2::new(0.6, 0.8),
+                base_separation: 0.01,
+                ..row(0, Some(1), 1.0)
+            },
+            Constraint {
+                normal: Vec2::X,
+                friction: 0.2,
+                tangent_impulse: 0.1,
+                ..row(2, Some(1), 0.5)
+            },
+            Constraint {
+                base_separation: -0.02,
+                ..row(3, Some(2), 1.0)
+            },
+        ];
+        let vel0 = [
+            Vec2::new(0.3, -2.0),
+            Vec2::new(-1.0, 0.5),
+            Vec2::new(0.2, 0.1),
+            Vec2::new(0.5, -1.5),
+        ];
+        let params = SolverParams::for_tests();
+        for blocks_always in [true, false] {
+            let mut colouring = Colouring {
+                blocks_always,
+                ..Colouring::default()
+            };
+            colouring.build(&rows, 0..rows.len(), 4, &[]);
+            // A substep that keeps each body's velocity change.
+            let mut motion = Motion::default();
+            motion.begin(&[Vec2::ZERO; 4]);
+            motion.load(&vel0, Start::Track);
+            colouring.run(&mut motion.bodies(), &Pass::Begin(params, false));
+            for push in [true, true] {
+                colouring.run(&mut motion.bodies(), &Pass::solve(&params, push));
+            }
+            colouring.run(&mut motion.bodies(), &Pass::relax(&params));
+            let mut vel = vel0;
+            motion.unload(&mut vel, true);
+            // The next substep's velocities before its warm start.
+            let next = vel.map(|v| v + Vec2::new(0.0, -0.04));
+            // Warm started by a pass over the contacts...
+            let (mut passed, mut replayed) = (motion.clone(), motion);
+            let mut passed_colouring = colouring.clone();
+            passed.load(&next, Start::Plain);
+            passed_colouring.run(&mut passed.bodies(), &Pass::Begin(params, false));
+            // ...and by the replay, with a pass that only clears the push.
+            replayed.load(&next, Start::Replay);
+            let clear = SolverParams {
+                warm_starting: false,
+                ..params
+            };
+            colouring.run(&mut replayed.bodies(), &Pass::Begin(clear, false));
+            for (a, b) in passed.state.iter().zip(&replayed.state) {
+                assert!(
+                    (a.vel - b.vel).length() < 1e-5,
+                    "{:?} against {:?} (blocks: {blocks_always})",
+                    a.vel,
+                    b.vel
+                );
+                assert_eq!(b.push, Vec2::ZERO);
+            }
+            let moved: f32 = passed.state[..4]
+                .iter()
+                .zip(&next)
+                .map(|(s, v)| s.vel.distance(*v))
+                .sum();
+            assert!(moved > 0.1, "the warm start moved the bodies");
+            let mut stored = rows.clone();
+            colouring.store(&mut stored);
+            assert!(stored.iter().all(|c| c.push_impulse == 0.0), "push cleared");
+        }
+    }
+
+    #[test]
     fn lanes_solve_as_the_scalar_solver_does() {
         // One box on the ground, one on top of it, a third beside: the
         // wide passes (a warm start that carries the push of the deep pile

@@ -11,7 +11,7 @@ use crate::contact_world::{ContactWorld, StepParams};
 use crate::integrator::integrate_velocity;
 use crate::kernel::PointMassKernel;
 use crate::parallel::for_chunks;
-use crate::solver::{self, BodyState, Motion, SolverParams};
+use crate::solver::{self, BodyState, Motion, SolverParams, Start};
 use crate::world::{World, step_forces};
 use crate::{ContactSettings, Integrator};
 use glam::Vec2;
@@ -67,6 +67,9 @@ struct SubstepPlan {
     restitution: bool,
     /// Continuous collision: fast bodies are swept.
     sweep: bool,
+    /// The substeps after the first warm start by replaying each body's
+    /// velocity change of the last substep (see [`Start::Replay`]).
+    replay: bool,
 }
 
 impl SubstepPlan {
@@ -92,6 +95,7 @@ impl SubstepPlan {
             },
             restitution: world.bouncy > 0,
             sweep: settings.continuous,
+            replay: false,
         }
     }
 
@@ -179,6 +183,10 @@ impl World {
                 .motion
                 .piles
                 .find(&cw.solved.rows, self.dynamic.len(), DEEP_OVERLAP);
+        // The substeps after the first warm start by replaying each body's
+        // velocity change (see `Start::Replay`), unless no relax pass
+        // measures the separations (the warm start pass does then).
+        plan.replay = settings.warm_starting && plan.solver.relax_iterations > 0;
         cw.regions.build(
             &cw.solved.rows,
             &cw.motion.start,
@@ -207,11 +215,16 @@ impl World {
             let moved = substep > 0 && plan.solver.relax_iterations == 0;
             // From here to the end of the relax stage the passes work on
             // the solver's copy of the velocities (see `Motion::load`).
-            cw.motion.load(&self.dynamic.vel);
-            self.solve(&mut cw, &plan, moved);
+            let start = match (plan.replay, substep) {
+                (false, _) => Start::Plain,
+                (true, 0) => Start::Track,
+                (true, _) => Start::Replay,
+            };
+            cw.motion.load(&self.dynamic.vel, start);
+            self.solve(&mut cw, &plan, moved, start == Start::Replay);
             self.integrate_positions(&mut cw.motion, &plan, &correction);
             self.relax(&mut cw, &plan);
-            cw.motion.unload(&mut self.dynamic.vel);
+            cw.motion.unload(&mut self.dynamic.vel, plan.replay);
         }
         cw.regions.store(&mut cw.solved.rows);
         if plan.substeps > 0 && plan.sweep {
@@ -299,12 +312,19 @@ impl World {
     /// carried in a deep pile, and the separations measured if the bodies
     /// `moved` since they last were), then the Gauss-Seidel passes with the
     /// push, on the solver's copy of the velocities (see [`Motion::load`]).
-    fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, moved: bool) {
+    fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, moved: bool, replayed: bool) {
         let ContactWorld {
             regions, motion, ..
         } = cw;
         let mut bodies = motion.bodies();
-        regions.run(&mut bodies, &Pass::Begin(plan.solver, moved), self.parallel);
+        // Replayed (see `Start::Replay`): the warm start is in the states
+        // already, and the pass only clears the push impulses, or carries
+        // them in a deep pile (only blocks with such contacts gather).
+        let begin = SolverParams {
+            warm_starting: plan.solver.warm_starting && !replayed,
+            ..plan.solver
+        };
+        regions.run(&mut bodies, &Pass::Begin(begin, moved), self.parallel);
         let pass = Pass::solve(&plan.solver, true);
         for _ in 0..plan.solver.iterations {
             regions.run(&mut bodies, &pass, self.parallel);
@@ -325,13 +345,14 @@ impl World {
         let start = &motion.start[..];
         // The bodies' states, without the rest state after them.
         let state = &mut motion.state[..pos.len()];
-        let parts = (pos, state, &mut motion.delta[..]);
+        let parts = (pos, state, &mut motion.delta[..], &mut motion.replay[..]);
         // One loop for each kind of limit, chosen once: no test of the
         // kind in the loop over the bodies.
         let moves = Moves {
             h,
             correction: corrects.then_some(correction),
             start,
+            replay: plan.replay,
         };
         let parallel = self.parallel;
         match limits {
@@ -385,6 +406,9 @@ struct Moves<'a> {
     correction: Option<&'a [Vec2]>,
     /// Positions at the start of the step.
     start: &'a [Vec2],
+    /// The substeps replay the contacts' velocity changes: a change made by
+    /// a speed limit is left out of them.
+    replay: bool,
 }
 
 impl Moves<'_> {
@@ -393,15 +417,21 @@ impl Moves<'_> {
     fn run(
         &self,
         parallel: bool,
-        parts: (&mut [Vec2], &mut [BodyState], &mut [Vec2]),
+        parts: (&mut [Vec2], &mut [BodyState], &mut [Vec2], &mut [Vec2]),
         limit: impl Fn(usize) -> Option<SpeedLimits> + Sync,
     ) {
-        for_chunks(parallel, parts, |offset, (pos, state, delta)| {
+        for_chunks(parallel, parts, |offset, (pos, state, delta, replay)| {
             let bodies = pos.iter_mut().zip(state.iter_mut()).zip(delta.iter_mut());
             for (k, ((p, s), d)) in bodies.enumerate() {
                 let i = offset + k;
                 if let Some(limits) = limit(i) {
+                    let before = s.vel;
                     limits.apply(&mut s.vel);
+                    if self.replay {
+                        // Counted as if the body had started the substep
+                        // at the limited speed.
+                        replay[k] += s.vel - before;
+                    }
                 }
                 // Semi-implicit Euler adds an exact zero here, as the
                 // no-contact path does: the same bits either way.

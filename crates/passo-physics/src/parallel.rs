@@ -58,6 +58,7 @@ macro_rules! tuple_parts {
 
 tuple_parts!(A, B);
 tuple_parts!(A, B, C);
+tuple_parts!(A, B, C, D);
 tuple_parts!(A, B, C, D, E);
 
 /// Whether a loop over `items` goes to the thread pool.

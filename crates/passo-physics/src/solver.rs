@@ -410,8 +410,31 @@ pub(crate) struct Motion {
     /// run (see [`Motion::load`]), then the rest state (see
     /// [`SolverBodies::state`]).
     pub state: Vec<BodyState>,
+    /// Per dynamic body, while the substeps warm start by replaying (see
+    /// [`Start::Replay`]): its velocity before the contacts acted in this
+    /// substep, then, once the substep ends, the change they made.
+    pub replay: Vec<Vec2>,
     /// The deep piles of this step.
     pub piles: DeepPiles,
+}
+
+/// How a substep's passes start.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Start {
+    /// From the bodies' velocities; the warm start pass applies each
+    /// contact's impulses (or none is warm started).
+    Plain,
+    /// As `Plain`, and the change of each body's velocity that the
+    /// contacts make in the substep is kept for the next one.
+    Track,
+    /// From the bodies' velocities plus the change the contacts made in
+    /// the last substep, kept as for `Track`. Within a step the contacts
+    /// are the same and each applies its impulses again at the start of
+    /// the next substep (warm starting), so each body's velocity changes
+    /// by what all of its contacts did in the last substep: applied here
+    /// per body, in the loop that loads the states, instead of in a pass
+    /// over the contacts. The sum is the same up to rounding.
+    Replay,
 }
 
 impl Motion {
@@ -421,27 +444,54 @@ impl Motion {
         self.start.extend_from_slice(pos);
         self.delta.clear();
         self.delta.resize(pos.len(), Vec2::ZERO);
+        self.replay.resize(pos.len(), Vec2::ZERO);
     }
 
     /// Starts the passes of a substep: the bodies' velocities `vel`, and
-    /// no push yet.
-    pub(crate) fn load(&mut self, vel: &[Vec2]) {
+    /// no push yet; see [`Start`].
+    pub(crate) fn load(&mut self, vel: &[Vec2], start: Start) {
         self.state.clear();
         let push = Vec2::ZERO;
-        self.state
-            .extend(vel.iter().map(|&vel| BodyState { vel, push }));
+        match start {
+            Start::Plain => {
+                self.state
+                    .extend(vel.iter().map(|&vel| BodyState { vel, push }));
+            }
+            Start::Track => {
+                self.state
+                    .extend(vel.iter().map(|&vel| BodyState { vel, push }));
+                self.replay.copy_from_slice(vel);
+            }
+            Start::Replay => {
+                let states = vel.iter().zip(&mut self.replay).map(|(&v, replay)| {
+                    let vel = v + *replay;
+                    *replay = v;
+                    BodyState { vel, push }
+                });
+                self.state.extend(states);
+            }
+        }
         self.state.push(BodyState::default());
     }
 
-    /// Ends them: the velocities the passes left, back into `vel`.
-    pub(crate) fn unload(&self, vel: &mut [Vec2]) {
+    /// Ends them: the velocities the passes left, back into `vel`; with
+    /// `track`, the change of each body's velocity in the substep kept.
+    pub(crate) fn unload(&mut self, vel: &mut [Vec2], track: bool) {
         debug_assert_eq!(
             self.state.last(),
             Some(&BodyState::default()),
             "the rest state"
         );
-        for (v, s) in vel.iter_mut().zip(&self.state) {
-            *v = s.vel;
+        if track {
+            let bodies = vel.iter_mut().zip(&self.state).zip(&mut self.replay);
+            for ((v, s), replay) in bodies {
+                *v = s.vel;
+                *replay = s.vel - *replay;
+            }
+        } else {
+            for (v, s) in vel.iter_mut().zip(&self.state) {
+                *v = s.vel;
+            }
         }
     }
 
