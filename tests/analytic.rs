@@ -382,3 +382,54 @@ fn min_speed_snaps_to_exactly_zero_and_max_speed_clamps_exactly() {
     assert_eq!(v, Vec2::new(12.0, 16.0));
     assert_eq!(world.body(own).unwrap().velocity, Vec2::new(0.0, 3.0));
 }
+
+#[test]
+fn a_speed_limit_acts_on_a_body_in_the_contact_step_as_without_the_replayed_warm_start() {
+    // The contact step's substeps after the first start from each body's
+    // velocity change of the last substep (the replayed warm start); a
+    // change a speed limit makes is not a contact's and must not be
+    // replayed. A body thrown up past a large minimum speed hovers where it
+    // is snapped, as it does with the replay off (no relax pass), and one
+    // falling at the maximum speed falls at it; the ground far below makes
+    // the step a contact step.
+    let world = |relax_iterations: u32| {
+        let mut settings = WorldSettings {
+            min_speed: 0.05,
+            max_speed: 4.0,
+            ..Default::default()
+        };
+        if let Some(contacts) = &mut settings.contacts {
+            contacts.relax_iterations = relax_iterations;
+        }
+        let mut world = World::new(settings).unwrap();
+        passo_tests::add_ground(&mut world, 10.0);
+        let shape = passo_physics::Shape::circle(0.1);
+        // Snapped in the second substep of tick 6 (gravity takes 9.81 / 240
+        // m/s a substep), so that the replay would act within the step.
+        let up =
+            BodyDef::new_dynamic(Vec2::new(0.0, 50.0), shape).with_velocity(Vec2::new(0.0, 1.09));
+        let down = BodyDef::new_dynamic(Vec2::new(3.0, 60.0), shape).with_velocity(-Vec2::Y);
+        let ids = [up, down].map(|def| world.add_body(def).unwrap());
+        (world, ids)
+    };
+    let (mut replayed, ids) = world(1);
+    let (mut plain, _) = world(0);
+    for tick in 0..120 {
+        replayed.step(1.0 / 60.0);
+        plain.step(1.0 / 60.0);
+        for id in ids {
+            let (a, b) = (replayed.body(id).unwrap(), plain.body(id).unwrap());
+            assert_eq!(a.position, b.position, "tick {tick}");
+            assert_eq!(a.velocity, b.velocity, "tick {tick}");
+        }
+    }
+    let up = replayed.body(ids[0]).unwrap();
+    assert_eq!(
+        up.velocity,
+        Vec2::ZERO,
+        "snapped at the top, and held there"
+    );
+    assert!(up.position.y > 50.0);
+    let down = replayed.body(ids[1]).unwrap();
+    assert_eq!(down.velocity.length(), 4.0, "falling at the maximum speed");
+}

@@ -153,11 +153,21 @@ impl SpeedLimits {
     /// must have a finite `|v|^2` (see `guard_finite`).
     #[inline(always)]
     pub(crate) fn apply(&self, v: &mut Vec2) {
+        self.apply_with(v, |_| {});
+    }
+
+    /// [`apply`](Self::apply), calling `changed` with the velocity's change
+    /// when a limit acts.
+    #[inline(always)]
+    pub(crate) fn apply_with(&self, v: &mut Vec2, mut changed: impl FnMut(Vec2)) {
         let s2 = v.length_squared();
         if s2 > self.max_sq {
-            *v *= self.max / s2.sqrt();
+            let limited = *v * (self.max / s2.sqrt());
+            changed(limited - *v);
+            *v = limited;
         }
         if s2 < self.min_sq {
+            changed(-*v);
             *v = Vec2::ZERO;
         }
     }

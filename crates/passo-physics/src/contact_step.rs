@@ -425,13 +425,13 @@ impl Moves<'_> {
             for (k, ((p, s), d)) in bodies.enumerate() {
                 let i = offset + k;
                 if let Some(limits) = limit(i) {
-                    let before = s.vel;
-                    limits.apply(&mut s.vel);
-                    if self.replay {
-                        // Counted as if the body had started the substep
-                        // at the limited speed.
-                        replay[k] += s.vel - before;
-                    }
+                    // With the replay, a limit's change is counted as if
+                    // the body had started the substep at the limited speed.
+                    limits.apply_with(&mut s.vel, |change| {
+                        if self.replay {
+                            replay[k] += change;
+                        }
+                    });
                 }
                 // Semi-implicit Euler adds an exact zero here, as the
                 // no-contact path does: the same bits either way.
