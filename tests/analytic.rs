@@ -390,8 +390,8 @@ fn a_speed_limit_acts_on_a_body_in_the_contact_step_as_without_the_replayed_warm
     // change a speed limit makes is not a contact's and must not be
     // replayed. A body thrown up past a large minimum speed hovers where it
     // is snapped, as it does with the replay off (no relax pass), and one
-    // falling at the maximum speed falls at it; the ground far below makes
-    // the step a contact step.
+    // falling at the maximum speed falls at it, as does one thrown far
+    // faster; the ground far below makes the step a contact step.
     let world = |relax_iterations: u32| {
         let mut settings = WorldSettings {
             min_speed: 0.05,
@@ -409,7 +409,11 @@ fn a_speed_limit_acts_on_a_body_in_the_contact_step_as_without_the_replayed_warm
         let up =
             BodyDef::new_dynamic(Vec2::new(0.0, 50.0), shape).with_velocity(Vec2::new(0.0, 1.09));
         let down = BodyDef::new_dynamic(Vec2::new(3.0, 60.0), shape).with_velocity(-Vec2::Y);
-        let ids = [up, down].map(|def| world.add_body(def).unwrap());
+        // Clamped from far above twice the maximum, where the change a
+        // limit makes is rounded at the size of the speed before it.
+        let thrown = BodyDef::new_dynamic(Vec2::new(-3.0, 50.0), shape)
+            .with_velocity(Vec2::new(300.0, 400.0));
+        let ids = [up, down, thrown].map(|def| world.add_body(def).unwrap());
         (world, ids)
     };
     let (mut replayed, ids) = world(1);

@@ -150,26 +150,21 @@ impl SpeedLimits {
 
     /// Snaps a velocity below the minimum speed to exactly zero and scales
     /// one above the maximum to the maximum speed (`v * max / |v|`). `v`
-    /// must have a finite `|v|^2` (see `guard_finite`).
+    /// must have a finite `|v|^2` (see `guard_finite`). Returns whether a
+    /// limit acted.
     #[inline(always)]
-    pub(crate) fn apply(&self, v: &mut Vec2) {
-        self.apply_with(v, |_| {});
-    }
-
-    /// [`apply`](Self::apply), calling `changed` with the velocity's change
-    /// when a limit acts.
-    #[inline(always)]
-    pub(crate) fn apply_with(&self, v: &mut Vec2, mut changed: impl FnMut(Vec2)) {
+    pub(crate) fn apply(&self, v: &mut Vec2) -> bool {
         let s2 = v.length_squared();
+        let mut acted = false;
         if s2 > self.max_sq {
-            let limited = *v * (self.max / s2.sqrt());
-            changed(limited - *v);
-            *v = limited;
+            *v *= self.max / s2.sqrt();
+            acted = true;
         }
         if s2 < self.min_sq {
-            changed(-*v);
             *v = Vec2::ZERO;
+            acted = true;
         }
+        acted
     }
 }
 

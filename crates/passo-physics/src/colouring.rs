@@ -259,8 +259,10 @@ impl Colouring {
 
 /// What a pass over the contacts does.
 pub(crate) enum Pass {
-    /// Start a substep: warm start, carry the push in deep piles (see
-    /// [`solver::begin_substep`]), and with `true` measure the separations.
+    /// Start a substep: warm start (unless the parameters turn it off, as
+    /// after a replayed warm start), carry the push in deep piles or clear
+    /// it (see [`solver::begin_substep`]), and with `true` measure the
+    /// separations.
     /// The step measures only when the bodies moved since the last
     /// measure: a substep after a relax stage (which measured at the same
     /// positions) does not, nor does the first (blocks are built with the
@@ -475,8 +477,8 @@ mod tests {
             motion.begin(&[Vec2::ZERO; 4]);
             motion.load(&vel0, Start::Track);
             colouring.run(&mut motion.bodies(), &Pass::Begin(params, false));
-            for push in [true, true] {
-                colouring.run(&mut motion.bodies(), &Pass::solve(&params, push));
+            for _ in 0..2 {
+                colouring.run(&mut motion.bodies(), &Pass::solve(&params, true));
             }
             colouring.run(&mut motion.bodies(), &Pass::relax(&params));
             let mut vel = vel0;

@@ -27,7 +27,9 @@ pub enum ContactStage {
     HoldSleepers,
     /// Kinematic bodies keep their own velocity (only with some).
     HoldKinematic,
-    /// The last substep's impulses applied again (warm starting).
+    /// The last substep's impulses applied again (warm starting): from
+    /// the cache in the first substep, then each body's velocity change in
+    /// the last substep (the same sum, with no pass over the contacts).
     WarmStart,
     /// Gauss-Seidel passes over the contacts: friction, normal, push.
     Solve,
@@ -310,8 +312,10 @@ impl World {
 
     /// Substep stages: warm start (with the push impulses cleared, or
     /// carried in a deep pile, and the separations measured if the bodies
-    /// `moved` since they last were), then the Gauss-Seidel passes with the
-    /// push, on the solver's copy of the velocities (see [`Motion::load`]).
+    /// `moved` since they last were; when `replayed` the velocities are
+    /// warm started already, see `Start::Replay`), then the Gauss-Seidel
+    /// passes with the push, on the solver's copy of the velocities (see
+    /// [`Motion::load`]).
     fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, moved: bool, replayed: bool) {
         let ContactWorld {
             regions, motion, ..
@@ -412,8 +416,10 @@ struct Moves<'a> {
 }
 
 impl Moves<'_> {
-    /// Applies each body's speed limits (`limit(i)`, if any), then moves
-    /// it, and keeps its displacement since the step began.
+    /// Applies each body's speed limits (`limit(i)`, if any; with the
+    /// replay, a limit's change is taken out of the body's replayed
+    /// change), then moves it, and keeps its displacement since the step
+    /// began.
     fn run(
         &self,
         parallel: bool,
@@ -425,13 +431,15 @@ impl Moves<'_> {
             for (k, ((p, s), d)) in bodies.enumerate() {
                 let i = offset + k;
                 if let Some(limits) = limit(i) {
-                    // With the replay, a limit's change is counted as if
-                    // the body had started the substep at the limited speed.
-                    limits.apply_with(&mut s.vel, |change| {
-                        if self.replay {
-                            replay[k] += change;
-                        }
-                    });
+                    let before = s.vel;
+                    if limits.apply(&mut s.vel) && self.replay {
+                        // The contacts' change so far kept, as if the body
+                        // had started the substep at the limited speed: a
+                        // limit's change is not replayed (and a body no
+                        // contact touched starts the next substep at
+                        // exactly the limited speed).
+                        replay[k] = s.vel - (before - replay[k]);
+                    }
                 }
                 // Semi-implicit Euler adds an exact zero here, as the
                 // no-contact path does: the same bits either way.

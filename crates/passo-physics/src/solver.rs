@@ -9,7 +9,9 @@
 //! prepare contacts (narrow phase, warm-start impulses)
 //! for each substep h = dt / substeps:
 //!     integrate velocities (forces)
-//!     warm start: apply the last substep's impulses
+//!     warm start: apply the last substep's impulses (after the first
+//!         substep, each body's velocity change in the last one, added
+//!         as the substep starts: see `Start::Replay`)
 //!     iterate: friction, normal (velocity), push (position)
 //!     integrate positions with velocity + push; forget the push
 //!     relax: more velocity iterations
@@ -412,7 +414,9 @@ pub(crate) struct Motion {
     pub state: Vec<BodyState>,
     /// Per dynamic body, while the substeps warm start by replaying (see
     /// [`Start::Replay`]): its velocity before the contacts acted in this
-    /// substep, then, once the substep ends, the change they made.
+    /// substep (moved by any change a speed limit makes in the substep, so
+    /// that the change is not replayed), then, once the substep ends, the
+    /// change the contacts made.
     pub replay: Vec<Vec2>,
     /// The deep piles of this step.
     pub piles: DeepPiles,
