@@ -232,6 +232,12 @@ impl Colouring {
             Pass::Solve(ref params, _, push) => {
                 solver::solve(&mut self.overflow, bodies, params, push)
             }
+            Pass::Fresh(ref params, _) => {
+                for c in &mut self.overflow {
+                    c.push_impulse = 0.0;
+                }
+                solver::solve(&mut self.overflow, bodies, params, true)
+            }
             Pass::Relax(ref params, _) => solver::solve(&mut self.overflow, bodies, params, false),
         }
     }
@@ -275,6 +281,11 @@ pub(crate) enum Pass {
     /// One Gauss-Seidel pass, with the push or without (see
     /// [`solver::solve`]).
     Solve(SolverParams, Rates, bool),
+    /// The first pass with the push of a substep whose warm start was
+    /// replayed (see `solver::Start::Replay`) and whose push no deep pile
+    /// carries: each contact's push starts from zero, as the warm start
+    /// pass, which this one makes needless, would have left it.
+    Fresh(SolverParams, Rates),
     /// The first pass after the bodies moved: measure each block's
     /// separations, then a pass without the push, block by block (one walk
     /// over the blocks instead of two; the same bits, since solving does
@@ -285,6 +296,10 @@ pub(crate) enum Pass {
 impl Pass {
     pub(crate) fn solve(params: &SolverParams, push: bool) -> Self {
         Self::Solve(*params, Rates::new(params), push)
+    }
+
+    pub(crate) fn fresh(params: &SolverParams) -> Self {
+        Self::Fresh(*params, Rates::new(params))
     }
 
     pub(crate) fn relax(params: &SolverParams) -> Self {
@@ -302,11 +317,12 @@ impl Pass {
             }
             #[cfg(test)]
             Pass::Measure => measure(k, view),
-            Pass::Solve(_, ref rates, true) => solve_block::<true, V>(k, view, rates),
-            Pass::Solve(_, ref rates, false) => solve_block::<false, V>(k, view, rates),
+            Pass::Solve(_, ref rates, true) => solve_block::<true, false, V>(k, view, rates),
+            Pass::Solve(_, ref rates, false) => solve_block::<false, false, V>(k, view, rates),
+            Pass::Fresh(_, ref rates) => solve_block::<true, true, V>(k, view, rates),
             Pass::Relax(_, ref rates) => {
                 measure(k, view);
-                solve_block::<false, V>(k, view, rates);
+                solve_block::<false, false, V>(k, view, rates);
             }
         }
     }
@@ -492,11 +508,24 @@ mod tests {
             passed_colouring.run(&mut passed.bodies(), &Pass::Begin(params, false));
             // ...and by the replay, with a pass that only clears the push.
             replayed.load(&next, Start::Replay);
+            let (mut fresh, mut fresh_colouring) = (replayed.clone(), colouring.clone());
             let clear = SolverParams {
                 warm_starting: false,
                 ..params
             };
             colouring.run(&mut replayed.bodies(), &Pass::Begin(clear, false));
+            // The first pass with the push after the clearing gives the bits
+            // of a pass that starts each push from zero itself.
+            let mut cleared = (replayed.clone(), colouring.clone());
+            cleared
+                .1
+                .run(&mut cleared.0.bodies(), &Pass::solve(&params, true));
+            fresh_colouring.run(&mut fresh.bodies(), &Pass::fresh(&params));
+            assert_eq!(fresh.state, cleared.0.state);
+            let (mut a, mut b) = (rows.clone(), rows.clone());
+            fresh_colouring.store(&mut a);
+            cleared.1.store(&mut b);
+            assert_eq!(a, b);
             for (a, b) in passed.state.iter().zip(&replayed.state) {
                 assert!(
                     (a.vel - b.vel).length() < 1e-5,

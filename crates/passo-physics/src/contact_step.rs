@@ -322,16 +322,21 @@ impl World {
         } = cw;
         let mut bodies = motion.bodies();
         // Replayed (see `Start::Replay`): the warm start is in the states
-        // already, and the pass only clears the push impulses, or carries
-        // them in a deep pile (only blocks with such contacts gather).
-        let begin = SolverParams {
-            warm_starting: plan.solver.warm_starting && !replayed,
-            ..plan.solver
-        };
-        regions.run(&mut bodies, &Pass::Begin(begin, moved), self.parallel);
-        let pass = Pass::solve(&plan.solver, true);
-        for _ in 0..plan.solver.iterations {
-            regions.run(&mut bodies, &pass, self.parallel);
+        // already. The pass then only carries the push in a deep pile, and
+        // otherwise is not needed: the first pass starts each push from
+        // zero instead of clearing it first.
+        let fresh = replayed && !plan.solver.carry_push;
+        if !fresh {
+            let begin = SolverParams {
+                warm_starting: plan.solver.warm_starting && !replayed,
+                ..plan.solver
+            };
+            regions.run(&mut bodies, &Pass::Begin(begin, moved), self.parallel);
+        }
+        let (first, pass) = (Pass::fresh(&plan.solver), Pass::solve(&plan.solver, true));
+        for k in 0..plan.solver.iterations {
+            let pass = if fresh && k == 0 { &first } else { &pass };
+            regions.run(&mut bodies, pass, self.parallel);
         }
     }
 

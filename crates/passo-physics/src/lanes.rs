@@ -334,9 +334,15 @@ pub(crate) fn measure<V: View>(k: &mut Block, bodies: &V) {
 
 /// One Gauss-Seidel pass over a block's lanes (see
 /// [`solver::solve`](crate::solver::solve)):
-/// the same rows in the same arithmetic, lane by lane.
+/// the same rows in the same arithmetic, lane by lane. With `FRESH` each
+/// lane's push impulse starts from zero (the first pass of a substep whose
+/// warm start pass did not run to clear it).
 #[inline(always)]
-pub(crate) fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut V, r: &Rates) {
+pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool, V: View>(
+    k: &mut Block,
+    bodies: &mut V,
+    r: &Rates,
+) {
     let (mut v, mut p) = gather(k, bodies);
     for l in 0..LANES {
         let (nx, ny) = (k.nx[l], k.ny[l]);
@@ -367,7 +373,7 @@ pub(crate) fn solve_block<const PUSH: bool, V: View>(k: &mut Block, bodies: &mut
         if PUSH {
             let target = lesser((r.push_rate * (-s - r.slop)).max(0.0), r.push_out_speed);
             let pn = (p.bx[l] - p.ax[l]) * nx + (p.by[l] - p.ay[l]) * ny;
-            let q = k.push_impulse[l];
+            let q = if FRESH { 0.0 } else { k.push_impulse[l] };
             let new_q = (q + mass * (target - pn)).max(0.0);
             let dq = new_q - q;
             k.push_impulse[l] = new_q;
