@@ -187,8 +187,10 @@ impl World {
                 .find(&cw.solved.rows, self.dynamic.len(), DEEP_OVERLAP);
         // The substeps after the first warm start by replaying each body's
         // velocity change (see `Start::Replay`), unless no relax pass
-        // measures the separations (the warm start pass does then).
-        plan.replay = settings.warm_starting && plan.solver.relax_iterations > 0;
+        // measures the separations (the warm start pass does then), or
+        // there is no substep after the first.
+        plan.replay =
+            settings.warm_starting && plan.solver.relax_iterations > 0 && plan.substeps > 1;
         cw.regions.build(
             &cw.solved.rows,
             &cw.motion.start,
