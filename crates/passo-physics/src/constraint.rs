@@ -45,9 +45,10 @@ pub(crate) struct ContactInfo {
     pub points: [Vec2; 2],
     pub point_count: u8,
     pub restitution: f32,
-    /// `u = v_n + a_n h / 2` at impact (negative when approaching).
+    /// `u = v_n + a_n h / 2` at impact (negative when approaching); zero
+    /// for a pair that cannot bounce (restitution zero).
     pub impact_u: f32,
-    /// `a_n h / 2`.
+    /// `a_n h / 2` (zero for a pair that cannot bounce).
     pub half_an_h: f32,
 }
 
@@ -95,25 +96,24 @@ impl Constraint {
         // move it, and gravity does not pull it.
         let holds = |i: usize| dynamic.sleep[i].is_asleep() || dynamic.inv_mass[i] == 0.0;
         let (a_holds, b_holds) = (holds(ai), b.dynamic_index().is_none_or(holds));
-        let (inv_mass_b, friction_b, restitution_b, vel_b) = match b.dynamic_index() {
+        let (inv_mass_b, friction_b, restitution_b) = match b.dynamic_index() {
             None => {
                 let s = b.index();
                 (
                     0.0,
                     bodies.statics.friction[s],
                     bodies.statics.meta[s].restitution,
-                    Vec2::ZERO,
                 )
             }
             Some(bi) => (
                 if b_holds { 0.0 } else { dynamic.inv_mass[bi] },
                 dynamic.friction[bi],
                 dynamic.meta[bi].restitution,
-                dynamic.vel[bi],
             ),
         };
         let inv_mass_a = if a_holds { 0.0 } else { dynamic.inv_mass[ai] };
         let k = inv_mass_a + inv_mass_b;
+        let restitution = dynamic.meta[ai].restitution.max(restitution_b);
         // Restitution reflects the normal velocity at the moment of impact,
         // in the form the integrator conserves. With a relative normal
         // acceleration `a_n` (gravity; only a static B does not fall with A),
@@ -122,20 +122,28 @@ impl Constraint {
         // apart closes the gap `s`, so at impact `u^2 = u0^2 - 2 a_n s`; the
         // bounce sets `u <- -e u`. An elastic ball then keeps `Q`, and so its
         // height, bounce after bounce, wherever in a step the impact falls.
-        let vn = (vel_b - dynamic.vel[ai]).dot(m.normal);
-        // Relative normal acceleration: gravity moves only the bodies that
-        // are free to fall (a static or sleeping body holds).
-        let falls = |holds: bool| if holds { Vec2::ZERO } else { gravity };
-        let a_n = (falls(b_holds) - falls(a_holds)).dot(m.normal);
-        let half_an_h = 0.5 * a_n * h;
-        let u0 = vn + half_an_h;
-        let mut impact_u = u0;
-        if m.separation > 0.0 && (u0 < 0.0 || a_n < 0.0) {
-            let u2 = u0 * u0 - 2.0 * a_n * m.separation;
-            if u2 > 0.0 {
-                impact_u = -u2.sqrt();
+        // Only a pair that can bounce needs it (the restitution stage skips
+        // the others), and only it reads the two velocities.
+        let (impact_u, half_an_h) = if restitution > 0.0 {
+            let vel_b = b.dynamic_index().map_or(Vec2::ZERO, |bi| dynamic.vel[bi]);
+            let vn = (vel_b - dynamic.vel[ai]).dot(m.normal);
+            // Relative normal acceleration: gravity moves only the bodies
+            // that are free to fall (a static or sleeping body holds).
+            let falls = |holds: bool| if holds { Vec2::ZERO } else { gravity };
+            let a_n = (falls(b_holds) - falls(a_holds)).dot(m.normal);
+            let half_an_h = 0.5 * a_n * h;
+            let u0 = vn + half_an_h;
+            let mut impact_u = u0;
+            if m.separation > 0.0 && (u0 < 0.0 || a_n < 0.0) {
+                let u2 = u0 * u0 - 2.0 * a_n * m.separation;
+                if u2 > 0.0 {
+                    impact_u = -u2.sqrt();
+                }
             }
-        }
+            (impact_u, half_an_h)
+        } else {
+            (0.0, 0.0)
+        };
         let row = Self {
             a,
             b,
@@ -160,7 +168,7 @@ impl Constraint {
             separation: m.separation,
             points: m.points,
             point_count: m.point_count,
-            restitution: dynamic.meta[ai].restitution.max(restitution_b),
+            restitution,
             impact_u,
             half_an_h,
         };
