@@ -336,19 +336,9 @@ mod tests {
             contact(id(3, 0), id(9, 0), 3.0, true),
         ]);
         tracker.record(&last, &ContactList::default(), 1);
-        assert_eq!(
-            tracker.events.begin,
-            [
-                ContactPair {
-                    a: id(2, 0),
-                    b: id(3, 0)
-                },
-                ContactPair {
-                    a: id(3, 0),
-                    b: id(9, 0)
-                },
-            ]
-        );
+        let pair = |a, b| ContactPair { a, b };
+        let touching = [pair(id(2, 0), id(3, 0)), pair(id(3, 0), id(9, 0))];
+        assert_eq!(tracker.events.begin, touching);
         // This step: (1, 4) again with A and B the other way round, (2, 3)
         // where slot 3 now holds another body (a new generation), a new
         // pair (2, 5), and (3, 9) again.
@@ -377,19 +367,7 @@ mod tests {
         // None of them touches now: the two touching pairs end.
         tracker.record(&now, &ContactList::default(), 2);
         assert!(tracker.events.begin.is_empty());
-        assert_eq!(
-            tracker.events.end,
-            [
-                ContactPair {
-                    a: id(2, 0),
-                    b: id(3, 0)
-                },
-                ContactPair {
-                    a: id(3, 0),
-                    b: id(9, 0)
-                },
-            ]
-        );
+        assert_eq!(tracker.events.end, touching);
         assert_eq!(tracker.touching_prev, []);
         assert_eq!(tracker.cache.len(), 4);
     }
