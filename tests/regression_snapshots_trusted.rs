@@ -1,5 +1,6 @@
-//! Snapshots were trusted in places: a warm-start impulse of -1 or NaN, an
-//! infinite friction, a sleeping contact naming a shapeless body, a NaN
+//! Snapshots were trusted in places: a warm-start impulse of -1 or NaN (or
+//! out of order, which made the warm start differ on one thread and on the
+//! pool), an infinite friction, a sleeping contact naming a shapeless body, a NaN
 //! speed limit or a free list naming a slot twice got past `validate` and
 //! panicked later or produced NaN positions or two bodies with one id.
 //! Every such edit is now refused with a message, and a step count near
@@ -95,6 +96,20 @@ fn each_untrusted_edit_is_refused_with_a_message() {
         (
             "a negative carried push",
             &[("push_impulse:0.0", "push_impulse:-1.0")],
+        ),
+        (
+            "carried impulses out of order",
+            &[(
+                "key:((index:2,generation:0),(index:3,generation:0))",
+                "key:((index:0,generation:0),(index:1,generation:0))",
+            )],
+        ),
+        (
+            "carried impulses naming the higher slot first",
+            &[(
+                "key:((index:3,generation:0),(index:4,generation:0))",
+                "key:((index:4,generation:0),(index:3,generation:0))",
+            )],
         ),
         (
             "a static bullet",

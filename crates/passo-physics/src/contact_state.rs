@@ -65,7 +65,8 @@ impl ContactState {
     /// Checks the state against the bodies: the sleeping contacts each name
     /// a sleeping shaped dynamic body and a sleeping or static shaped one
     /// that exist, in key order, with finite values; the carried impulses
-    /// are finite, the normal and push ones never negative.
+    /// are finite, the normal and push ones never negative, and in key
+    /// order, each pair once.
     pub(crate) fn validate(
         &self,
         dynamic: &DynamicBodies,
@@ -75,6 +76,26 @@ impl ContactState {
             return Err(format!(
                 "carried impulses of {:?} are not finite or negative",
                 c.key()
+            ));
+        }
+        // As a step leaves them: each pair's lower slot first, and the pairs
+        // in the order of their slots, each pair once (the warm start
+        // merges them with the contacts in that order, in chunks on the
+        // pool).
+        if let Some(c) = self
+            .cache
+            .iter()
+            .find(|c| c.key().0.index >= c.key().1.index)
+        {
+            return Err(format!(
+                "carried impulses of {:?} name one body twice or the higher slot first",
+                c.key()
+            ));
+        }
+        if let Some(w) = self.cache.windows(2).find(|w| w[0].order() >= w[1].order()) {
+            return Err(format!(
+                "carried impulses of {:?} out of order or twice",
+                w[1].key()
             ));
         }
         check_list(

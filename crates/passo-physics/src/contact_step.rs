@@ -174,6 +174,7 @@ impl World {
             dt,
             h: dt / settings.substeps as f32,
             parallel: self.parallel,
+            all_shaped: self.shaped_dynamic == self.dynamic.len(),
         };
         cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
         if cw.crowded() > 0 {

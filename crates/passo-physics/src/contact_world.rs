@@ -28,6 +28,9 @@ pub(crate) struct StepParams {
     pub h: f32,
     /// Whether large loops may use the thread pool.
     pub parallel: bool,
+    /// Every dynamic body has a shape, as far as the world counts them (a
+    /// hint: proxies are made one by one otherwise).
+    pub all_shaped: bool,
 }
 
 /// Everything the contact stage keeps between steps. Created the first time
@@ -89,7 +92,7 @@ impl ContactWorld {
         };
         self.proxies.begin(dynamic, statics, margin);
         self.sleeping.begin(dynamic, any_asleep, &margin);
-        self.add_proxies(dynamic, any_asleep, step.parallel);
+        self.add_proxies(dynamic, any_asleep, step.parallel && step.all_shaped);
         self.proxies.find_pairs(step.parallel);
         if any_asleep {
             self.pair_with_sleepers(dynamic);
@@ -130,8 +133,9 @@ impl ContactWorld {
     /// travel. Sleeping bodies in the sleep tree get one only when an awake
     /// proxy reaches them (see [`pair_with_sleepers`](Self::pair_with_sleepers)).
     fn add_proxies(&mut self, dynamic: &DynamicBodies, any_asleep: bool, parallel: bool) {
-        // Every body awake: one proxy a body, on the pool if many (unless
-        // some body has no shape).
+        // Every body awake (and, as far as the world counts them, shaped):
+        // one proxy a body, on the pool if many (unless some body has no
+        // shape after all).
         if parallel && !any_asleep && self.proxies.add_all(dynamic, parallel) {
             return;
         }

@@ -39,7 +39,7 @@ impl Cached {
 
     /// The pair's slots as one integer, in the key's order.
     #[inline(always)]
-    fn order(&self) -> u64 {
+    pub(crate) fn order(&self) -> u64 {
         u64::from(self.key.0.index) << 32 | u64::from(self.key.1.index)
     }
 }

@@ -210,11 +210,14 @@ fn one_way_allows(a: &Collider, b: &Collider, m: &Manifold) -> bool {
 /// a step, where a comparison sort took 7 % of the step.
 ///
 /// A counting pass by the lower slot, one counter a slot (`counts`), then
-/// an insertion sort, which only has to order each slot's few pairs. When the slots are sparse (more than a
-/// few per pair) a radix sort over the bits of the two slots does it
-/// instead, and a few pairs are sorted by insertion. `slots` is one more
-/// than the highest slot in the keys (the caller finds it while making
-/// them).
+/// an insertion sort, which only has to order each slot's few pairs; if a
+/// pair would move more than a few places (a long run out of order, such as
+/// a level's ground with its pairs in the order of the bodies' storage),
+/// two more counting passes instead, by the higher slot and then by the
+/// lower. When the slots are sparse (more than a few per pair) a radix sort
+/// over the bits of the two slots does it, and a few pairs are sorted by
+/// insertion. `slots` is one more than the highest slot in the keys (the
+/// caller finds it while making them).
 fn sort_by_key(
     pairs: &mut Vec<KeyedPair>,
     slots: usize,
@@ -231,12 +234,16 @@ fn sort_by_key(
         // By the lower slot, then by insertion within each lower slot's
         // run (a body's pairs with higher slots, a few as a rule): one
         // counting pass instead of two.
-        deal(pairs, scratch, counts, slots, |k| (k.0 >> 32) as usize);
+        let lower = |k: &KeyedPair| (k.0 >> 32) as usize;
+        deal(pairs, scratch, counts, slots, lower);
         if !insertion_sort_within(pairs, 32) {
-            // A long run out of order (the ground's pairs in a level, say):
-            // a comparison sort, with proxy A as a tie-breaker (distinct
-            // pairs have distinct keys, so the order is a stable sort's).
-            pairs.sort_unstable_by_key(|k| (k.0, k.1));
+            // A long run out of order: by the higher slot, then by the
+            // lower, both stable (and the insertion kept equal keys in
+            // their order), so the order is still a stable sort's.
+            deal(pairs, scratch, counts, slots, |k| {
+                (k.0 & 0xFFFF_FFFF) as usize
+            });
+            deal(pairs, scratch, counts, slots, lower);
         }
         return;
     }

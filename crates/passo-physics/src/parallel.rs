@@ -1,9 +1,9 @@
 //! One dispatcher for loops over items whose results do not depend on each
 //! other: in chunks of [`PARALLEL_CHUNK`] on rayon's pool for large worlds
 //! (with the `parallel` feature), in one go otherwise. Each item's result
-//! does not depend on the chunking, and the counts the chunks return are
-//! integers summed in any order, so the bits are the same with any number
-//! of threads.
+//! does not depend on the chunking, and the integers the chunks return are
+//! summed (or, for [`for_chunks_max`], their largest taken) in any order,
+//! so the bits are the same with any number of threads.
 //!
 //! [`PARALLEL_CHUNK`]: crate::constants::PARALLEL_CHUNK
 
