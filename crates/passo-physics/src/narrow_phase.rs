@@ -225,7 +225,10 @@ fn sort_by_key(
     counts: &mut Vec<u32>,
 ) {
     if pairs.len() < 64 {
-        insertion_sort(pairs);
+        // No pair can move more places than the list is long: sorted whole.
+        let n = pairs.len();
+        let sorted = insertion_sort_within(pairs, n);
+        debug_assert!(sorted);
         return;
     }
     scratch.clear();
@@ -289,9 +292,9 @@ fn deal(
     std::mem::swap(pairs, scratch);
 }
 
-/// Sorts by key by insertion (stable) unless some pair would move more
-/// than `reach` places: then stops, with `pairs` in some order, and returns
-/// `false`. `O(n reach)` at most.
+/// Sorts by key by insertion (stable), `O(n + inversions)`, unless some pair
+/// would move more than `reach` places: then stops, with `pairs` in some
+/// order, and returns `false`. `O(n reach)` at most.
 fn insertion_sort_within(pairs: &mut [KeyedPair], reach: usize) -> bool {
     for i in 1..pairs.len() {
         let mut j = i;
@@ -304,17 +307,6 @@ fn insertion_sort_within(pairs: &mut [KeyedPair], reach: usize) -> bool {
         }
     }
     true
-}
-
-/// Sorts by key by insertion (stable): `O(n + inversions)`.
-fn insertion_sort(pairs: &mut [KeyedPair]) {
-    for i in 1..pairs.len() {
-        let mut j = i;
-        while j > 0 && pairs[j - 1].0 > pairs[j].0 {
-            pairs.swap(j - 1, j);
-            j -= 1;
-        }
-    }
 }
 
 /// The narrow phase's buffers, kept between steps.

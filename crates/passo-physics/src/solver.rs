@@ -456,23 +456,18 @@ impl Motion {
     pub(crate) fn load(&mut self, vel: &[Vec2], start: Start) {
         self.state.clear();
         let push = Vec2::ZERO;
-        match start {
-            Start::Plain => {
-                self.state
-                    .extend(vel.iter().map(|&vel| BodyState { vel, push }));
-            }
-            Start::Track => {
-                self.state
-                    .extend(vel.iter().map(|&vel| BodyState { vel, push }));
+        if start == Start::Replay {
+            let states = vel.iter().zip(&mut self.replay).map(|(&v, replay)| {
+                let vel = v + *replay;
+                *replay = v;
+                BodyState { vel, push }
+            });
+            self.state.extend(states);
+        } else {
+            self.state
+                .extend(vel.iter().map(|&vel| BodyState { vel, push }));
+            if start == Start::Track {
                 self.replay.copy_from_slice(vel);
-            }
-            Start::Replay => {
-                let states = vel.iter().zip(&mut self.replay).map(|(&v, replay)| {
-                    let vel = v + *replay;
-                    *replay = v;
-                    BodyState { vel, push }
-                });
-                self.state.extend(states);
             }
         }
         self.state.push(BodyState::default());
