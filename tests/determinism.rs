@@ -22,7 +22,7 @@ const EXPECTED_AWAKE: u64 = 0xd9d5_228e_b86e_1ebc;
 /// The busy scene with moving, one-way and plain platforms above it (see
 /// `with_platforms`). Added with kinematic bodies and one-way platforms;
 /// the two constants above stay valid for scenes without them.
-const EXPECTED_PLATFORMS: u64 = 0xb578_bf01_32ac_409b;
+const EXPECTED_PLATFORMS: u64 = 0xa4bc_32f9_5241_9c76;
 const TICKS: usize = 300;
 
 /// Rain (2 000 circles in a box) with a pyramid of boxes beside it and a

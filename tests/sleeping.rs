@@ -113,6 +113,43 @@ fn bodies_pushed_out_of_an_overlap_are_not_resting() {
 }
 
 #[test]
+fn neighbours_within_the_slop_fall_asleep_together_and_stay_asleep() {
+    // Two boxes side by side, 2 mm apart: not touching, but closer than the
+    // slop, where an awake body wakes a sleeping one. The second lands
+    // later, so it rests for less time. Were they islands of their own, the
+    // first would fall asleep, be woken by the second, and the two would
+    // take turns for ever.
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    let first = add_box(&mut w, Vec2::new(0.0, 0.5), Vec2::ONE, 1.0);
+    let second = add_box(&mut w, Vec2::new(1.002, 0.8), Vec2::ONE, 1.0);
+    let ids = [first, second];
+    let mut asleep_at = None;
+    for tick in 0..240 {
+        w.step(DT);
+        let now = asleep(&w, &ids);
+        if asleep_at.is_none() && now != [false, false] {
+            assert_eq!(now, [true, true], "tick {tick}: one island, asleep as one");
+            asleep_at = Some(tick);
+        }
+        if asleep_at.is_some() {
+            assert_eq!(now, [true, true], "tick {tick}: woken again");
+        }
+    }
+    let gap = w.body(second).unwrap().position.x - w.body(first).unwrap().position.x - 1.0;
+    assert!(
+        gap > 0.0 && gap < passo_physics::constants::LINEAR_SLOP,
+        "{gap} m apart"
+    );
+    let tick = asleep_at.expect("they fall asleep");
+    // The second lands after about 0.25 s and rests for TIME_TO_SLEEP.
+    assert!(
+        (tick as f32) * DT < 0.3 + TIME_TO_SLEEP + 0.5,
+        "asleep only at tick {tick}"
+    );
+}
+
+#[test]
 fn an_awake_body_wakes_the_island_it_reaches_and_only_that_one() {
     let mut w = World::new(WorldSettings::default()).unwrap();
     ground(&mut w);

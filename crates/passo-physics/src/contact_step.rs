@@ -241,7 +241,7 @@ impl World {
         cw.end_step(
             &mut self.dynamic,
             &self.statics,
-            settings.sleeping.then_some(dt),
+            settings.sleeping.then_some((dt, settings.slop)),
             self.stats.steps.saturating_add(1),
         );
         self.contacts = Some(cw);

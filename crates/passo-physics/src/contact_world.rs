@@ -255,21 +255,21 @@ impl ContactWorld {
     }
 
     /// After the last substep: finds which bodies are inside sensors now,
-    /// does the sleeping bookkeeping (with `sleep_dt`, the step's length,
-    /// when sleeping is on), caches impulses for warm starting and works
-    /// out which pairs began and ended touching.
+    /// does the sleeping bookkeeping (with `sleep`, the step's length and
+    /// the contact slop, when sleeping is on), caches impulses for warm
+    /// starting and works out which pairs began and ended touching.
     pub(crate) fn end_step(
         &mut self,
         dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
-        sleep_dt: Option<f32>,
+        sleep: Option<(f32, f32)>,
         step: u64,
     ) {
         self.events
             .find_sensor_overlaps(&self.narrow.sensor_candidates, dynamic, statics);
-        if let Some(dt) = sleep_dt {
+        if let Some((dt, slop)) = sleep {
             self.sleeping
-                .after_step(&mut self.solved, dynamic, &self.motion.delta, dt);
+                .after_step(&mut self.solved, dynamic, &self.motion.delta, dt, slop);
         }
         self.events.record(&self.solved, &self.sleeping.list, step);
         self.revision += 1;

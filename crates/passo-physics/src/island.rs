@@ -1,6 +1,7 @@
-//! Islands: dynamic bodies joined by touching contacts. An island falls
-//! asleep when all its bodies have rested long enough, and wakes as one
-//! (see `sleeping` for what sleeping means to the step).
+//! Islands: dynamic bodies joined by touching contacts, or by contacts
+//! close enough that one body would wake the other. An island falls asleep
+//! when all its bodies have rested long enough, and wakes as one (see
+//! `sleeping` for what sleeping means to the step).
 
 use crate::bodies::{DynamicBodies, SleepState};
 use crate::constants::{SLEEP_SPEED, TIME_TO_SLEEP};
@@ -104,12 +105,21 @@ impl Islands {
     /// island whose bodies have all rested for [`TIME_TO_SLEEP`] (their
     /// velocities become exactly zero). Returns whether any island fell
     /// asleep.
+    ///
+    /// Bodies closer than `slop` plus what two resting bodies close in a
+    /// step of `dt` join too, touching or not: an awake body that near a
+    /// sleeping one wakes it at the next step (`wake_reached` in the
+    /// contact stage), so two such neighbours in islands of their own
+    /// would take turns falling asleep and waking each other for ever.
     pub(crate) fn fall_asleep(
         &mut self,
         bodies: &mut DynamicBodies,
         constraints: &[Constraint],
         infos: &[ContactInfo],
+        slop: f32,
+        dt: f32,
     ) -> bool {
+        let reach = slop + 2.0 * SLEEP_SPEED * dt;
         let n = bodies.len();
         self.parent.clear();
         self.parent.extend(0..n as u32);
@@ -119,7 +129,7 @@ impl Islands {
             };
             let both_awake =
                 !bodies.sleep[c.a as usize].is_asleep() && !bodies.sleep[b].is_asleep();
-            if both_awake && info.is_touching(c) {
+            if both_awake && (info.is_touching(c) || info.separation <= reach) {
                 self.union(c.a, b as u32);
             }
         }

@@ -197,13 +197,15 @@ impl SleepingContacts {
     /// touched (for the next step: during this one they held like static
     /// bodies), and putting islands that rested long enough to sleep, with
     /// their contacts moved from `solved` to the stored list. `moved` is
-    /// each body's displacement over the step.
+    /// each body's displacement over the step; `slop` is the contact
+    /// settings' allowed overlap.
     pub(crate) fn after_step(
         &mut self,
         solved: &mut ContactList,
         dynamic: &mut DynamicBodies,
         moved: &[Vec2],
         dt: f32,
+        slop: f32,
     ) {
         self.islands.rest(dynamic, moved, dt);
         let mut woke = false;
@@ -234,7 +236,7 @@ impl SleepingContacts {
         }
         if self
             .islands
-            .fall_asleep(dynamic, &solved.rows, &solved.infos)
+            .fall_asleep(dynamic, &solved.rows, &solved.infos, slop, dt)
         {
             self.store(solved, dynamic);
         }
