@@ -1,7 +1,7 @@
 //! The demo's movements, driven without a window: walk, run, jump only
 //! when standing, slide on ice, glide, wind.
 
-use passo::demo::{Command, Entry, Input, Knobs, Sim, catalogue, load};
+use passo::demo::{Command, Entry, Input, Knobs, REWIND_BYTES, Sim, catalogue, load};
 use passo_physics::glam::Vec2;
 use std::time::Duration;
 
@@ -531,5 +531,35 @@ fn the_platformer_level_is_played_with_the_character_mover() {
     assert!(
         (player(&sim).position.y - before).abs() < 1e-3,
         "landed again"
+    );
+}
+
+#[test]
+fn a_big_scene_keeps_fewer_ticks_within_the_rewind_budget() {
+    // 2 000 circles piling up: their snapshots grow as contacts appear,
+    // past the 512 bytes a body first assumed (which kept 131 ticks, 190
+    // MB). The budget follows the states as they are measured.
+    let mut sim = load(&Entry::File("rain".into())).unwrap();
+    let mut most = 0;
+    // 10 s: the pile settles at about 700 bytes a body.
+    for _ in 0..600 {
+        sim.frame(FRAME);
+        most = most.max(sim.scene.rewind_bytes());
+    }
+    let kept = sim.scene.rewindable();
+    let per_state = sim.scene.rewind_bytes() / (kept + 1);
+    assert!(
+        (10..600).contains(&kept),
+        "{kept} ticks kept at {per_state} bytes each"
+    );
+    // The budget, give or take the state being saved and one spare.
+    assert!(
+        most <= REWIND_BYTES + 2 * per_state,
+        "{most} bytes held, {kept} ticks of {per_state}"
+    );
+    assert!(
+        sim.scene.rewind_bytes() >= REWIND_BYTES - 3 * per_state,
+        "the budget is used: {} bytes",
+        sim.scene.rewind_bytes()
     );
 }

@@ -34,6 +34,6 @@ pub use controls::{Input, Knobs};
 pub use history::History;
 pub use lanes::Lane;
 pub use replay::{Command, Replay};
-pub use scene_state::SceneState;
+pub use scene_state::{REWIND_BYTES, SceneState};
 pub use session::{Session, Stats};
 pub use sim::{Sim, load, run_replay};

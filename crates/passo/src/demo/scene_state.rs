@@ -53,6 +53,8 @@ pub struct SceneState {
 struct Saved {
     worlds: Vec<WorldSnapshot>,
     ticks: u64,
+    /// Heap bytes of `worlds`, measured when saved.
+    bytes: usize,
 }
 
 /// The last states of a scene, newest last, in reused buffers: once full,
@@ -71,9 +73,10 @@ struct Rewind {
 const REWIND_TICKS: usize = 600;
 /// ...and at least this many, whatever the size...
 const REWIND_MIN_TICKS: usize = 10;
-/// ...within about this many bytes of snapshots (a body's state and its
-/// contacts take a few hundred bytes).
-const REWIND_BYTES: usize = 128 << 20;
+/// ...within this many bytes of snapshots, as measured when each is
+/// kept; the next is taken to hold what the newest did (before the first,
+/// [`BYTES_PER_BODY`] a body: a settled pile of 10 000 circles took 930).
+pub const REWIND_BYTES: usize = 128 << 20;
 const BYTES_PER_BODY: usize = 512;
 
 impl SceneState {
@@ -206,16 +209,30 @@ impl SceneState {
 
     /// Keeps the state of every lane as it is now, to rewind to: before
     /// each tick while rewinding is possible. Only the last ticks are kept
-    /// (10 s at 60 Hz, fewer for big scenes: about 128 MB at the most).
-    /// Returns how many of the oldest states made room.
+    /// (10 s at 60 Hz, fewer for big scenes: [`REWIND_BYTES`] at the most,
+    /// as the newest state measures, or 10 ticks). Returns how many of the
+    /// oldest states made room.
     pub fn save_for_rewind(&mut self) -> usize {
         let bodies: usize = self.lanes.iter().map(|l| l.world.len()).sum();
-        let keep =
-            (REWIND_BYTES / (bodies.max(1) * BYTES_PER_BODY)).clamp(REWIND_MIN_TICKS, REWIND_TICKS);
         let r = &mut self.rewind;
+        let next = r
+            .states
+            .back()
+            .map_or(bodies * BYTES_PER_BODY, |newest| newest.bytes);
+        let mut held: usize = r.states.iter().map(|s| s.bytes).sum();
         let mut dropped = 0;
-        while r.states.len() >= keep {
-            r.spare.extend(r.states.pop_front());
+        while r.states.len() >= REWIND_TICKS
+            || (r.states.len() >= REWIND_MIN_TICKS && held + next > REWIND_BYTES)
+        {
+            let Some(oldest) = r.states.pop_front() else {
+                break;
+            };
+            held -= oldest.bytes;
+            // One spare buffer is reused by this save; the others (the
+            // scene grew, and many states go at once) are let go.
+            if r.spare.is_empty() {
+                r.spare.push(oldest);
+            }
             dropped += 1;
         }
         let mut saved = r.spare.pop().unwrap_or_default();
@@ -226,6 +243,7 @@ impl SceneState {
             lane.world.snapshot_into(snapshot);
         }
         saved.ticks = self.ticks;
+        saved.bytes = saved.worlds.iter().map(WorldSnapshot::heap_bytes).sum();
         r.states.push_back(saved);
         dropped
     }
