@@ -196,6 +196,7 @@ impl World {
             &cw.solved.rows,
             &cw.motion.start,
             &cw.motion.piles.deep,
+            plan.hold_sleepers || plan.hold_kinematic,
             self.parallel,
         );
         if plan.hold_kinematic {

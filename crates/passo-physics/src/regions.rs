@@ -50,19 +50,27 @@ pub(crate) struct ContactRegions {
     region: Vec<u8>,
     /// Each group's contacts, by index in the rows.
     picked: [Vec<u32>; 3],
+    /// The same for the second half of the rows, when the halves are
+    /// picked side by side.
+    #[cfg(feature = "parallel")]
+    picked_tail: [Vec<u32>; 3],
     /// Per dynamic body: 1 if a contact moves it, 2 if one only reads it.
     use_of: Vec<u8>,
 }
 
 impl ContactRegions {
     /// Splits (or not) and colours `rows`, over the dynamic bodies at
-    /// positions `pos`; `deep` as for [`Colouring::build`]. With `parallel`
-    /// (and the feature) the two regions are coloured side by side.
+    /// positions `pos`; `deep` as for [`Colouring::build`]. `holds`: some
+    /// row holds a dynamic body (asleep or kinematic: inverse mass zero in
+    /// the row), which the step knows from its bodies. With `parallel`
+    /// (and the feature) the rows are sorted into regions in two halves
+    /// side by side, and the two regions are coloured side by side.
     pub(crate) fn build(
         &mut self,
         rows: &[Constraint],
         pos: &[Vec2],
         deep: &[bool],
+        holds: bool,
         parallel: bool,
     ) {
         let bodies = pos.len();
@@ -78,31 +86,46 @@ impl ContactRegions {
         // contact only reads it (2). Held bodies are held in all their
         // contacts (a step holds a body or not), but a body both moved and
         // read would be read by one region while the other moves it: its
-        // contacts go between the regions, solved on one thread.
+        // contacts go between the regions, solved on one thread. When no
+        // row holds a body, every body a row names it moves: no pass.
         self.use_of.clear();
-        self.use_of.resize(bodies, 0);
-        for c in rows {
-            let (a, b) = c.moved();
-            self.use_of[c.a as usize] |= if a.is_some() { 1 } else { 2 };
-            if let Some(bi) = c.b.dynamic_index() {
-                self.use_of[bi] |= if b.is_some() { 1 } else { 2 };
+        if holds {
+            self.use_of.resize(bodies, 0);
+            for c in rows {
+                let (a, b) = c.moved();
+                self.use_of[c.a as usize] |= if a.is_some() { 1 } else { 2 };
+                if let Some(bi) = c.b.dynamic_index() {
+                    self.use_of[bi] |= if b.is_some() { 1 } else { 2 };
+                }
             }
         }
-        let (region, use_of) = (&self.region, &self.use_of);
-        for g in &mut self.picked {
-            g.clear();
+        debug_assert!(
+            holds
+                || rows
+                    .iter()
+                    .all(|c| c.moved() == (Some(c.a as usize), c.b.dynamic_index())),
+            "a row holds a dynamic body"
+        );
+        let (region, use_of) = (&self.region[..], &self.use_of[..]);
+        let pick = |rows: &[Constraint], first: usize, picked: &mut [Vec<u32>; 3]| {
+            pick(rows, first, region, use_of, picked);
+        };
+        #[cfg(feature = "parallel")]
+        if crate::parallel::goes_parallel(parallel, rows.len()) {
+            let (head, tail) = rows.split_at(rows.len() / 2);
+            let (picked, picked_tail) = (&mut self.picked, &mut self.picked_tail);
+            rayon::join(
+                || pick(head, 0, picked),
+                || pick(tail, head.len(), picked_tail),
+            );
+            for (g, t) in picked.iter_mut().zip(&*picked_tail) {
+                g.extend_from_slice(t);
+            }
+        } else {
+            pick(rows, 0, &mut self.picked);
         }
-        for (i, c) in rows.iter().enumerate() {
-            let shared =
-                use_of[c.a as usize] == 3 || c.b.dynamic_index().is_some_and(|b| use_of[b] == 3);
-            let g = match c.moved() {
-                _ if shared => 2,
-                (Some(a), Some(b)) if region[a] != region[b] => 2,
-                (Some(x), _) | (None, Some(x)) => region[x],
-                (None, None) => 0,
-            };
-            self.picked[g as usize].push(i as u32);
-        }
+        #[cfg(not(feature = "parallel"))]
+        pick(rows, 0, &mut self.picked);
         let [first, second, between] = &mut self.groups;
         let colour = |colouring: &mut Colouring, picked: &[u32]| {
             colouring.build(rows, picked.iter().map(|&i| i as usize), bodies, deep);
@@ -178,6 +201,33 @@ impl ContactRegions {
     #[cfg(test)]
     pub(crate) fn is_split(&self) -> bool {
         self.split
+    }
+}
+
+/// Sorts `rows` (the first at index `first` of all the rows) into
+/// `picked`, cleared first: each contact goes to the region of the bodies
+/// it moves, or between the regions when it moves a body of each or names
+/// a body (`use_of` 3) that one contact moves and another only reads
+/// (`use_of` is empty when no row holds a body).
+fn pick(
+    rows: &[Constraint],
+    first: usize,
+    region: &[u8],
+    use_of: &[u8],
+    picked: &mut [Vec<u32>; 3],
+) {
+    for g in picked.iter_mut() {
+        g.clear();
+    }
+    let shared = |i: usize| use_of.get(i) == Some(&3);
+    for (i, c) in rows.iter().enumerate() {
+        let g = match c.moved() {
+            _ if shared(c.a as usize) || c.b.dynamic_index().is_some_and(shared) => 2,
+            (Some(a), Some(b)) if region[a] != region[b] => 2,
+            (Some(x), _) | (None, Some(x)) => region[x],
+            (None, None) => 0,
+        };
+        picked[g as usize].push((first + i) as u32);
     }
 }
 
@@ -365,7 +415,7 @@ mod tests {
     fn substep(side: u32, parallel: bool) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>, bool) {
         let (pos, vel, mut rows) = lattice(side);
         let mut regions = ContactRegions::default();
-        regions.build(&rows, &pos, &[], parallel);
+        regions.build(&rows, &pos, &[], false, parallel);
         let mut state = BodyState::of(&vel);
         let delta = vec![Vec2::ZERO; pos.len()];
         let mut bodies = SolverBodies {
@@ -388,7 +438,7 @@ mod tests {
         let (pos, _, rows) = lattice(80);
         assert!(pos.len() >= SPLIT_BODIES);
         let mut regions = ContactRegions::default();
-        regions.build(&rows, &pos, &[], true);
+        regions.build(&rows, &pos, &[], false, true);
         assert!(regions.is_split());
         let count = |g: usize| regions.picked[g].len();
         // Split at x = 39.5: each half 40 columns, 80 contacts across.
@@ -397,7 +447,7 @@ mod tests {
         assert_eq!(count(0) + count(1) + count(2), rows.len());
         // A small pile does not split.
         let (pos, _, rows) = lattice(20);
-        regions.build(&rows, &pos, &[], true);
+        regions.build(&rows, &pos, &[], false, true);
         assert!(!regions.is_split());
     }
 
@@ -406,7 +456,7 @@ mod tests {
         for side in [20, 80] {
             let (pos, _, mut rows) = lattice(side);
             let mut regions = ContactRegions::default();
-            regions.build(&rows, &pos, &[], true);
+            regions.build(&rows, &pos, &[], false, true);
             for g in &mut regions.groups {
                 g.mark_rows();
             }
@@ -427,7 +477,7 @@ mod tests {
         let (pos, _, mut rows) = lattice(80);
         rows[0].inv_mass_a = 0.0;
         let mut regions = ContactRegions::default();
-        regions.build(&rows, &pos, &[], true);
+        regions.build(&rows, &pos, &[], true, true);
         let touching_0: Vec<u32> = (0..rows.len() as u32)
             .filter(|&i| {
                 let c = &rows[i as usize];
