@@ -244,6 +244,7 @@ impl World {
             &self.statics,
             settings.sleeping.then_some((dt, settings.slop)),
             self.stats.steps.saturating_add(1),
+            self.parallel,
         );
         self.contacts = Some(cw);
         self.correction = correction;

@@ -257,13 +257,15 @@ impl ContactWorld {
     /// After the last substep: finds which bodies are inside sensors now,
     /// does the sleeping bookkeeping (with `sleep`, the step's length and
     /// the contact slop, when sleeping is on), caches impulses for warm
-    /// starting and works out which pairs began and ended touching.
+    /// starting and works out which pairs began and ended touching (on
+    /// the thread pool when `parallel` and the contacts are many).
     pub(crate) fn end_step(
         &mut self,
         dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
         sleep: Option<(f32, f32)>,
         step: u64,
+        parallel: bool,
     ) {
         self.events
             .find_sensor_overlaps(&self.narrow.sensor_candidates, dynamic, statics);
@@ -271,7 +273,8 @@ impl ContactWorld {
             self.sleeping
                 .after_step(&mut self.solved, dynamic, &self.motion.delta, dt, slop);
         }
-        self.events.record(&self.solved, &self.sleeping.list, step);
+        self.events
+            .record(&self.solved, &self.sleeping.list, step, parallel);
         self.revision += 1;
         self.solved_revision = self.revision;
     }
@@ -288,7 +291,7 @@ impl ContactWorld {
         self.solved.clear();
         self.narrow.sensor_candidates.clear();
         self.wake_all(dynamic);
-        self.end_step(dynamic, statics, None, step);
+        self.end_step(dynamic, statics, None, step, false);
     }
 
     /// Wakes dynamic body `i` now and its island before anything needs it

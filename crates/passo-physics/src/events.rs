@@ -110,37 +110,30 @@ impl EventTracker {
     /// After the last substep: caches every contact's impulses for warm
     /// starting, and works out which pairs began and ended touching and
     /// which bodies entered and left sensors. `solved` and `asleep` are
-    /// each sorted by key.
-    pub(crate) fn record(&mut self, solved: &ContactList, asleep: &ContactList, step: u64) {
-        self.cache.clear();
-        // Every pair is written to `touching` and only those touching are
-        // kept: no branch on whether each one touches, which changes from
-        // contact to contact.
-        let total = solved.len() + asleep.len();
-        let none = BodyId {
-            index: u32::MAX,
-            generation: u32::MAX,
+    /// each sorted by key. With `parallel`, many contacts and none asleep,
+    /// the cache is filled in chunks on the thread pool.
+    pub(crate) fn record(
+        &mut self,
+        solved: &ContactList,
+        asleep: &ContactList,
+        step: u64,
+        parallel: bool,
+    ) {
+        let in_chunks = asleep.is_empty() && {
+            #[cfg(feature = "parallel")]
+            let many = crate::parallel::goes_parallel(parallel, solved.len());
+            #[cfg(not(feature = "parallel"))]
+            let many = {
+                let _ = parallel;
+                false
+            };
+            many
         };
-        self.touching.clear();
-        self.touching.resize(total, (none, none));
-        let mut touching = 0;
-        let mut keep = |c: &Constraint, info: &ContactInfo| {
-            let k = info.key();
-            self.cache.push(Cached {
-                key: k,
-                normal_impulse: c.normal_impulse,
-                tangent_impulse: c.tangent_impulse,
-                push_impulse: c.push_impulse,
-            });
-            self.touching[touching] = k;
-            touching += usize::from(info.is_touching(c));
-        };
-        if asleep.is_empty() {
-            solved.iter().for_each(|(c, info)| keep(c, info));
+        if in_chunks {
+            self.keep_in_chunks(solved);
         } else {
-            merged(solved, asleep).for_each(|(c, info)| keep(c, info));
+            self.keep(solved, asleep);
         }
-        self.touching.truncate(touching);
         self.events.clear();
         self.events.step = step;
         let events = &mut self.events;
@@ -163,6 +156,90 @@ impl EventTracker {
             }
         });
         std::mem::swap(&mut self.sensors, &mut self.sensors_prev);
+    }
+}
+
+impl EventTracker {
+    /// The cache and the touching pairs of `solved` and `asleep`, one
+    /// contact after the other. Every pair is written to `touching` and
+    /// only those touching are kept: no branch on whether each one touches,
+    /// which changes from contact to contact.
+    fn keep(&mut self, solved: &ContactList, asleep: &ContactList) {
+        self.cache.clear();
+        self.touching.clear();
+        self.touching.resize(solved.len() + asleep.len(), NO_PAIR);
+        let mut touching = 0;
+        let mut keep = |c: &Constraint, info: &ContactInfo| {
+            self.cache.push(cached(c, info));
+            self.touching[touching] = info.key();
+            touching += usize::from(info.is_touching(c));
+        };
+        if asleep.is_empty() {
+            solved.iter().for_each(|(c, info)| keep(c, info));
+        } else {
+            merged(solved, asleep).for_each(|(c, info)| keep(c, info));
+        }
+        self.touching.truncate(touching);
+    }
+
+    /// [`keep`](Self::keep) of `solved` alone, in chunks on the thread
+    /// pool: each contact's entries depend on it alone, a pair not touching
+    /// is written as [`NO_PAIR`], and those are taken out after. The lists
+    /// keep their length from the last step, so only their growth is
+    /// initialised.
+    #[cfg(feature = "parallel")]
+    fn keep_in_chunks(&mut self, solved: &ContactList) {
+        let filler = Cached {
+            key: NO_PAIR,
+            normal_impulse: 0.0,
+            tangent_impulse: 0.0,
+            push_impulse: 0.0,
+        };
+        self.cache.resize(solved.len(), filler);
+        self.touching.resize(solved.len(), NO_PAIR);
+        let parts = (
+            &mut self.cache[..],
+            &mut self.touching[..],
+            &solved.rows[..],
+            &solved.infos[..],
+        );
+        for_chunks(true, parts, |_, (cache, touching, rows, infos)| {
+            for (k, (c, info)) in rows.iter().zip(infos).enumerate() {
+                cache[k] = cached(c, info);
+                touching[k] = if info.is_touching(c) {
+                    info.key()
+                } else {
+                    NO_PAIR
+                };
+            }
+            0
+        });
+        self.touching.retain(|&pair| pair != NO_PAIR);
+    }
+
+    #[cfg(not(feature = "parallel"))]
+    fn keep_in_chunks(&mut self, solved: &ContactList) {
+        self.keep(solved, &ContactList::default());
+    }
+}
+
+/// A pair of no bodies: the slots no body has.
+const NO_PAIR: (BodyId, BodyId) = {
+    let none = BodyId {
+        index: u32::MAX,
+        generation: u32::MAX,
+    };
+    (none, none)
+};
+
+/// What contact `c` carries to the next step.
+#[inline(always)]
+fn cached(c: &Constraint, info: &ContactInfo) -> Cached {
+    Cached {
+        key: info.key(),
+        normal_impulse: c.normal_impulse,
+        tangent_impulse: c.tangent_impulse,
+        push_impulse: c.push_impulse,
     }
 }
 
@@ -304,7 +381,7 @@ mod tests {
             .filter(|(k, _)| k % 3 == 0)
             .map(|(k, &(a, b))| contact(id(a, 0), id(b, u32::from(k % 5 == 0)), k as f32, true))
             .collect();
-        tracker.record(&list(&last), &ContactList::default(), 1);
+        tracker.record(&list(&last), &ContactList::default(), 1, false);
         let now: Vec<_> = pairs
             .iter()
             .map(|&(a, b)| contact(id(a, 0), id(b, 0), 0.0, false))
@@ -326,6 +403,38 @@ mod tests {
     }
 
     #[test]
+    fn recording_in_chunks_gives_what_it_gives_in_one_go() {
+        // 6 000 contacts (enough for chunks on the pool), every third
+        // touching; two steps, so that the second has begins and ends, and
+        // the lists shrink from one step to the next.
+        let pairs: Vec<_> = (0..3000u32)
+            .flat_map(|i| [(i, i + 1), (i, i + 7)])
+            .collect();
+        let step = |skip: usize, shift: usize| {
+            let contacts: Vec<_> = pairs
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| !k.is_multiple_of(skip))
+                .map(|(k, &(a, b))| {
+                    contact(id(a, 0), id(b, 0), k as f32, (k + shift).is_multiple_of(3))
+                })
+                .collect();
+            list(&contacts)
+        };
+        let (first, second) = (step(7, 0), step(5, 1));
+        let (mut one_go, mut chunked) = (EventTracker::default(), EventTracker::default());
+        for (k, now) in [&first, &second].into_iter().enumerate() {
+            one_go.record(now, &ContactList::default(), k as u64, false);
+            chunked.record(now, &ContactList::default(), k as u64, true);
+            assert_eq!(one_go.cache, chunked.cache, "step {k}");
+            assert_eq!(one_go.touching_prev, chunked.touching_prev, "step {k}");
+            assert_eq!(one_go.events, chunked.events, "step {k}");
+        }
+        assert_eq!(one_go.cache.len(), second.len());
+        assert!(!one_go.events.begin.is_empty() && !one_go.events.end.is_empty());
+    }
+
+    #[test]
     fn warm_start_matches_pairs_by_slot_and_generation() {
         let mut tracker = EventTracker::default();
         // Last step: pairs (1, 4), (2, 3) and (3, 9), each with its
@@ -335,7 +444,7 @@ mod tests {
             contact(id(2, 0), id(3, 0), 2.0, true),
             contact(id(3, 0), id(9, 0), 3.0, true),
         ]);
-        tracker.record(&last, &ContactList::default(), 1);
+        tracker.record(&last, &ContactList::default(), 1, false);
         let pair = |a, b| ContactPair { a, b };
         let touching = [pair(id(2, 0), id(3, 0)), pair(id(3, 0), id(9, 0))];
         assert_eq!(tracker.events.begin, touching);
@@ -365,7 +474,7 @@ mod tests {
             "the same pairs carry their impulses, another body in a slot does not"
         );
         // None of them touches now: the two touching pairs end.
-        tracker.record(&now, &ContactList::default(), 2);
+        tracker.record(&now, &ContactList::default(), 2, false);
         assert!(tracker.events.begin.is_empty());
         assert_eq!(tracker.events.end, touching);
         assert_eq!(tracker.touching_prev, []);
