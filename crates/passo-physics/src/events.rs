@@ -6,7 +6,7 @@ use crate::bodies::{Colliders, DynamicBodies, StaticBodies, pair_order};
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::manifold::collide;
 use crate::narrow_phase::SensorCandidate;
-use crate::parallel::for_chunks;
+use crate::parallel::{for_chunks, goes_parallel};
 use crate::{BodyId, ContactEvents, ContactPair, SensorPair};
 
 /// Impulses a contact carries to the next step.
@@ -119,17 +119,7 @@ impl EventTracker {
         step: u64,
         parallel: bool,
     ) {
-        let in_chunks = asleep.is_empty() && {
-            #[cfg(feature = "parallel")]
-            let many = crate::parallel::goes_parallel(parallel, solved.len());
-            #[cfg(not(feature = "parallel"))]
-            let many = {
-                let _ = parallel;
-                false
-            };
-            many
-        };
-        if in_chunks {
+        if asleep.is_empty() && goes_parallel(parallel, solved.len()) {
             self.keep_in_chunks(solved);
         } else {
             self.keep(solved, asleep);
@@ -187,15 +177,8 @@ impl EventTracker {
     /// is written as [`NO_PAIR`], and those are taken out after. The lists
     /// keep their length from the last step, so only their growth is
     /// initialised.
-    #[cfg(feature = "parallel")]
     fn keep_in_chunks(&mut self, solved: &ContactList) {
-        let filler = Cached {
-            key: NO_PAIR,
-            normal_impulse: 0.0,
-            tangent_impulse: 0.0,
-            push_impulse: 0.0,
-        };
-        self.cache.resize(solved.len(), filler);
+        self.cache.resize(solved.len(), NO_CACHED);
         self.touching.resize(solved.len(), NO_PAIR);
         let parts = (
             &mut self.cache[..],
@@ -216,11 +199,6 @@ impl EventTracker {
         });
         self.touching.retain(|&pair| pair != NO_PAIR);
     }
-
-    #[cfg(not(feature = "parallel"))]
-    fn keep_in_chunks(&mut self, solved: &ContactList) {
-        self.keep(solved, &ContactList::default());
-    }
 }
 
 /// A pair of no bodies: the slots no body has.
@@ -230,6 +208,14 @@ const NO_PAIR: (BodyId, BodyId) = {
         generation: u32::MAX,
     };
     (none, none)
+};
+
+/// The cache entry of no pair, to grow the cache with.
+const NO_CACHED: Cached = Cached {
+    key: NO_PAIR,
+    normal_impulse: 0.0,
+    tangent_impulse: 0.0,
+    push_impulse: 0.0,
 };
 
 /// What contact `c` carries to the next step.

@@ -61,10 +61,25 @@ tuple_parts!(A, B, C);
 tuple_parts!(A, B, C, D);
 tuple_parts!(A, B, C, D, E);
 
-/// Whether a loop over `items` goes to the thread pool.
-#[cfg(feature = "parallel")]
+/// Whether a loop over `items` goes to the thread pool (never without the
+/// feature).
 pub(crate) fn goes_parallel(parallel: bool, items: usize) -> bool {
-    parallel && items >= crate::constants::PARALLEL_MIN_ITEMS
+    cfg!(feature = "parallel") && parallel && items >= crate::constants::PARALLEL_MIN_ITEMS
+}
+
+/// Runs `a` and `b`: side by side on the thread pool when `parallel` (and
+/// the feature is on), else one after the other.
+pub(crate) fn join<A: Send, B: Send>(
+    parallel: bool,
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        return rayon::join(a, b);
+    }
+    let _ = parallel;
+    (a(), b())
 }
 
 /// Calls `f(offset, chunk)` over `parts`: over chunks of at most

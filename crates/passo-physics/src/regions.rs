@@ -26,6 +26,7 @@ use crate::constraint::Constraint;
 use crate::lanes::Bodies;
 #[cfg(feature = "parallel")]
 use crate::lanes::View;
+use crate::parallel::{goes_parallel, join};
 #[cfg(feature = "parallel")]
 use crate::solver::BodyState;
 use crate::solver::SolverBodies;
@@ -52,9 +53,9 @@ pub(crate) struct ContactRegions {
     picked: [Vec<u32>; 3],
     /// The same for the second half of the rows, when the halves are
     /// picked side by side.
-    #[cfg(feature = "parallel")]
     picked_tail: [Vec<u32>; 3],
-    /// Per dynamic body: 1 if a contact moves it, 2 if one only reads it.
+    /// Per dynamic body: 1 if a contact moves it, 2 if one only reads it
+    /// (empty when no row holds a body).
     use_of: Vec<u8>,
 }
 
@@ -107,43 +108,30 @@ impl ContactRegions {
             "a row holds a dynamic body"
         );
         let (region, use_of) = (&self.region[..], &self.use_of[..]);
-        let pick = |rows: &[Constraint], first: usize, picked: &mut [Vec<u32>; 3]| {
-            pick(rows, first, region, use_of, picked);
-        };
-        #[cfg(feature = "parallel")]
-        if crate::parallel::goes_parallel(parallel, rows.len()) {
+        if goes_parallel(parallel, rows.len()) {
             let (head, tail) = rows.split_at(rows.len() / 2);
             let (picked, picked_tail) = (&mut self.picked, &mut self.picked_tail);
-            rayon::join(
-                || pick(head, 0, picked),
-                || pick(tail, head.len(), picked_tail),
+            join(
+                true,
+                || pick(head, 0, region, use_of, picked),
+                || pick(tail, head.len(), region, use_of, picked_tail),
             );
             for (g, t) in picked.iter_mut().zip(&*picked_tail) {
                 g.extend_from_slice(t);
             }
         } else {
-            pick(rows, 0, &mut self.picked);
+            pick(rows, 0, region, use_of, &mut self.picked);
         }
-        #[cfg(not(feature = "parallel"))]
-        pick(rows, 0, &mut self.picked);
         let [first, second, between] = &mut self.groups;
         let colour = |colouring: &mut Colouring, picked: &[u32]| {
             colouring.build(rows, picked.iter().map(|&i| i as usize), bodies, deep);
         };
         let [in_first, in_second, in_between] = &self.picked;
-        #[cfg(feature = "parallel")]
-        if parallel {
-            rayon::join(|| colour(first, in_first), || colour(second, in_second));
-        } else {
-            colour(first, in_first);
-            colour(second, in_second);
-        }
-        #[cfg(not(feature = "parallel"))]
-        {
-            let _ = parallel;
-            colour(first, in_first);
-            colour(second, in_second);
-        }
+        join(
+            parallel,
+            || colour(first, in_first),
+            || colour(second, in_second),
+        );
         colour(between, in_between);
         // What makes the regions safe to run side by side (see `Shared`):
         // a region's blocks move only its bodies, and read only those and

@@ -57,8 +57,8 @@ struct Saved {
     bytes: usize,
 }
 
-/// The last states of a scene, newest last, in reused buffers: once full,
-/// saving a tick allocates nothing.
+/// The last states of a scene, newest last, in reused buffers: while the
+/// ring keeps as many states as before, saving a tick allocates nothing.
 #[derive(Debug, Default)]
 struct Rewind {
     states: VecDeque<Saved>,
@@ -73,11 +73,11 @@ struct Rewind {
 const REWIND_TICKS: usize = 600;
 /// ...and at least this many, whatever the size...
 const REWIND_MIN_TICKS: usize = 10;
-/// ...within this many bytes of snapshots, as measured when each is
-/// kept; the next is taken to hold what the newest did (before the first,
-/// [`BYTES_PER_BODY`] a body: a settled pile of 10 000 circles took 930).
+/// ...within about this many bytes of snapshots, as each measured when it
+/// was kept; the next is taken to hold what the newest did (give or take a
+/// state: a reused buffer may be larger). A settled pile of 10 000 circles
+/// takes 930 bytes a body.
 pub const REWIND_BYTES: usize = 128 << 20;
-const BYTES_PER_BODY: usize = 512;
 
 impl SceneState {
     /// The state of a scene file, with interpolated drawing on and the
@@ -209,16 +209,11 @@ impl SceneState {
 
     /// Keeps the state of every lane as it is now, to rewind to: before
     /// each tick while rewinding is possible. Only the last ticks are kept
-    /// (10 s at 60 Hz, fewer for big scenes: [`REWIND_BYTES`] at the most,
-    /// as the newest state measures, or 10 ticks). Returns how many of the
-    /// oldest states made room.
+    /// (10 s at 60 Hz, fewer for big scenes: about [`REWIND_BYTES`], or 10
+    /// ticks). Returns how many of the oldest states made room.
     pub fn save_for_rewind(&mut self) -> usize {
-        let bodies: usize = self.lanes.iter().map(|l| l.world.len()).sum();
         let r = &mut self.rewind;
-        let next = r
-            .states
-            .back()
-            .map_or(bodies * BYTES_PER_BODY, |newest| newest.bytes);
+        let next = r.states.back().map_or(0, |newest| newest.bytes);
         let mut held: usize = r.states.iter().map(|s| s.bytes).sum();
         let mut dropped = 0;
         while r.states.len() >= REWIND_TICKS
