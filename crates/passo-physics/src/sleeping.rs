@@ -3,8 +3,9 @@
 //! A pile that has settled is solved again every step for nothing: the
 //! minimum-speed snap already holds its velocities at exactly zero, and the
 //! solver only confirms that the weights are carried. So the contact stage
-//! groups dynamic bodies into islands (bodies joined by touching contacts)
-//! and puts an island to sleep when every body in it has been slower than
+//! groups dynamic bodies into islands (bodies joined by touching contacts,
+//! or by contacts within the slop, where one would wake the other) and
+//! puts an island to sleep when every body in it has been slower than
 //! [`SLEEP_SPEED`](crate::constants::SLEEP_SPEED) for
 //! [`TIME_TO_SLEEP`](crate::constants::TIME_TO_SLEEP). A sleeping body keeps its
 //! position, has zero velocity and is not integrated. Its contacts with
