@@ -147,9 +147,7 @@ impl EventTracker {
         });
         std::mem::swap(&mut self.sensors, &mut self.sensors_prev);
     }
-}
 
-impl EventTracker {
     /// The cache and the touching pairs of `solved` and `asleep`, one
     /// contact after the other. Every pair is written to `touching` and
     /// only those touching are kept: no branch on whether each one touches,
