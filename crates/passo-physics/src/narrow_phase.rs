@@ -4,7 +4,7 @@
 
 use crate::bodies::{Colliders, pair_order};
 use crate::collider::ColliderRef;
-use crate::constants::ONE_WAY_DEPTH;
+use crate::constants::{ONE_WAY_DEPTH, SPECULATIVE_DISTANCE};
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::filter::CollisionFilter;
 use crate::manifold::{Faces, Manifold, collide_seamless};
@@ -108,11 +108,11 @@ impl Narrow<'_> {
     pub(crate) fn pair(&self, pa: u32, pb: ColliderRef) -> Outcome {
         let margins = &self.proxies.margins;
         let a_body = ColliderRef::dynamic(self.proxies.body[pa as usize]);
-        let margin = margins[pa as usize]
-            + match pb.dynamic_index() {
-                Some(q) => margins[q],
-                None => ProxyMargin::STATIC,
-            };
+        let (margin_a, margin_b) = (
+            margins[pa as usize],
+            pb.dynamic_index()
+                .map_or(ProxyMargin::STATIC, |q| margins[q]),
+        );
         let (ca, cb) = (self.collider(a_body), self.collider(self.body_of(pb)));
         if !ca.filter.allows(&cb.filter) || (ca.sensor && cb.sensor) {
             return Outcome::Skip;
@@ -135,11 +135,12 @@ impl Narrow<'_> {
         // A static or kinematic body is always B (two of them never meet);
         // otherwise the lower id is A, so a contact's orientation does not
         // depend on storage order.
-        let (ca, cb) = if cb.immovable || (!ca.immovable && ca.id.index() <= cb.id.index()) {
-            (ca, cb)
-        } else {
-            (cb, ca)
-        };
+        let ((ca, margin_a), (cb, margin_b)) =
+            if cb.immovable || (!ca.immovable && ca.id.index() <= cb.id.index()) {
+                ((ca, margin_a), (cb, margin_b))
+            } else {
+                ((cb, margin_b), (ca, margin_a))
+            };
         let position = |c: &Collider| self.bodies.position(c.body);
         // Seamless ground: B's faces that a neighbour covers.
         let faces = if cb.immovable {
@@ -148,7 +149,8 @@ impl Narrow<'_> {
             Faces::default()
         };
         let (pa, pb) = (position(&ca), position(&cb));
-        match collide_seamless(&ca.shape, pa, &cb.shape, pb, margin, faces) {
+        match collide_seamless(&ca.shape, pa, &cb.shape, pb, margin_a + margin_b, faces) {
+            Some(m) if !self.may_close(&ca, margin_a, &cb, margin_b, &m) => Outcome::Skip,
             Some(m) if !one_way_allows(&ca, &cb, &m) => Outcome::Skip,
             Some(mut m) => {
                 // Two dynamic bodies on exactly the same spot (spawned
@@ -165,6 +167,44 @@ impl Narrow<'_> {
             }
             None => Outcome::Skip,
         }
+    }
+}
+
+impl Narrow<'_> {
+    /// Whether the gap of `m` between `a` and `b` (with proxy margins
+    /// `margin_a` and `margin_b`) may close within the step: a contact is
+    /// kept within [`SPECULATIVE_DISTANCE`], or as far as the two bodies
+    /// can move towards each other along the normal, each at its speed
+    /// now plus what gravity adds this step, and neither farther than its
+    /// margin. The margins count each body's speed in any direction, so
+    /// that the broad phase finds every pair a body may reach; two bodies
+    /// falling side by side have no gap to close, and would otherwise make
+    /// a contact that never acts. (Either body may be stopped in the step:
+    /// each one's own speed counts, not the difference.)
+    #[inline(always)]
+    fn may_close(
+        &self,
+        a: &Collider,
+        margin_a: f32,
+        b: &Collider,
+        margin_b: f32,
+        m: &Manifold,
+    ) -> bool {
+        if m.separation <= SPECULATIVE_DISTANCE {
+            return true;
+        }
+        let ProxyMargin { fall, dt, .. } = self.proxies.margin;
+        let vel = |c: &Collider| {
+            c.body
+                .dynamic_index()
+                .map_or(Vec2::ZERO, |i| self.bodies.dynamic.vel[i])
+        };
+        let travel = |speed: f32, margin: f32| {
+            ((speed.max(0.0) + fall) * dt).min(margin - 0.5 * SPECULATIVE_DISTANCE)
+        };
+        let reach =
+            travel(vel(a).dot(m.normal), margin_a) + travel(-vel(b).dot(m.normal), margin_b);
+        m.separation <= SPECULATIVE_DISTANCE + reach
     }
 }
 

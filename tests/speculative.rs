@@ -1,0 +1,73 @@
+//! Speculative contacts: a pair becomes a contact before its bodies touch
+//! only if they can close the gap within the step. Each body's proxy is
+//! grown by its speed in any direction, so the broad phase finds every
+//! pair it may reach; the narrow phase then keeps a contact as far as the
+//! two bodies move towards each other along the pair's normal (each at its
+//! own speed, since either may be stopped during the step).
+
+use passo_physics::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE};
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, BodyId, Shape, World};
+use passo_tests::{add_ground, max_penetration};
+
+const DT: f32 = 1.0 / 60.0;
+
+fn circle(world: &mut World, at: Vec2, velocity: Vec2) -> BodyId {
+    let def = BodyDef::new_dynamic(at, Shape::circle(0.2)).with_velocity(velocity);
+    world.add_body(def).unwrap()
+}
+
+fn contacts_between(world: &World, a: BodyId, b: BodyId) -> usize {
+    world
+        .contacts_of(a)
+        .filter(|c| c.a == b || c.b == b)
+        .count()
+}
+
+#[test]
+fn bodies_falling_side_by_side_make_no_contact_and_one_above_another_do() {
+    let mut world = World::default();
+    let fall = Vec2::new(0.0, -10.0);
+    // Gaps of 15 cm, far more than the speculative distance (2 cm) and
+    // less than a step's fall (17 cm).
+    let left = circle(&mut world, Vec2::new(0.0, 50.0), fall);
+    let right = circle(&mut world, Vec2::new(0.55, 50.0), fall);
+    let below = circle(&mut world, Vec2::new(0.0, 49.45), fall);
+    world.step(DT);
+    // Side by side nothing closes the gap: no contact.
+    assert_eq!(contacts_between(&world, left, right), 0);
+    // One above another the lower one may be stopped within the step, and
+    // the upper one then closes the gap at its own speed: a contact.
+    assert_eq!(contacts_between(&world, left, below), 1);
+    // Neither contact acted: the three still fall together, 15 cm apart.
+    let x = |id| world.body(id).unwrap().position;
+    assert_eq!(x(left).y, x(right).y);
+    assert!((x(left).y - x(below).y - 0.55).abs() < 1e-4);
+}
+
+#[test]
+fn a_column_falling_together_lands_on_the_ground_without_sinking_in() {
+    // Ten circles falling at 12 m/s, 15 cm apart: the lowest stops on the
+    // ground in the middle of a step, and every one above it closes its gap
+    // within a step at its own speed. Each contact above was made
+    // speculatively while the column still fell together.
+    let mut world = World::default();
+    add_ground(&mut world, 20.0);
+    let fall = Vec2::new(0.0, -12.0);
+    for i in 0..10 {
+        circle(&mut world, Vec2::new(0.0, 1.0 + 0.55 * i as f32), fall);
+    }
+    let mut deepest = 0.0f32;
+    for _ in 0..120 {
+        world.step(DT);
+        deepest = deepest.max(max_penetration(&world));
+    }
+    assert!(
+        deepest < SPECULATIVE_DISTANCE,
+        "sank {} mm into each other",
+        deepest * 1e3
+    );
+    // At rest at the end, within the slop of touching.
+    let last = max_penetration(&world);
+    assert!(last <= 2.0 * LINEAR_SLOP, "{} mm", last * 1e3);
+}
