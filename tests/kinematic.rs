@@ -385,7 +385,12 @@ fn a_platform_swinging_sideways_carries_its_rider_with_coulomb_s_lag() {
         let diff = (f64::from(got) - want).abs();
         assert!(diff < 1e-5, "tick {tick}: lags {got} m, Coulomb {want} m");
     }
-    assert!(most(&expected) <= most(&exact), "{} {}", most(&expected), most(&exact));
+    assert!(
+        most(&expected) <= most(&exact),
+        "{} {}",
+        most(&expected),
+        most(&exact)
+    );
     assert!((0.0175..0.018).contains(&most(&exact)), "{}", most(&exact));
     // Each swing takes pi s (188.5 ticks); near its end the lag is gone.
     for swing in [1.0f32, 2.0] {

@@ -24,7 +24,9 @@
 //! The cell size follows the bodies: twice their mean proxy size, so a
 //! typical proxy covers at most four cells. The rare proxy much larger than
 //! that (over [`LARGE_PROXY_CELLS`] cells across) is tested against every
-//! proxy instead of being binned into hundreds of cells.
+//! proxy instead of being binned into hundreds of cells. A cell holding
+//! more than [`CROWDED_CELL`] + 1 proxies is swept along x instead, with
+//! its proxies' pairs bounded.
 //!
 //! A pair sharing several cells is reported once, by the cell holding the
 //! lower-left corner of the two boxes' intersection. Output order depends
@@ -41,14 +43,22 @@ use glam::Vec2;
 /// step with 20 such platforms, `passo bench platforms --above`).
 pub(crate) const LARGE_PROXY_CELLS: i32 = 16;
 
-/// In a grid bucket holding more than this many proxies plus one (bodies
-/// spawned on one spot, a crushed pile), each proxy is paired with only
-/// the next this many of the bucket: 64. Without the bound, `n` bodies on
-/// one spot make `n²/2` pairs (10 000 circles: 50 million, 14 GB); with it
-/// at most `64 n`, and the pile is pushed apart by the contacts it has
-/// until no bucket is crowded. Ordinary scenes hold a few proxies per
-/// bucket and never meet it.
+/// Pairs a proxy may have in one grid cell: 64. A cell holding more than
+/// this many proxies plus one is crowded: bodies spawned on one spot, a
+/// crushed pile, or a dense stream of fast bodies whose long proxies make
+/// the cells large. Its proxies are swept along x (in order of their left
+/// edges), so each meets only those that overlap it in x, and each is
+/// paired with at most this many of the proxies after it. Without the
+/// bound, `n` bodies on one spot make `n²/2` pairs (10 000 circles: 50
+/// million, 14 GB); with it at most `64 n`, and the pile is pushed apart by
+/// the contacts it has until no cell is crowded. Ordinary scenes hold a few
+/// proxies per cell and never meet it.
 pub(crate) const CROWDED_CELL: usize = 64;
+
+/// Proxies of a crowded cell that the sweep looks at after each one, at
+/// most: 16 × [`CROWDED_CELL`]. Keeps a cell's search linear in its
+/// proxies even when many overlap one another in x and not in y.
+const CROWDED_SWEEP: usize = 16 * CROWDED_CELL;
 
 /// The corner grid spans at most this many cells per proxy (plus 1 024),
 /// before its padding (a column each side and a row on top, which at most
@@ -69,7 +79,7 @@ pub(crate) struct BroadPhase {
     sorted: Vec<Entry>,
     starts: Vec<u32>,
     large: Vec<u32>,
-    /// Buckets of the last search holding more than `CROWDED_CELL + 1`
+    /// Cells of the last search holding more than `CROWDED_CELL + 1`
     /// proxies, whose pairs were bounded.
     pub(crate) crowded: usize,
     /// Corner grid: each proxy's cell, row by row.
@@ -173,31 +183,77 @@ impl BroadPhase {
             self.starts[0] = 0;
         }
 
-        // The pairs of the buckets in `range`, in bucket order. In a crowded
-        // bucket (bodies piled on one spot) each entry meets only the next
-        // `CROWDED_CELL` ones: pairs and time stay linear in the bodies.
+        // A bucket holding more than `CROWDED_CELL + 1` entries is sorted
+        // by cell, then by the proxies' left edges (then proxy): several
+        // cells may share a bucket, and each cell's entries are then side by
+        // side, ready for a sweep along x. Ordinary scenes have no such
+        // bucket.
+        self.crowded = 0;
+        let left = |e: &Entry| proxies[e.proxy as usize].min.x;
+        for k in 0..table {
+            let run = &mut self.sorted[self.starts[k] as usize..self.starts[k + 1] as usize];
+            if run.len() > CROWDED_CELL + 1 {
+                run.sort_unstable_by(|a, b| {
+                    (a.cell.cmp(&b.cell))
+                        .then(left(a).total_cmp(&left(b)))
+                        .then(a.proxy.cmp(&b.proxy))
+                });
+                self.crowded += run
+                    .chunk_by(|a, b| a.cell == b.cell)
+                    .filter(|cell| cell.len() > CROWDED_CELL + 1)
+                    .count();
+            }
+        }
+
+        // The pairs of the buckets in `range`, in bucket order.
         let (sorted, starts) = (&self.sorted, &self.starts);
         let search = |range: std::ops::Range<usize>, out: &mut Vec<(u32, u32)>| {
             for k in range {
                 let run = &sorted[starts[k] as usize..starts[k + 1] as usize];
+                let crowded = run.len() > CROWDED_CELL + 1;
                 for (x, ea) in run.iter().enumerate() {
-                    let end = (x + 1 + CROWDED_CELL).min(run.len());
-                    for eb in &run[x + 1..end] {
-                        if ea.cell != eb.cell || both_asleep(ea.proxy, eb.proxy) {
+                    let a = &proxies[ea.proxy as usize];
+                    let mut others = &run[x + 1..];
+                    // In a crowded cell: the proxies the sweep may look at,
+                    // and this proxy's share of its `CROWDED_CELL` pairs
+                    // (split evenly over the cells it covers, so that it
+                    // makes at most that many in all).
+                    let mut share = usize::MAX;
+                    if crowded {
+                        others = &others[..others.len().min(CROWDED_SWEEP)];
+                        let (lo, hi) = (cell_of(a.min), cell_of(a.max));
+                        let span = |lo: i32, hi: i32| (i64::from(hi) - i64::from(lo) + 1) as usize;
+                        let cells = span(lo.0, hi.0) * span(lo.1, hi.1);
+                        share = (CROWDED_CELL / cells).max(1);
+                    }
+                    let (mut met, mut kept) = (0, 0);
+                    for eb in others {
+                        let b = &proxies[eb.proxy as usize];
+                        if crowded && (eb.cell != ea.cell || b.min.x > a.max.x) {
+                            // Sorted: the cell's entries are over, or start
+                            // right of A and so does every later one.
+                            break;
+                        }
+                        if eb.cell != ea.cell || both_asleep(ea.proxy, eb.proxy) {
                             continue; // a hash collision between two cells, or resting
                         }
-                        let (a, b) = (&proxies[ea.proxy as usize], &proxies[eb.proxy as usize]);
-                        if a.overlaps(b) && cell_of(a.min.max(b.min)) == ea.cell {
+                        if !a.overlaps(b) {
+                            continue;
+                        }
+                        // Reported in the cell of the overlap's lower-left
+                        // corner only.
+                        if cell_of(a.min.max(b.min)) == ea.cell {
                             out.push(ordered(ea.proxy, eb.proxy));
+                            kept += 1;
+                        }
+                        met += 1;
+                        if kept == share || met == CROWDED_CELL {
+                            break; // a crowded cell: enough for this proxy
                         }
                     }
                 }
             }
         };
-        self.crowded = starts
-            .windows(2)
-            .filter(|w| (w[1] - w[0]) as usize > CROWDED_CELL + 1)
-            .count();
         #[cfg(feature = "parallel")]
         if crate::parallel::goes_parallel(parallel, self.entries.len()) {
             // Runs of buckets holding about PARALLEL_CHUNK entries each.
@@ -526,6 +582,71 @@ mod tests {
                 min: Vec2::new(x, y),
                 max: Vec2::new(x + w, y + h),
             })
+    }
+
+    #[test]
+    fn cells_sharing_a_crowded_bucket_keep_every_pair() {
+        // Seventy cells far apart whose hashes share one bucket, each with
+        // two small overlapping proxies: 140 entries in the bucket, but
+        // two a cell. The first proxies of every cell come first, so each
+        // proxy's partner is seventy entries after it in the bucket's
+        // (proxy) order, beyond a bound of the bucket's next 64 entries.
+        let size = 0.5;
+        let cell = 2.0 * size;
+        let mask = (2 * 140usize).next_power_of_two() - 1;
+        let cells: Vec<(i32, i32)> = (0..)
+            .map(|i| (i % 1000 * 7, i / 1000 * 7))
+            .filter(|&c| bucket(c, mask) == 0)
+            .take(70)
+            .collect();
+        let at = |c: (i32, i32), dx: f32| {
+            let min = Vec2::new(c.0 as f32 * cell + 0.1 + dx, c.1 as f32 * cell + 0.1);
+            Aabb {
+                min,
+                max: min + Vec2::splat(size),
+            }
+        };
+        let proxies: Vec<Aabb> = [0.0, 0.2]
+            .iter()
+            .flat_map(|&dx| cells.iter().map(move |&c| at(c, dx)))
+            .collect();
+        let mut grid = BroadPhase::default();
+        let mut pairs = Vec::new();
+        grid.find_pairs(&proxies, &[], false, &mut pairs);
+        pairs.sort_unstable();
+        assert_eq!(pairs, brute_force(&proxies));
+        assert_eq!(pairs.len(), 70);
+        assert_eq!(grid.crowded, 0, "no cell is crowded");
+    }
+
+    #[test]
+    fn a_crowded_cell_of_a_dense_stream_keeps_every_pair() {
+        // A stream of fast bodies: proxies 0.42 m wide and 2 m tall (long
+        // with their travel), 0.4 m apart, each overlapping 26 others. The
+        // cells (twice the mean proxy size) hold over a hundred proxies each,
+        // but no proxy has more than `CROWDED_CELL` pairs: every pair is
+        // found. They are stored in a scrambled order, as a scene's bodies
+        // may be. One proxy far away sends the search to the hashed grid.
+        let mut proxies: Vec<Aabb> = (0..900)
+            .map(|i| {
+                let at = i * 7919 % 900;
+                let min = Vec2::new((at % 30) as f32 * 0.4, (at / 30) as f32 * 0.4);
+                Aabb {
+                    min,
+                    max: min + Vec2::new(0.42, 2.0),
+                }
+            })
+            .collect();
+        proxies.push(Aabb {
+            min: Vec2::splat(1e5),
+            max: Vec2::splat(1e5 + 2.0),
+        });
+        let mut grid = BroadPhase::default();
+        let mut pairs = Vec::new();
+        grid.find_pairs(&proxies, &[], false, &mut pairs);
+        assert!(grid.crowded > 0, "the cells are crowded");
+        pairs.sort_unstable();
+        assert_eq!(pairs, brute_force(&proxies));
     }
 
     proptest! {

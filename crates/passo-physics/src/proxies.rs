@@ -393,7 +393,7 @@ impl Proxies {
         marked_asleep(&self.asleep, p)
     }
 
-    /// Crowded grid buckets in the last pair search (see `CROWDED_CELL`).
+    /// Crowded grid cells in the last pair search (see `CROWDED_CELL`).
     pub(crate) fn crowded(&self) -> usize {
         self.grid.crowded
     }
