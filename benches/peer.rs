@@ -16,9 +16,14 @@
 //! runs the same rain too, in the same run: fixed rotation, sleeping off
 //! for its main column, 4 substeps, friction 0.6, restitution 0.
 //!
+//! With the `parallel` feature, one more column: Passo awake on both cores
+//! (its thread pool), the same ticks as the one-thread columns, so that it
+//! compares with Box2D's one-thread time of the same run.
+//!
 //! Run: `cargo run --release -p passo-benches --features rapier --bin peer [N | pN ...]`
 //! (N: a rain of N circles; pN: a pyramid of base N; `--features rapier,box2d`
-//! or `rapier,box2d-avx2` for the Box2D columns).
+//! or `rapier,box2d-avx2` for the Box2D columns, and `parallel` for the
+//! pool's column).
 
 use passo_benches::{pyramid_world, rain_world, time_steps, with_sleeping};
 use passo_physics::{BodyKind, Shape, World};
@@ -197,24 +202,38 @@ fn main() {
         v[v.len() / 2]
     };
     println!(
-        "| scene | Passo ms/step (awake) | rapier2d ms/step (awake) | speed-up | Passo max penetration | rapier2d max penetration | Passo ms/step (sleeping on) | rapier2d ms/step (sleeping on) |{}",
+        "| scene | Passo ms/step (awake) | rapier2d ms/step (awake) | speed-up | Passo max penetration | rapier2d max penetration | Passo ms/step (sleeping on) | rapier2d ms/step (sleeping on) |{}{}",
         if cfg!(feature = "box2d") {
             " Box2D v3 ms/step (awake) | Box2D v3 max penetration | Box2D v3 ms/step (sleeping on) |"
+        } else {
+            ""
+        },
+        if cfg!(feature = "parallel") {
+            " Passo ms/step (awake, both cores) |"
         } else {
             ""
         }
     );
     println!(
-        "|---:|---:|---:|---:|---:|---:|---:|---:|{}",
+        "|---:|---:|---:|---:|---:|---:|---:|---:|{}{}",
         if cfg!(feature = "box2d") {
             "---:|---:|---:|"
+        } else {
+            ""
+        },
+        if cfg!(feature = "parallel") {
+            "---:|"
         } else {
             ""
         }
     );
     for (n, start) in scenes {
+        // One thread for every Passo column but the pool's.
+        let mut start = start;
+        start.set_parallel(false);
         let awake_start = with_sleeping(&start, false);
         let (mut p, mut ps, mut r, mut s) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let mut pool = Vec::<f64>::new();
         let (mut passo_pen, mut rapier_pen) = (0.0, 0.0);
         let (mut b, mut bs, mut box2d_pen) = (Vec::<f64>::new(), Vec::<f64>::new(), 0.0f32);
         for _ in 0..3 {
@@ -229,6 +248,11 @@ fn main() {
             let mut passo = awake_start.clone();
             p.push(time_steps(ticks, || passo.step(1.0 / 60.0)).mean_ms);
             passo_pen = passo.max_penetration();
+            if cfg!(feature = "parallel") {
+                let mut passo = awake_start.clone();
+                passo.set_parallel(true);
+                pool.push(time_steps(ticks, || passo.step(1.0 / 60.0)).mean_ms);
+            }
             let mut passo_sleepy = start.clone();
             ps.push(time_steps(ticks, || passo_sleepy.step(1.0 / 60.0)).mean_ms);
             let mut awake = rapier_copy(&start, false);
@@ -244,8 +268,13 @@ fn main() {
             let (b, bs) = (median(b), median(bs));
             format!(" {b:.2} | {:.1} mm | {bs:.2} |", box2d_pen * 1e3)
         };
+        let pool = if pool.is_empty() {
+            String::new()
+        } else {
+            format!(" {:.2} |", median(pool))
+        };
         println!(
-            "| {n} | {p:.2} | {r:.2} | {:.2}× | {:.1} mm | {:.1} mm | {ps:.2} | {s:.2} |{box2d}",
+            "| {n} | {p:.2} | {r:.2} | {:.2}× | {:.1} mm | {:.1} mm | {ps:.2} | {s:.2} |{box2d}{pool}",
             r / p,
             passo_pen * 1e3,
             rapier_pen * 1e3,
