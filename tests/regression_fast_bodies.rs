@@ -81,9 +81,9 @@ fn a_rain_at_one_hertz_keeps_bounded_contacts_and_stays_above_the_floor() {
     let mut lowest = f32::MAX;
     for _ in 0..30 {
         world.step(1.0);
-        // Each circle meets those within two reaches (0.8 m) and a
+        // Each circle meets at most those within two reaches (0.8 m) and a
         // diameter. One-second steps squeeze the pile: its busiest step has
-        // 43 contacts per circle (17 200 for 400), all of its pairs found.
+        // at most 50 contacts per circle.
         // (Until the broad phase's corner grid, crowded grid buckets capped
         // that step at 13 805.) Linear in the bodies, where a fast body once
         // met everything along its path.

@@ -1,13 +1,14 @@
 //! Speculative contacts: a pair becomes a contact before its bodies touch
-//! only if they can close the gap within the step. Each body's proxy is
-//! grown by its speed in any direction, so the broad phase finds every
-//! pair it may reach; the narrow phase then keeps a contact as far as the
-//! two bodies move towards each other along the pair's normal (each at its
-//! own speed, since either may be stopped during the step).
+//! only if they can close the gap within the step. Between two dynamic
+//! bodies each body's box in the broad phase is swept along its travel,
+//! and the narrow phase keeps a contact as far as the two move towards
+//! each other along the pair's normal (each at its own speed, since either
+//! may be stopped during the step). A static or kinematic body is met in
+//! every direction as far as the other body's travel reaches.
 
 use passo_physics::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE};
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, BodyId, Shape, World};
+use passo_physics::{BodyDef, BodyId, ForceModels, Shape, World, WorldSettings};
 use passo_tests::{add_ground, max_penetration};
 
 const DT: f32 = 1.0 / 60.0;
@@ -70,4 +71,56 @@ fn a_column_falling_together_lands_on_the_ground_without_sinking_in() {
     // At rest at the end, within the slop of touching.
     let last = max_penetration(&world);
     assert!(last <= 2.0 * LINEAR_SLOP, "{} mm", last * 1e3);
+}
+
+#[test]
+fn a_body_keeps_its_speculative_contacts_with_walls_whichever_way_it_moves() {
+    // A ball flying level at 20 m/s, 5 cm above the ground and 5 cm below
+    // a kinematic ceiling: it moves along both, yet something it glances
+    // off on its way could turn it into either within the step. A static
+    // or kinematic body is met in every direction as far as the ball's
+    // travel reaches, so both are contacts (a thin wall is never passed).
+    let mut world = World::default();
+    let ground = add_ground(&mut world, 100.0);
+    let ceiling = world
+        .add_body(BodyDef::new_kinematic(
+            Vec2::new(0.0, 0.75),
+            Shape::rect(10.0, 0.5),
+            Vec2::ZERO,
+        ))
+        .unwrap();
+    let ball = circle(&mut world, Vec2::new(0.0, 0.25), Vec2::new(20.0, 0.0));
+    world.step(DT);
+    assert_eq!(contacts_between(&world, ball, ground), 1);
+    assert_eq!(contacts_between(&world, ball, ceiling), 1);
+    // Neither acted: the ball flew on.
+    assert!(world.body(ball).unwrap().position.x > 0.3);
+}
+
+#[test]
+fn a_pair_whose_bodies_do_not_approach_along_its_normal_is_no_contact() {
+    let weightless = || {
+        World::new(WorldSettings {
+            forces: ForceModels::none(),
+            ..Default::default()
+        })
+        .unwrap()
+    };
+    // B passes A along the tangent of their 10 cm gap at 10 m/s: the
+    // broad phase pairs them (B's box is swept towards A's), but neither
+    // closes the gap along the normal.
+    let d = 0.5 / std::f32::consts::SQRT_2;
+    let mut world = weightless();
+    let a = circle(&mut world, Vec2::ZERO, Vec2::ZERO);
+    let b = circle(&mut world, Vec2::new(d, -d), Vec2::new(7.07, 7.07));
+    world.step(DT);
+    assert_eq!(contacts_between(&world, a, b), 0);
+    // B (the higher id, so the pair's B) comes straight at A over the same
+    // gap: a contact, which stops B at A's surface.
+    let mut world = weightless();
+    let a = circle(&mut world, Vec2::ZERO, Vec2::ZERO);
+    let b = circle(&mut world, Vec2::new(0.5, 0.0), Vec2::new(-10.0, 0.0));
+    world.step(DT);
+    assert_eq!(contacts_between(&world, a, b), 1);
+    assert!(max_penetration(&world) <= LINEAR_SLOP);
 }

@@ -93,6 +93,7 @@ impl ContactWorld {
         self.proxies.begin(dynamic, statics, margin);
         self.sleeping.begin(dynamic, any_asleep, &margin);
         self.add_proxies(dynamic, any_asleep, step.parallel && step.all_shaped);
+        self.proxies.widen_kinematic(dynamic);
         self.proxies.find_pairs(step.parallel);
         if any_asleep {
             self.pair_with_sleepers(dynamic);

@@ -1,7 +1,8 @@
 //! Continuous collision beyond the speculative reach: fast bodies swept
 //! along their paths and stopped at their first impact.
 //!
-//! Speculative contacts stop a body at anything it can reach this step,
+//! Speculative contacts stop a body at any static or kinematic body it can
+//! reach this step in any direction, and at a dynamic body it heads for,
 //! but they are looked for only up to its reach ([`SPECULATIVE_REACH`]
 //! times its smallest half extent), so the pairs of a scene stay bounded at
 //! any speed and any step. A body that moved farther than its contacts

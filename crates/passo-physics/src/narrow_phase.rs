@@ -176,11 +176,12 @@ impl Narrow<'_> {
     /// kept within [`SPECULATIVE_DISTANCE`], or as far as the two bodies
     /// can move towards each other along the normal, each at its speed
     /// now plus what gravity adds this step, and neither farther than its
-    /// margin. The margins count each body's speed in any direction, so
-    /// that the broad phase finds every pair a body may reach; two bodies
-    /// falling side by side have no gap to close, and would otherwise make
-    /// a contact that never acts. (Either body may be stopped in the step:
-    /// each one's own speed counts, not the difference.)
+    /// margin. Two bodies falling side by side have no gap to close, and
+    /// would otherwise make a contact that never acts (the margins count
+    /// each body's speed in any direction). Either body may be stopped in
+    /// the step: each one's own speed counts, not the difference. A body
+    /// turned by a contact during the step meets another dynamic body it
+    /// was not heading for at the next step, as one beyond its reach does.
     #[inline(always)]
     fn may_close(
         &self,
@@ -190,7 +191,11 @@ impl Narrow<'_> {
         margin_b: f32,
         m: &Manifold,
     ) -> bool {
-        if m.separation <= SPECULATIVE_DISTANCE {
+        // A static or kinematic B (always B when there is one) is met
+        // whichever way a contact turns A during the step, as far as A's
+        // margin reaches: a thin wall stops a body that glances off
+        // something on its way.
+        if m.separation <= SPECULATIVE_DISTANCE || b.immovable {
             return true;
         }
         let ProxyMargin { fall, dt, .. } = self.proxies.margin;

@@ -59,11 +59,12 @@ impl ProxyMargin {
     }
 
     /// The proxy box of dynamic body `i` and its margin; `None` if it has
-    /// no shape. A kinematic body is never swept (it goes where it is
-    /// told), so its proxy covers its whole travel: a fast wall meets the
-    /// resting bodies in its way. A level has few of them.
+    /// no shape. A kinematic body is never swept by continuous collision
+    /// (it goes where it is told), so its proxy covers its whole travel: a
+    /// fast wall meets the resting bodies in its way. A level has few of
+    /// them.
     #[inline(always)]
-    fn proxy(&self, dynamic: &DynamicBodies, i: usize) -> Option<(Aabb, f32)> {
+    fn proxy(&self, dynamic: &DynamicBodies, i: usize) -> Option<Proxy> {
         let meta = &dynamic.meta[i];
         let shape = meta.shape?;
         let velocity = dynamic.vel[i];
@@ -76,7 +77,11 @@ impl ProxyMargin {
             (self.of(velocity, &shape), reach(&shape))
         };
         let aabb = Aabb::from_centre(dynamic.pos[i], shape.half_extents());
-        Some((self.swept(aabb, velocity, reach), margin))
+        Some(Proxy {
+            swept: self.swept(aabb, velocity, reach),
+            around: aabb.grown(margin),
+            margin,
+        })
     }
 
     /// `aabb` grown by half the speculative distance all round, by what
@@ -106,6 +111,14 @@ impl ProxyMargin {
 
     /// The margin a static body adds to a pair.
     pub(crate) const STATIC: f32 = 0.5 * SPECULATIVE_DISTANCE;
+}
+
+/// A body's boxes and margin this step (see [`ProxyMargin`]).
+#[derive(Clone, Copy, Debug)]
+struct Proxy {
+    swept: Aabb,
+    around: Aabb,
+    margin: f32,
 }
 
 /// How far the speculative contacts of a body of `shape` reach along its
@@ -147,8 +160,15 @@ pub(crate) struct Proxies {
     pub body: Vec<u32>,
     /// Proxy -> its body's slot (`BodyId` index), which orders pairs.
     pub slot: Vec<u32>,
-    /// Proxy boxes, grown by their margins.
+    /// Proxy boxes in the grid: swept along each body's travel (see
+    /// [`ProxyMargin::swept`]), a kinematic body's grown further by the
+    /// farthest any other body's contacts reach (see
+    /// [`widen_kinematic`](Self::widen_kinematic)).
     pub boxes: Vec<Aabb>,
+    /// Per proxy: its body's box grown by its margin in every direction,
+    /// which the static bodies are looked for in: a body turned by a
+    /// contact during the step still meets a wall beside it.
+    pub around: Vec<Aabb>,
     /// Per proxy: its body's travel margin this step.
     pub margins: Vec<f32>,
     /// Per proxy: whether its body sleeps (empty when none does).
@@ -195,6 +215,7 @@ impl Proxies {
         self.body.clear();
         self.slot.clear();
         self.boxes.clear();
+        self.around.clear();
         self.margins.clear();
         self.asleep.clear();
         self.margin = margin;
@@ -347,7 +368,7 @@ impl Proxies {
     /// records whether it sleeps.
     #[inline(always)]
     pub(crate) fn add(&mut self, dynamic: &DynamicBodies, i: usize, track_sleep: bool) -> u32 {
-        let (aabb, margin) = self
+        let proxy = self
             .margin
             .proxy(dynamic, i)
             .expect("a proxy's body has a shape");
@@ -355,8 +376,9 @@ impl Proxies {
         self.of_body[i] = p;
         self.body.push(i as u32);
         self.slot.push(dynamic.meta[i].id.index);
-        self.boxes.push(aabb);
-        self.margins.push(margin);
+        self.boxes.push(proxy.swept);
+        self.around.push(proxy.around);
+        self.margins.push(proxy.margin);
         if track_sleep {
             self.asleep.push(dynamic.sleep[i].is_asleep());
         }
@@ -372,30 +394,30 @@ impl Proxies {
         let n = dynamic.len();
         self.body.resize(n, 0);
         self.slot.resize(n, 0);
-        self.boxes
-            .resize(n, Aabb::from_centre(Vec2::ZERO, Vec2::ZERO));
+        let empty = Aabb::from_centre(Vec2::ZERO, Vec2::ZERO);
+        self.boxes.resize(n, empty);
+        self.around.resize(n, empty);
         self.margins.resize(n, 0.0);
         let margin = self.margin;
         let parts = (
-            &mut self.body[..],
-            &mut self.slot[..],
-            &mut self.boxes[..],
+            (&mut self.body[..], &mut self.slot[..]),
+            (&mut self.boxes[..], &mut self.around[..]),
             &mut self.margins[..],
             &mut self.of_body[..],
         );
         let shapeless = for_chunks(
             parallel,
             parts,
-            |offset, (body, slot, boxes, margins, of_body)| {
+            |offset, ((body, slot), (boxes, around), margins, of_body)| {
                 let mut shapeless = 0;
                 for k in 0..body.len() {
                     let i = offset + k;
-                    let Some((aabb, m)) = margin.proxy(dynamic, i) else {
+                    let Some(proxy) = margin.proxy(dynamic, i) else {
                         shapeless += 1;
                         continue;
                     };
                     (body[k], slot[k], of_body[k]) = (i as u32, dynamic.meta[i].id.index, i as u32);
-                    (boxes[k], margins[k]) = (aabb, m);
+                    (boxes[k], around[k], margins[k]) = (proxy.swept, proxy.around, proxy.margin);
                 }
                 shapeless
             },
@@ -404,6 +426,7 @@ impl Proxies {
             self.body.clear();
             self.slot.clear();
             self.boxes.clear();
+            self.around.clear();
             self.margins.clear();
             self.of_body.fill(NO_PROXY);
             return false;
@@ -429,6 +452,30 @@ impl Proxies {
         self.grid.crowded
     }
 
+    /// Grows each kinematic body's proxy in the grid by the farthest any
+    /// other proxy's contacts reach (its margin beyond half the speculative
+    /// distance): every body that could reach the kinematic one in any
+    /// direction is then a pair with it, however a contact turns it during
+    /// the step, as with a static body. A level has few kinematic bodies.
+    pub(crate) fn widen_kinematic(&mut self, dynamic: &DynamicBodies) {
+        if dynamic.kinematic.is_empty() {
+            return;
+        }
+        let reach = self
+            .margins
+            .iter()
+            .zip(&self.body)
+            .filter(|&(_, &i)| !dynamic.meta[i as usize].kinematic)
+            .map(|(&m, _)| m - 0.5 * SPECULATIVE_DISTANCE)
+            .fold(0.0f32, f32::max);
+        for &k in &dynamic.kinematic {
+            let p = self.of_body[k as usize];
+            if p != NO_PROXY {
+                self.boxes[p as usize] = self.boxes[p as usize].grown(reach);
+            }
+        }
+    }
+
     /// Finds the pairs among the proxies (except pairs of two sleeping
     /// ones) and the static bodies each awake proxy overlaps.
     pub(crate) fn find_pairs(&mut self, parallel: bool) {
@@ -444,9 +491,9 @@ impl Proxies {
             return self.pair_with_statics(false, parallel);
         }
         let mut region: Option<Aabb> = None;
-        for p in 0..self.boxes.len() {
+        for (p, aabb) in self.around.iter().enumerate() {
             if !self.is_asleep(p) {
-                region = Some(region.map_or(self.boxes[p], |r| r.union(&self.boxes[p])));
+                region = Some(region.map_or(*aabb, |r| r.union(aabb)));
             }
         }
         let Some(region) = region else { return };
@@ -476,7 +523,8 @@ impl Proxies {
         self.pair_with_statics(narrowed, parallel);
     }
 
-    /// Pairs each awake proxy with the static bodies its box overlaps, in
+    /// Pairs each awake proxy with the static bodies its box grown all
+    /// round overlaps (`around`), in
     /// the tree of the nearby ones (`narrowed`) or the whole level's; with
     /// `parallel` (and the feature), in runs of proxies on rayon's pool,
     /// giving the same pairs in the same order.
@@ -486,7 +534,7 @@ impl Proxies {
         } else {
             (&self.tree, &self.tree_items)
         };
-        let (boxes, asleep) = (&self.boxes, &self.asleep);
+        let (boxes, asleep) = (&self.around, &self.asleep);
         let search = |range: std::ops::Range<usize>, pairs: &mut Vec<(u32, u32)>| {
             for p in range {
                 if marked_asleep(asleep, p) {
