@@ -48,12 +48,13 @@ pub(crate) const LARGE_PROXY_CELLS: i32 = 16;
 /// this many proxies plus one is crowded: bodies spawned on one spot, a
 /// crushed pile, or a dense stream of fast bodies whose long proxies make
 /// the cells large. Its proxies are swept along x (in order of their left
-/// edges), so each meets only those that overlap it in x, and each is
-/// paired with at most this many of the proxies after it. Without the
-/// bound, `n` bodies on one spot make `n²/2` pairs (10 000 circles: 50
-/// million, 14 GB); with it at most `64 n`, and the pile is pushed apart by
-/// the contacts it has until no cell is crowded. Ordinary scenes hold a few
-/// proxies per cell and never meet it.
+/// edges), so each meets only those that overlap it in x, and each meets
+/// at most this many of the proxies after it. Without the bound, `n`
+/// bodies on one spot make `n²/2` pairs (10 000 circles: 50 million, 14
+/// GB); with it at most `64 n` for each cell a proxy covers (four for a
+/// proxy no larger than the mean, which sets the cell size), and the pile
+/// is pushed apart by the contacts it has until no cell is crowded.
+/// Ordinary scenes hold a few proxies per cell and never meet it.
 pub(crate) const CROWDED_CELL: usize = 64;
 
 /// Proxies of a crowded cell that the sweep looks at after each one, at
@@ -238,19 +239,10 @@ impl BroadPhase {
                     for (x, ea) in cell.iter().enumerate() {
                         let a = &proxies[ea.proxy as usize];
                         let mut others = &cell[x + 1..];
-                        // In a crowded cell: the proxies the sweep may look
-                        // at, and this proxy's share of its `CROWDED_CELL`
-                        // pairs (split evenly over the cells it covers, so
-                        // that it makes at most that many in all).
-                        let mut share = usize::MAX;
                         if crowded {
                             others = &others[..others.len().min(CROWDED_SWEEP)];
-                            let (lo, hi) = (cell_of(a.min), cell_of(a.max));
-                            let span =
-                                |lo: i32, hi: i32| (i64::from(hi) - i64::from(lo) + 1) as usize;
-                            share = (CROWDED_CELL / (span(lo.0, hi.0) * span(lo.1, hi.1))).max(1);
                         }
-                        let (mut met, mut kept) = (0, 0);
+                        let mut met = 0;
                         for eb in others {
                             let b = &proxies[eb.proxy as usize];
                             if b.min.x > a.max.x {
@@ -259,12 +251,10 @@ impl BroadPhase {
                             if both_asleep(ea.proxy, eb.proxy) || !a.overlaps(b) {
                                 continue;
                             }
-                            let before = out.len();
                             pair(ea, eb, out);
-                            kept += out.len() - before;
                             met += 1;
-                            if crowded && (kept == share || met == CROWDED_CELL) {
-                                break; // enough for this proxy
+                            if crowded && met == CROWDED_CELL {
+                                break; // enough for this proxy in this cell
                             }
                         }
                     }

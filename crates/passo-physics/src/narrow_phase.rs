@@ -198,12 +198,19 @@ impl Narrow<'_> {
         if m.separation <= SPECULATIVE_DISTANCE || b.immovable {
             return true;
         }
-        let ProxyMargin { fall, dt, .. } = self.proxies.margin;
+        let margin = self.proxies.margin;
         let vel = |c: &Collider| {
             c.body
                 .dynamic_index()
                 .map_or(Vec2::ZERO, |i| self.bodies.dynamic.vel[i])
         };
+        // A body that may travel beyond its reach (fast, or a long step)
+        // may be turned far from where it was heading: as far as it
+        // reaches, in every direction.
+        if margin.beyond_reach(vel(a), &a.shape) || margin.beyond_reach(vel(b), &b.shape) {
+            return true;
+        }
+        let ProxyMargin { fall, dt, .. } = margin;
         let travel = |speed: f32, margin: f32| {
             ((speed.max(0.0) + fall) * dt).min(margin - 0.5 * SPECULATIVE_DISTANCE)
         };

@@ -84,24 +84,32 @@ impl ProxyMargin {
         })
     }
 
+    /// Whether a body of `shape` moving at `velocity` may travel farther
+    /// this step than its speculative contacts reach (see [`reach`]).
+    #[inline(always)]
+    pub(crate) fn beyond_reach(&self, velocity: Vec2, shape: &Shape) -> bool {
+        self.travel(velocity) > reach(shape)
+    }
+
     /// `aabb` grown by half the speculative distance all round, by what
     /// gravity can add this step in any direction, and along the body's
-    /// travel at `velocity` this step (no farther than `reach`): where the
-    /// body may be during the step, if it goes on or stops. (Grown by its
-    /// travel in every direction, two bodies falling side by side were a
-    /// pair; the narrow phase then found nothing to close, see
-    /// `narrow_phase`.)
+    /// travel at `velocity` this step: where the body may be during the
+    /// step, if it goes on or stops. (Grown by its travel in every
+    /// direction, two bodies falling side by side were a pair; the narrow
+    /// phase then found nothing to close, see `narrow_phase`.) A body that
+    /// may travel farther than `reach` is grown by `reach` in every
+    /// direction instead: so fast, or over so long a step, that contacts
+    /// may turn it far from where it was heading.
     #[inline(always)]
     fn swept(&self, aabb: Aabb, velocity: Vec2, reach: f32) -> Aabb {
         let grown = aabb.grown(0.5 * SPECULATIVE_DISTANCE);
         if !self.continuous {
             return grown;
         }
-        let mut travel = velocity * self.dt;
-        let length = travel.length();
-        if length > reach {
-            travel *= reach / length;
+        if self.travel(velocity) > reach {
+            return grown.grown(reach);
         }
+        let travel = velocity * self.dt;
         let fall = Vec2::splat(self.fall * self.dt);
         Aabb {
             min: grown.min + travel.min(Vec2::ZERO) - fall,
@@ -590,10 +598,11 @@ mod tests {
         let close = |a: Vec2, b: Vec2| (a - b).abs().max_element() < 1e-6;
         assert!(close(swept.min, Vec2::new(-0.5 - round, -0.55 - round)));
         assert!(close(swept.max, Vec2::new(0.6 + round, 0.5 + round)));
-        // No farther than the reach, along the same direction.
+        // Beyond the reach: the reach in every direction.
         let capped = margin.swept(unit, Vec2::new(600.0, 0.0), 2.0);
-        assert!(close(capped.max, Vec2::new(2.5 + round, 0.5 + round)));
-        assert!(close(capped.min, Vec2::splat(-0.5 - round)));
+        let reach = 0.5 * SPECULATIVE_DISTANCE + 2.0;
+        assert!(close(capped.max, Vec2::splat(0.5 + reach)));
+        assert!(close(capped.min, Vec2::splat(-0.5 - reach)));
         // Without continuous collision: the speculative distance alone.
         let off = ProxyMargin {
             continuous: false,
