@@ -29,8 +29,8 @@ fn a_pile_spawned_on_one_spot_spreads_out_calmly_with_bounded_contacts() {
     for _ in 0..240 {
         world.step(1.0 / 60.0);
         // At most 64 pairs per body in each grid cell its box covers, four
-        // at most (the cells are twice the mean box); none from the static
-        // tree: there is no static body.
+        // at most for a box no larger than twice the mean (these are all
+        // the same); none from the static tree: there is no static body.
         most = most.max(world.contacts().count());
         for b in world.bodies() {
             fastest = fastest.max(b.velocity.length());

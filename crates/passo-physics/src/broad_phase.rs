@@ -44,17 +44,19 @@ use glam::Vec2;
 /// step with 20 such platforms, `passo bench platforms --above`).
 pub(crate) const LARGE_PROXY_CELLS: i32 = 16;
 
-/// Pairs a proxy may have in one grid cell: 64. A cell holding more than
-/// this many proxies plus one is crowded: bodies spawned on one spot, a
-/// crushed pile, or a dense stream of fast bodies whose long proxies make
-/// the cells large. Its proxies are swept along x (in order of their left
-/// edges), so each meets only those that overlap it in x, and each meets
-/// at most this many of the proxies after it. Without the bound, `n`
-/// bodies on one spot make `n²/2` pairs (10 000 circles: 50 million, 14
-/// GB); with it at most `64 n` for each cell a proxy covers (four for a
-/// proxy no larger than the mean, which sets the cell size), and the pile
-/// is pushed apart by the contacts it has until no cell is crowded.
-/// Ordinary scenes hold a few proxies per cell and never meet it.
+/// Pairs a proxy may make with the proxies after it in one crowded grid
+/// cell: 64. A cell holding more than this many proxies plus one is
+/// crowded: bodies spawned on one spot, a crushed pile, or a dense stream
+/// of fast bodies whose long proxies make the cells large. Its proxies are
+/// swept along x (in order of their left edges), so each meets only those
+/// that overlap it in x, looking at most [`CROWDED_SWEEP`] ahead, and each
+/// keeps at most this many pairs there (a kinematic body's pairs are never
+/// bounded). Without the bound, `n` bodies on one spot make `n²/2` pairs
+/// (10 000 circles: 50 million, 14 GB); with it at most `64 n` for each
+/// cell a proxy covers (four for a proxy no larger than twice the mean,
+/// which sets the cell size), and the pile is pushed apart by the contacts
+/// it has until no cell is crowded. Ordinary scenes hold a few proxies per
+/// cell and never meet it.
 pub(crate) const CROWDED_CELL: usize = 64;
 
 /// Proxies of a crowded cell that the sweep looks at after each one, at
@@ -84,6 +86,10 @@ pub(crate) struct BroadPhase {
     /// Cells of the last search holding more than `CROWDED_CELL + 1`
     /// proxies, whose pairs were bounded.
     pub(crate) crowded: usize,
+    /// Per proxy: whether its pairs are never bounded in a crowded cell
+    /// (a kinematic body, which every body its box overlaps must meet, as
+    /// a wall); empty: no such proxy. Set by the caller before a search.
+    pub(crate) uncapped: Vec<bool>,
     /// Corner grid: each proxy's cell, row by row.
     cell_of: Vec<u32>,
     /// Corner grid: the proxies sorted by cell (stable).
@@ -209,13 +215,18 @@ impl BroadPhase {
 
         // The pairs of the buckets in `range`, in bucket order.
         let (sorted, starts) = (&self.sorted, &self.starts);
+        // Reported in the cell of the overlap's lower-left corner only
+        // (`true` if it is this one).
         let pair = |ea: &Entry, eb: &Entry, out: &mut Vec<(u32, u32)>| {
             let (a, b) = (&proxies[ea.proxy as usize], &proxies[eb.proxy as usize]);
-            // Reported in the cell of the overlap's lower-left corner only.
-            if cell_of(a.min.max(b.min)) == ea.cell {
+            let here = cell_of(a.min.max(b.min)) == ea.cell;
+            if here {
                 out.push(ordered(ea.proxy, eb.proxy));
             }
+            here
         };
+        let uncapped = &self.uncapped;
+        let free = |p: u32| uncapped.get(p as usize) == Some(&true);
         let search = |range: std::ops::Range<usize>, out: &mut Vec<(u32, u32)>| {
             for k in range {
                 let run = &sorted[starts[k] as usize..starts[k + 1] as usize];
@@ -242,19 +253,28 @@ impl BroadPhase {
                         if crowded {
                             others = &others[..others.len().min(CROWDED_SWEEP)];
                         }
-                        let mut met = 0;
+                        let capped = crowded && !free(ea.proxy);
+                        // Pairs kept here, those with an uncapped proxy
+                        // aside (looked for to the end of the sweep).
+                        let mut kept = 0;
                         for eb in others {
                             let b = &proxies[eb.proxy as usize];
                             if b.min.x > a.max.x {
                                 break; // so does every later one: none overlaps A
                             }
-                            if both_asleep(ea.proxy, eb.proxy) || !a.overlaps(b) {
+                            let full = capped && kept == CROWDED_CELL;
+                            if full && uncapped.is_empty() {
+                                break; // enough for this proxy in this cell
+                            }
+                            let always = free(eb.proxy);
+                            if (full && !always)
+                                || both_asleep(ea.proxy, eb.proxy)
+                                || !a.overlaps(b)
+                            {
                                 continue;
                             }
-                            pair(ea, eb, out);
-                            met += 1;
-                            if crowded && met == CROWDED_CELL {
-                                break; // enough for this proxy in this cell
+                            if pair(ea, eb, out) && !always {
+                                kept += 1;
                             }
                         }
                     }
@@ -624,6 +644,47 @@ mod tests {
         assert_eq!(pairs, brute_force(&proxies));
         assert_eq!(pairs.len(), 70);
         assert_eq!(grid.crowded, 0, "no cell is crowded");
+    }
+
+    #[test]
+    fn an_uncapped_proxy_meets_every_proxy_of_a_crowded_cell() {
+        // 200 small boxes crowded on one spot and a platform's box across
+        // all of them (first in the sweep: its left edge is the lowest).
+        let mut seed = 7u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let mut proxies: Vec<Aabb> = (0..200)
+            .map(|_| {
+                let centre = Vec2::splat(10.0) + Vec2::new(next(), next()) * 0.1;
+                Aabb::from_centre(centre, Vec2::splat(0.1))
+            })
+            .collect();
+        proxies.push(Aabb {
+            min: Vec2::new(9.0, 9.95),
+            max: Vec2::new(11.5, 10.05),
+        });
+        proxies.push(Aabb::from_centre(Vec2::splat(1e5), Vec2::splat(0.1)));
+        let platform = 200u32;
+        let platform_pairs = |uncapped: bool| {
+            let mut grid = BroadPhase::default();
+            if uncapped {
+                grid.uncapped = vec![false; proxies.len()];
+                grid.uncapped[platform as usize] = true;
+            }
+            let mut pairs = Vec::new();
+            grid.find_pairs(&proxies, &[], false, &mut pairs);
+            assert!(grid.crowded > 0, "a crowded cell");
+            pairs
+                .iter()
+                .filter(|&&(a, b)| a == platform || b == platform)
+                .count()
+        };
+        assert_eq!(platform_pairs(true), 200);
+        assert!(platform_pairs(false) < 200, "the bound applies otherwise");
     }
 
     #[test]

@@ -82,9 +82,10 @@ pub const LINEAR_SLOP: f32 = 0.005;
 
 /// Distance below which contacts are kept before bodies touch, metres:
 /// 4 × [`LINEAR_SLOP`] = 2 cm, as in Box2D. Together with each body's
-/// travel this step towards the other along the pair's normal (up to
-/// [`SPECULATIVE_REACH`]) it makes contacts speculative, so nothing passes
-/// through a thin wall.
+/// travel this step (up to [`SPECULATIVE_REACH`]) it makes contacts
+/// speculative, so nothing passes through a thin wall: a wall (static,
+/// kinematic or asleep) is met in any direction, two awake dynamic bodies
+/// as far as each moves towards the other along the pair's normal.
 pub const SPECULATIVE_DISTANCE: f32 = 4.0 * LINEAR_SLOP;
 
 /// How far along its travel a body's speculative contacts reach, in its

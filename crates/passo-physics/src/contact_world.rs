@@ -130,8 +130,8 @@ impl ContactWorld {
         stops
     }
 
-    /// Proxies for the shaped dynamic bodies, grown by their possible
-    /// travel. Sleeping bodies in the sleep tree get one only when an awake
+    /// Proxies for the shaped dynamic bodies, swept or grown by their
+    /// possible travel. Sleeping bodies in the sleep tree get one only when an awake
     /// proxy reaches them (see [`pair_with_sleepers`](Self::pair_with_sleepers)).
     fn add_proxies(&mut self, dynamic: &DynamicBodies, any_asleep: bool, parallel: bool) {
         // Every body awake (and, as far as the world counts them, shaped):
@@ -159,7 +159,9 @@ impl ContactWorld {
             if self.proxies.is_asleep(p) {
                 continue;
             }
-            let aabb = self.proxies.boxes[p];
+            // Grown all round: a sleeping body holds still this step, as
+            // a wall does (see `Narrow::may_close`).
+            let aabb = self.proxies.around[p];
             for &body in self.sleeping.reached(&aabb, dynamic) {
                 let q = self.proxies.of(dynamic, body as usize);
                 self.proxies.pairs.push((p as u32, q));

@@ -180,8 +180,8 @@ impl Narrow<'_> {
     /// would otherwise make a contact that never acts (the margins count
     /// each body's speed in any direction). Either body may be stopped in
     /// the step: each one's own speed counts, not the difference. A body
-    /// turned by a contact during the step meets another dynamic body it
-    /// was not heading for at the next step, as one beyond its reach does.
+    /// turned by a contact during the step meets another awake dynamic
+    /// body it was not heading for at the next step.
     #[inline(always)]
     fn may_close(
         &self,
@@ -191,11 +191,16 @@ impl Narrow<'_> {
         margin_b: f32,
         m: &Manifold,
     ) -> bool {
-        // A static or kinematic B (always B when there is one) is met
-        // whichever way a contact turns A during the step, as far as A's
-        // margin reaches: a thin wall stops a body that glances off
-        // something on its way.
-        if m.separation <= SPECULATIVE_DISTANCE || b.immovable {
+        // A static or kinematic B (always B when there is one), or a body
+        // asleep (held still this step), is met whichever way a contact
+        // turns the other during the step, as far as its margin reaches: a
+        // thin wall stops a body that glances off something on its way.
+        let asleep = |c: &Collider| {
+            c.body
+                .dynamic_index()
+                .is_some_and(|i| self.bodies.dynamic.sleep[i].is_asleep())
+        };
+        if m.separation <= SPECULATIVE_DISTANCE || b.immovable || asleep(a) || asleep(b) {
             return true;
         }
         let margin = self.proxies.margin;

@@ -1,7 +1,8 @@
 //! Candidate pairs: each shaped dynamic body's bounding box (its proxy),
 //! swept along how far it can move this step, is paired with the proxies
-//! of the grid ([`BroadPhase`]) and the static bodies of the static tree
-//! whose boxes it overlaps.
+//! of the grid ([`BroadPhase`]) it overlaps; grown by that distance in
+//! every direction, with the static bodies of the static tree and the
+//! sleeping bodies it overlaps.
 
 use crate::bodies::{BodyMeta, DynamicBodies, StaticBodies};
 use crate::broad_phase::BroadPhase;
@@ -462,13 +463,16 @@ impl Proxies {
 
     /// Grows each kinematic body's proxy in the grid by the farthest any
     /// other proxy's contacts reach (its margin beyond half the speculative
-    /// distance): every body that could reach the kinematic one in any
-    /// direction is then a pair with it, however a contact turns it during
-    /// the step, as with a static body. A level has few kinematic bodies.
+    /// distance), and exempts its pairs from a crowded cell's bound: every
+    /// body that could reach the kinematic one in any direction is then a
+    /// pair with it, however a contact turns it during the step, as with a
+    /// static body. A level has few kinematic bodies.
     pub(crate) fn widen_kinematic(&mut self, dynamic: &DynamicBodies) {
+        self.grid.uncapped.clear();
         if dynamic.kinematic.is_empty() {
             return;
         }
+        self.grid.uncapped.resize(self.boxes.len(), false);
         let reach = self
             .margins
             .iter()
@@ -480,6 +484,7 @@ impl Proxies {
             let p = self.of_body[k as usize];
             if p != NO_PROXY {
                 self.boxes[p as usize] = self.boxes[p as usize].grown(reach);
+                self.grid.uncapped[p as usize] = true;
             }
         }
     }

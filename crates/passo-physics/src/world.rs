@@ -32,9 +32,10 @@ pub struct StepStats {
     #[cfg_attr(feature = "serde", serde(default))]
     pub rejected_inputs: u64,
     /// Steps in which bodies were piled so densely in one grid cell that
-    /// the broad phase bounded their pairs (each makes at most 64 pairs
-    /// there, `CROWDED_CELL`): memory stays bounded and the pile is pushed
-    /// apart by the contacts it has, more slowly than with all of them.
+    /// the broad phase bounded their pairs (each keeps at most 64 with the
+    /// bodies after it there, `CROWDED_CELL`): memory stays bounded and the
+    /// pile is pushed apart by the contacts it has, more slowly than with
+    /// all of them.
     #[cfg_attr(feature = "serde", serde(default))]
     pub crowded_steps: u64,
     /// Body-steps in which a fast body, moving farther than its speculative
