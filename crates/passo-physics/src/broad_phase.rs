@@ -50,8 +50,9 @@ pub(crate) const LARGE_PROXY_CELLS: i32 = 16;
 /// of fast bodies whose long proxies make the cells large. Its proxies are
 /// swept along x (in order of their left edges), so each meets only those
 /// that overlap it in x, looking at most [`CROWDED_SWEEP`] ahead, and each
-/// keeps at most this many pairs there (a kinematic body's pairs are never
-/// bounded). Without the bound, `n` bodies on one spot make `n²/2` pairs
+/// meets at most this many there (whichever cell reports each pair; a
+/// kinematic body's pairs are never bounded), so that the work per cell
+/// is bounded too. Without the bound, `n` bodies on one spot make `n²/2` pairs
 /// (10 000 circles: 50 million, 14 GB); with it at most `64 n` for each
 /// cell a proxy covers (four for a proxy no larger than twice the mean,
 /// which sets the cell size), and the pile is pushed apart by the contacts
@@ -215,15 +216,12 @@ impl BroadPhase {
 
         // The pairs of the buckets in `range`, in bucket order.
         let (sorted, starts) = (&self.sorted, &self.starts);
-        // Reported in the cell of the overlap's lower-left corner only
-        // (`true` if it is this one).
+        // Reported in the cell of the overlap's lower-left corner only.
         let pair = |ea: &Entry, eb: &Entry, out: &mut Vec<(u32, u32)>| {
             let (a, b) = (&proxies[ea.proxy as usize], &proxies[eb.proxy as usize]);
-            let here = cell_of(a.min.max(b.min)) == ea.cell;
-            if here {
+            if cell_of(a.min.max(b.min)) == ea.cell {
                 out.push(ordered(ea.proxy, eb.proxy));
             }
-            here
         };
         let uncapped = &self.uncapped;
         let free = |p: u32| uncapped.get(p as usize) == Some(&true);
@@ -254,15 +252,16 @@ impl BroadPhase {
                             others = &others[..others.len().min(CROWDED_SWEEP)];
                         }
                         let capped = crowded && !free(ea.proxy);
-                        // Pairs kept here, those with an uncapped proxy
-                        // aside (looked for to the end of the sweep).
-                        let mut kept = 0;
+                        // Overlapping proxies met here, whichever cell
+                        // reports the pair, uncapped ones aside (looked
+                        // for to the end of the sweep).
+                        let mut met = 0;
                         for eb in others {
                             let b = &proxies[eb.proxy as usize];
                             if b.min.x > a.max.x {
                                 break; // so does every later one: none overlaps A
                             }
-                            let full = capped && kept == CROWDED_CELL;
+                            let full = capped && met == CROWDED_CELL;
                             if full && uncapped.is_empty() {
                                 break; // enough for this proxy in this cell
                             }
@@ -273,9 +272,8 @@ impl BroadPhase {
                             {
                                 continue;
                             }
-                            if pair(ea, eb, out) && !always {
-                                kept += 1;
-                            }
+                            pair(ea, eb, out);
+                            met += usize::from(!always);
                         }
                     }
                 }

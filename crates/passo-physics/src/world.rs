@@ -32,7 +32,7 @@ pub struct StepStats {
     #[cfg_attr(feature = "serde", serde(default))]
     pub rejected_inputs: u64,
     /// Steps in which bodies were piled so densely in one grid cell that
-    /// the broad phase bounded their pairs (each keeps at most 64 with the
+    /// the broad phase bounded their pairs (each meets at most 64 of the
     /// bodies after it there, `CROWDED_CELL`): memory stays bounded and the
     /// pile is pushed apart by the contacts it has, more slowly than with
     /// all of them.
