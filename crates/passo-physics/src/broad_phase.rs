@@ -585,6 +585,16 @@ mod tests {
         pairs
     }
 
+    /// Numbers in `[0, 1)`, the same for the same seed (xorshift).
+    fn uniform(mut seed: u64) -> impl FnMut() -> f32 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+
     fn grid_pairs(proxies: &[Aabb]) -> Vec<(u32, u32)> {
         let mut pairs = Vec::new();
         BroadPhase::default().find_pairs(proxies, &[], false, &mut pairs);
@@ -648,13 +658,7 @@ mod tests {
     fn an_uncapped_proxy_meets_every_proxy_of_a_crowded_cell() {
         // 200 small boxes crowded on one spot and a platform's box across
         // all of them (first in the sweep: its left edge is the lowest).
-        let mut seed = 7u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut next = uniform(7);
         let mut proxies: Vec<Aabb> = (0..200)
             .map(|_| {
                 let centre = Vec2::splat(10.0) + Vec2::new(next(), next()) * 0.1;
@@ -833,13 +837,7 @@ mod tests {
     #[test]
     fn the_parallel_search_gives_the_same_pairs_in_the_same_order() {
         // Enough boxes for the thread pool, some asleep, spread like a pile.
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut next = uniform(0x9E37_79B9_7F4A_7C15);
         let mut boxes = Vec::new();
         let mut asleep = Vec::new();
         for _ in 0..6000 {
