@@ -69,17 +69,17 @@ impl ProxyMargin {
         let meta = &dynamic.meta[i];
         let shape = meta.shape?;
         let velocity = dynamic.vel[i];
-        let (margin, reach) = if meta.kinematic {
-            (
-                0.5 * SPECULATIVE_DISTANCE + self.travel(velocity),
-                f32::INFINITY,
-            )
+        // The travel once for both boxes; the margin as `of` gives it.
+        let travel = self.travel(velocity);
+        let reach = if meta.kinematic {
+            f32::INFINITY
         } else {
-            (self.of(velocity, &shape), reach(&shape))
+            reach(&shape)
         };
+        let margin = 0.5 * SPECULATIVE_DISTANCE + travel.min(reach);
         let aabb = Aabb::from_centre(dynamic.pos[i], shape.half_extents());
         Some(Proxy {
-            swept: self.swept(aabb, velocity, reach),
+            swept: self.swept(aabb, velocity, travel, reach),
             around: aabb.grown(margin),
             margin,
         })
@@ -94,7 +94,8 @@ impl ProxyMargin {
 
     /// `aabb` grown by half the speculative distance all round, by what
     /// gravity can add this step in any direction, and along the body's
-    /// travel at `velocity` this step: where the body may be during the
+    /// travel at `velocity` this step (`travel` long, from
+    /// [`travel`](Self::travel)): where the body may be during the
     /// step, if it goes on or stops. (Grown by its travel in every
     /// direction, two bodies falling side by side were a pair; the narrow
     /// phase then found nothing to close, see `narrow_phase`.) A body that
@@ -102,12 +103,12 @@ impl ProxyMargin {
     /// direction instead: so fast, or over so long a step, that contacts
     /// may turn it far from where it was heading.
     #[inline(always)]
-    fn swept(&self, aabb: Aabb, velocity: Vec2, reach: f32) -> Aabb {
+    fn swept(&self, aabb: Aabb, velocity: Vec2, travel: f32, reach: f32) -> Aabb {
         let grown = aabb.grown(0.5 * SPECULATIVE_DISTANCE);
         if !self.continuous {
             return grown;
         }
-        if self.travel(velocity) > reach {
+        if travel > reach {
             return grown.grown(reach);
         }
         let travel = velocity * self.dt;
@@ -599,12 +600,15 @@ mod tests {
         let unit = Aabb::from_centre(Vec2::ZERO, Vec2::splat(0.5));
         let round = 0.5 * SPECULATIVE_DISTANCE + margin.fall * margin.dt;
         // 6 m/s to the right and 3 m/s down: 0.1 m right, 0.05 m down.
-        let swept = margin.swept(unit, Vec2::new(6.0, -3.0), 10.0);
+        let swept_at = |m: &ProxyMargin, velocity: Vec2, reach: f32| {
+            m.swept(unit, velocity, m.travel(velocity), reach)
+        };
+        let swept = swept_at(&margin, Vec2::new(6.0, -3.0), 10.0);
         let close = |a: Vec2, b: Vec2| (a - b).abs().max_element() < 1e-6;
         assert!(close(swept.min, Vec2::new(-0.5 - round, -0.55 - round)));
         assert!(close(swept.max, Vec2::new(0.6 + round, 0.5 + round)));
         // Beyond the reach: the reach in every direction.
-        let capped = margin.swept(unit, Vec2::new(600.0, 0.0), 2.0);
+        let capped = swept_at(&margin, Vec2::new(600.0, 0.0), 2.0);
         let reach = 0.5 * SPECULATIVE_DISTANCE + 2.0;
         assert!(close(capped.max, Vec2::splat(0.5 + reach)));
         assert!(close(capped.min, Vec2::splat(-0.5 - reach)));
@@ -613,7 +617,7 @@ mod tests {
             continuous: false,
             ..margin
         };
-        let still = off.swept(unit, Vec2::new(600.0, 0.0), 2.0);
+        let still = swept_at(&off, Vec2::new(600.0, 0.0), 2.0);
         assert_eq!(still, unit.grown(0.5 * SPECULATIVE_DISTANCE));
     }
 }
