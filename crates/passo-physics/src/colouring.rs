@@ -491,23 +491,23 @@ mod tests {
             // A substep that keeps each body's velocity change.
             let mut motion = Motion::default();
             motion.begin(&[Vec2::ZERO; 4]);
-            motion.load(&vel0, Start::Track);
+            motion.load(&vel0, Start::Track, false);
             colouring.run(&mut motion.bodies(), &Pass::Begin(params, false));
             for _ in 0..2 {
                 colouring.run(&mut motion.bodies(), &Pass::solve(&params, true));
             }
             colouring.run(&mut motion.bodies(), &Pass::relax(&params));
             let mut vel = vel0;
-            motion.unload(&mut vel, true);
+            motion.unload(&mut vel, true, false);
             // The next substep's velocities before its warm start.
             let next = vel.map(|v| v + Vec2::new(0.0, -0.04));
             // Warm started by a pass over the contacts...
             let (mut passed, mut replayed) = (motion.clone(), motion);
             let mut passed_colouring = colouring.clone();
-            passed.load(&next, Start::Plain);
+            passed.load(&next, Start::Plain, false);
             passed_colouring.run(&mut passed.bodies(), &Pass::Begin(params, false));
             // ...and by the replay, with a pass that only clears the push.
-            replayed.load(&next, Start::Replay);
+            replayed.load(&next, Start::Replay, false);
             let (mut fresh, mut fresh_colouring) = (replayed.clone(), colouring.clone());
             let clear = SolverParams {
                 warm_starting: false,

@@ -226,11 +226,12 @@ impl World {
                 (true, 0) => Start::Track,
                 (true, _) => Start::Replay,
             };
-            cw.motion.load(&self.dynamic.vel, start);
+            cw.motion.load(&self.dynamic.vel, start, self.parallel);
             self.solve(&mut cw, &plan, moved, start == Start::Replay);
             self.integrate_positions(&mut cw.motion, &plan, &correction);
             self.relax(&mut cw, &plan);
-            cw.motion.unload(&mut self.dynamic.vel, plan.replay);
+            cw.motion
+                .unload(&mut self.dynamic.vel, plan.replay, self.parallel);
         }
         cw.regions.store(&mut cw.solved.rows);
         if plan.substeps > 0 && plan.sweep {
@@ -403,11 +404,19 @@ impl World {
                 plan.solver.restitution_threshold,
             );
         }
-        solver::store_separations(&solved.rows, &mut solved.infos, &motion.delta);
+        let parallel = self.parallel;
+        solver::store_separations(&solved.rows, &mut solved.infos, &motion.delta, parallel);
         if let Some(uniform) = plan.limits {
-            for (v, limits) in b.vel.iter_mut().zip(&b.limits) {
-                uniform.unwrap_or(*limits).apply(v);
-            }
+            for_chunks(
+                parallel,
+                (&mut b.vel[..], &b.limits[..]),
+                |_, (vel, limits)| {
+                    for (v, limits) in vel.iter_mut().zip(limits) {
+                        uniform.unwrap_or(*limits).apply(v);
+                    }
+                    0
+                },
+            );
         }
     }
 }

@@ -44,6 +44,7 @@
 //! [`begin_substep`]).
 
 use crate::constraint::{Constraint, ContactInfo};
+use crate::parallel::for_chunks;
 use glam::Vec2;
 
 /// What the solver needs of the contact settings, for one step.
@@ -101,12 +102,20 @@ pub(crate) struct BodyState {
 }
 
 impl BodyState {
+    /// A body moving at `vel`, with no push yet.
+    #[inline(always)]
+    pub(crate) fn moving(vel: Vec2) -> Self {
+        Self {
+            vel,
+            push: Vec2::ZERO,
+        }
+    }
+
     /// The states of bodies moving at `vel`, with no push, and the rest
     /// state after them (for tests; see [`SolverBodies::state`]).
     #[cfg(test)]
     pub(crate) fn of(vel: &[Vec2]) -> Vec<Self> {
-        let push = Vec2::ZERO;
-        let states = vel.iter().map(|&vel| Self { vel, push });
+        let states = vel.iter().map(|&v| Self::moving(v));
         states.chain([Self::default()]).collect()
     }
 
@@ -389,15 +398,20 @@ impl DeepPiles {
 }
 
 /// Records each contact's separation at the end of the step, from the
-/// bodies' displacements `delta` since it began.
+/// bodies' displacements `delta` since it began (in chunks on the thread
+/// pool when `parallel` and there are many).
 pub(crate) fn store_separations(
     constraints: &[Constraint],
     infos: &mut [ContactInfo],
     delta: &[Vec2],
+    parallel: bool,
 ) {
-    for (c, info) in constraints.iter().zip(infos) {
-        info.separation = separation(delta, c);
-    }
+    for_chunks(parallel, (constraints, infos), |_, (constraints, infos)| {
+        for (c, info) in constraints.iter().zip(infos) {
+            info.separation = separation(delta, c);
+        }
+        0
+    });
 }
 
 /// Per-body buffers of the substeps, kept between steps.
@@ -452,46 +466,67 @@ impl Motion {
     }
 
     /// Starts the passes of a substep: the bodies' velocities `vel`, and
-    /// no push yet; see [`Start`].
-    pub(crate) fn load(&mut self, vel: &[Vec2], start: Start) {
-        self.state.clear();
-        let push = Vec2::ZERO;
-        if start == Start::Replay {
-            let states = vel.iter().zip(&mut self.replay).map(|(&v, replay)| {
-                let vel = v + *replay;
-                *replay = v;
-                BodyState { vel, push }
-            });
-            self.state.extend(states);
-        } else {
-            self.state
-                .extend(vel.iter().map(|&vel| BodyState { vel, push }));
-            if start == Start::Track {
-                self.replay.copy_from_slice(vel);
-            }
-        }
+    /// no push yet; see [`Start`]. In chunks on the thread pool when
+    /// `parallel` and the world is large (each body on its own).
+    pub(crate) fn load(&mut self, vel: &[Vec2], start: Start, parallel: bool) {
+        // Every state is written below: only the length and the rest
+        // state after the bodies are set here.
+        self.state.resize(vel.len(), BodyState::default());
         self.state.push(BodyState::default());
+        let parts = (&mut self.state[..vel.len()], vel, &mut self.replay[..]);
+        for_chunks(parallel, parts, |_, (state, vel, replay)| {
+            let bodies = state.iter_mut().zip(vel).zip(replay);
+            match start {
+                Start::Replay => {
+                    for ((s, &v), replay) in bodies {
+                        *s = BodyState::moving(v + *replay);
+                        *replay = v;
+                    }
+                }
+                Start::Track => {
+                    for ((s, &v), replay) in bodies {
+                        *s = BodyState::moving(v);
+                        *replay = v;
+                    }
+                }
+                Start::Plain => {
+                    for ((s, &v), _) in bodies {
+                        *s = BodyState::moving(v);
+                    }
+                }
+            }
+            0
+        });
     }
 
     /// Ends them: the velocities the passes left, back into `vel`; with
     /// `track`, the change of each body's velocity in the substep kept.
-    pub(crate) fn unload(&mut self, vel: &mut [Vec2], track: bool) {
+    /// In chunks as [`load`](Self::load).
+    pub(crate) fn unload(&mut self, vel: &mut [Vec2], track: bool, parallel: bool) {
         debug_assert_eq!(
             self.state.last(),
             Some(&BodyState::default()),
             "the rest state"
         );
-        if track {
-            let bodies = vel.iter_mut().zip(&self.state).zip(&mut self.replay);
-            for ((v, s), replay) in bodies {
-                *v = s.vel;
-                *replay = s.vel - *replay;
+        let parts = (
+            vel,
+            &self.state[..self.state.len() - 1],
+            &mut self.replay[..],
+        );
+        for_chunks(parallel, parts, |_, (vel, state, replay)| {
+            let bodies = vel.iter_mut().zip(state).zip(replay);
+            if track {
+                for ((v, s), replay) in bodies {
+                    *v = s.vel;
+                    *replay = s.vel - *replay;
+                }
+            } else {
+                for ((v, s), _) in bodies {
+                    *v = s.vel;
+                }
             }
-        } else {
-            for (v, s) in vel.iter_mut().zip(&self.state) {
-                *v = s.vel;
-            }
-        }
+            0
+        });
     }
 
     /// The solver's view of the bodies.
