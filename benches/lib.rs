@@ -3,7 +3,7 @@
 //! `cargo run --release -p passo-benches --features rapier --bin peer`).
 
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, Shape, World};
+use passo_physics::{BodyDef, BodyKind, Shape, World};
 use std::time::Instant;
 
 /// Radius of a rain circle, metres.
@@ -152,6 +152,29 @@ pub fn pyramid_world(base: usize) -> World {
         }
     }
     world
+}
+
+/// The same bodies as `world`, with its dynamic ones added in a scrambled
+/// order (the same order every run): their storage order and ids no
+/// longer follow their places, as when a game spawns bodies over time
+/// wherever they are needed.
+pub fn shuffled(world: &World) -> World {
+    let mut out = World::new(*world.settings()).expect("valid settings");
+    let (mut dynamic, fixed): (Vec<_>, Vec<_>) = world
+        .bodies()
+        .map(|b| b.to_def())
+        .partition(|def| def.kind == BodyKind::Dynamic);
+    let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+    for i in (1..dynamic.len()).rev() {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        dynamic.swap(i, (seed % (i as u64 + 1)) as usize);
+    }
+    for def in fixed.into_iter().chain(dynamic) {
+        out.add_body(def).expect("a body of a valid world");
+    }
+    out
 }
 
 /// A copy of `world` with sleeping switched on or off.
@@ -355,5 +378,25 @@ fn unit_sequence(mut seed: u64) -> impl FnMut() -> f32 {
         seed ^= seed >> 7;
         seed ^= seed << 17;
         (seed >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_shuffled_world_has_the_same_bodies_in_another_order() {
+        let world = rain_world(200);
+        let copy = shuffled(&world);
+        let places = |w: &World| w.bodies().map(|b| b.position).collect::<Vec<_>>();
+        let (before, after) = (places(&world), places(&copy));
+        assert_ne!(before, after, "the order changed");
+        let sorted = |mut p: Vec<Vec2>| {
+            p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+            p
+        };
+        assert_eq!(sorted(before), sorted(after));
+        assert_eq!(copy.settings(), world.settings());
     }
 }

@@ -3,10 +3,10 @@
 //! interleaved, so a change can be compared with the code before it in
 //! the same conditions.
 //!
-//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|sleep|settle|integration|rays|tuning`
+//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|shuffled|sleep|settle|integration|rays|tuning`
 //! (and `--features parallel ... -- threads`: one thread against the pool)
 
-use passo_benches::{pyramid_world, rain_world, with_sleeping};
+use passo_benches::{pyramid_world, rain_world, shuffled, with_sleeping};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, ForceModels, QuadraticDrag, World, WorldSettings};
 use std::time::Instant;
@@ -94,6 +94,29 @@ fn main() {
             println!("pyramid 50 awake: {:.3} ms/step", ms_per_step(w, 60, 300));
             let w = with_sleeping(&pyramid_world(20), false);
             println!("pyramid 20 awake: {:.3} ms/step", ms_per_step(w, 60, 600));
+        }
+        "shuffled" => {
+            // The rain of 10 000 in the order of its places, and the same
+            // bodies added in a scrambled order (one thread each, and the
+            // pool with `--features parallel`).
+            let ordered = with_sleeping(&rain_world(10_000), false);
+            let scrambled = shuffled(&ordered);
+            let modes: &[bool] = if cfg!(feature = "parallel") {
+                &[false, true]
+            } else {
+                &[false]
+            };
+            for (name, world) in [("in order", ordered), ("scrambled", scrambled)] {
+                for &parallel in modes {
+                    let on = if parallel {
+                        "thread pool"
+                    } else {
+                        "one thread"
+                    };
+                    let ms = ms_per_step_on(&mut world.clone(), parallel, 60, 240);
+                    println!("rain 10000 awake, added {name}, {on}: {ms:.2} ms/step");
+                }
+            }
         }
         "threads" => {
             // One thread against the pool (build with `--features parallel`).
@@ -184,7 +207,9 @@ fn main() {
             }
         }
         _ => {
-            eprintln!("usage: steps integration|rain|pyramid|sleep|settle|rays|threads|tuning");
+            eprintln!(
+                "usage: steps integration|rain|pyramid|shuffled|sleep|settle|rays|threads|tuning"
+            );
             std::process::exit(2);
         }
     }
