@@ -49,6 +49,13 @@ pub(crate) struct Colouring {
     masks: Vec<u128>,
     /// Per picked row: its colour ([`OVERFLOW`]: none).
     colour_of: Vec<u8>,
+    /// Per picked row of the last build: the bodies it moves (see
+    /// [`moved_key`]). The colours depend on these alone, so a build whose
+    /// rows move the same bodies in the same order (a pile at rest keeps
+    /// its contacts step after step) takes the last build's colours.
+    last_moved: Vec<u64>,
+    /// Contacts per colour in the last build.
+    counts: Vec<usize>,
     /// Lay the contacts out in blocks however empty (for tests).
     #[cfg(test)]
     blocks_always: bool,
@@ -67,6 +74,14 @@ fn unmask(masks: &mut [u128], c: &Constraint) {
     for body in [a, b].into_iter().flatten() {
         masks[body] = 0;
     }
+}
+
+/// The bodies row `c` moves ([`Constraint::moved`]), in one word: A's
+/// index and B's, each `u32::MAX` when the row only reads it.
+fn moved_key(c: &Constraint) -> u64 {
+    let (a, b) = c.moved();
+    let index = |i: Option<usize>| i.map_or(u64::from(u32::MAX), |i| i as u64);
+    index(a) << 32 | index(b)
 }
 
 /// The colour of a row left over, solved one by one.
@@ -90,35 +105,23 @@ impl Colouring {
         if self.masks.len() < bodies {
             self.masks.resize(bodies, 0);
         }
-        self.colour_of.clear();
         self.overflow.clear();
         self.overflow_rows.clear();
-        let mut counts = [0usize; COLOURS];
-        for i in picked.clone() {
-            let c = &rows[i];
-            let (a, b) = c.moved();
-            let used = a.map_or(0, |a| self.masks[a]) | b.map_or(0, |b| self.masks[b]);
-            if used == u128::MAX {
-                self.colour_of.push(OVERFLOW);
-                self.overflow.push(*c);
-                self.overflow_rows.push(i as u32);
-                continue;
+        // The masks are set only when the colours are worked out anew.
+        let coloured_now = !self.same_bodies(rows, picked.clone());
+        if coloured_now {
+            self.colour(rows, picked.clone());
+        } else {
+            for (i, &colour) in picked.clone().zip(&self.colour_of) {
+                if colour == OVERFLOW {
+                    self.overflow.push(rows[i]);
+                    self.overflow_rows.push(i as u32);
+                }
             }
-            // After every colour of the earlier contacts of its bodies, as
-            // the sequential order would solve it; wrapping round to the
-            // first free colour past the last.
-            let after = (u128::BITS - used.leading_zeros()) as usize;
-            let colour = if after < COLOURS {
-                after
-            } else {
-                (!used).trailing_zeros() as usize
-            };
-            for body in [a, b].into_iter().flatten() {
-                self.masks[body] |= 1 << colour;
-            }
-            self.colour_of.push(colour as u8);
-            counts[colour] += 1;
         }
+        // (None yet before the first build.)
+        let mut counts = [0usize; COLOURS];
+        counts[..self.counts.len()].copy_from_slice(&self.counts);
 
         // Each colour's blocks, then the rows dealt into their lanes in order.
         self.colours.clear();
@@ -148,7 +151,9 @@ impl Colouring {
             self.overflow.clear();
             self.overflow_rows.clear();
             for i in picked {
-                unmask(&mut self.masks, &rows[i]);
+                if coloured_now {
+                    unmask(&mut self.masks, &rows[i]);
+                }
                 self.overflow.push(rows[i]);
                 self.overflow_rows.push(i as u32);
             }
@@ -157,7 +162,9 @@ impl Colouring {
         self.blocks.resize(start, Block::PADDING);
         for (i, &colour) in picked.zip(&self.colour_of) {
             let c = &rows[i];
-            unmask(&mut self.masks, c);
+            if coloured_now {
+                unmask(&mut self.masks, c);
+            }
             if colour == OVERFLOW {
                 continue;
             }
@@ -165,6 +172,53 @@ impl Colouring {
             let carry = deep.get(c.a as usize).copied().unwrap_or(false);
             self.blocks[*slot / LANES].set(*slot % LANES, i, c, carry);
             *slot += 1;
+        }
+    }
+
+    /// Whether the rows `picked` move the same bodies, in the same order,
+    /// as the last build's (which then gave their colours).
+    fn same_bodies(&self, rows: &[Constraint], picked: impl Iterator<Item = usize>) -> bool {
+        let mut last = self.last_moved.iter();
+        picked
+            .map(|i| moved_key(&rows[i]))
+            .all(|key| last.next() == Some(&key))
+            && last.next().is_none()
+    }
+
+    /// Works out the colours of the rows `picked` (and their counts), and
+    /// notes the bodies each moves; the contacts left over go to the
+    /// overflow. Leaves the masks of the bodies set, for the layout to
+    /// clear.
+    fn colour(&mut self, rows: &[Constraint], picked: impl Iterator<Item = usize>) {
+        self.colour_of.clear();
+        self.last_moved.clear();
+        self.counts.clear();
+        self.counts.resize(COLOURS, 0);
+        for i in picked {
+            let c = &rows[i];
+            self.last_moved.push(moved_key(c));
+            let (a, b) = c.moved();
+            let used = a.map_or(0, |a| self.masks[a]) | b.map_or(0, |b| self.masks[b]);
+            if used == u128::MAX {
+                self.colour_of.push(OVERFLOW);
+                self.overflow.push(*c);
+                self.overflow_rows.push(i as u32);
+                continue;
+            }
+            // After every colour of the earlier contacts of its bodies, as
+            // the sequential order would solve it; wrapping round to the
+            // first free colour past the last.
+            let after = (u128::BITS - used.leading_zeros()) as usize;
+            let colour = if after < COLOURS {
+                after
+            } else {
+                (!used).trailing_zeros() as usize
+            };
+            for body in [a, b].into_iter().flatten() {
+                self.masks[body] |= 1 << colour;
+            }
+            self.colour_of.push(colour as u8);
+            self.counts[colour] += 1;
         }
     }
 
@@ -405,6 +459,50 @@ mod tests {
         assert_eq!(c.colour_of[COLOURS - 1], (COLOURS - 1) as u8);
         assert_eq!(c.colour_of[COLOURS], 0);
         assert_colours_share_no_moved_body(&c, 201);
+    }
+
+    #[test]
+    fn rows_moving_the_same_bodies_again_take_the_last_colours_and_give_the_same_blocks() {
+        // A pile: each body on the ground, on the one below, and beside a
+        // neighbour; more contacts than colours on body 0, so some overflow.
+        let mut rows: Vec<_> = (0..300)
+            .map(|i| row(i % 40, Some(40 + i % 7), 1.0))
+            .collect();
+        rows.extend((0..40).map(|i| row(i, None, 0.0)));
+        rows.extend((1..200).map(|i| row(0, Some(100 + i), 1.0)));
+        let fresh = |rows: &[Constraint], n: usize| {
+            let mut c = Colouring {
+                blocks_always: true,
+                ..Colouring::default()
+            };
+            c.build(rows, 0..n, 300, &[]);
+            c
+        };
+        let mut kept = fresh(&rows, rows.len());
+        assert!(!kept.overflow.is_empty() && !kept.blocks.is_empty());
+        // The next step: the same bodies, other impulses and normals.
+        for (k, r) in rows.iter_mut().enumerate() {
+            r.normal_impulse = k as f32;
+            r.normal = Vec2::new(0.6, 0.8);
+        }
+        kept.build(&rows, 0..rows.len(), 300, &[]);
+        let again = fresh(&rows, rows.len());
+        assert_eq!(kept.blocks, again.blocks);
+        assert_eq!(kept.colours, again.colours);
+        assert_eq!(kept.overflow_rows, again.overflow_rows);
+        assert!(kept.masks.iter().all(|&m| m == 0), "masks left clear");
+        // A body that falls asleep is only read now: new colours.
+        rows[5].inv_mass_b = 0.0;
+        kept.build(&rows, 0..rows.len(), 300, &[]);
+        let asleep = fresh(&rows, rows.len());
+        assert_eq!(kept.blocks, asleep.blocks);
+        assert_eq!(kept.colour_of, asleep.colour_of);
+        assert_ne!(kept.colour_of, again.colour_of);
+        // Fewer rows: new colours too.
+        kept.build(&rows, 0..rows.len() - 1, 300, &[]);
+        let shorter = fresh(&rows, rows.len() - 1);
+        assert_eq!(kept.blocks, shorter.blocks);
+        assert_eq!(kept.overflow_rows, shorter.overflow_rows);
     }
 
     #[test]
