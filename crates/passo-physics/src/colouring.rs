@@ -56,6 +56,9 @@ pub(crate) struct Colouring {
     last_moved: Vec<u64>,
     /// Contacts per colour in the last build.
     counts: Vec<usize>,
+    /// Builds that took the last build's colours (for tests).
+    #[cfg(test)]
+    reused: usize,
     /// Lay the contacts out in blocks however empty (for tests).
     #[cfg(test)]
     blocks_always: bool,
@@ -77,7 +80,8 @@ fn unmask(masks: &mut [u128], c: &Constraint) {
 }
 
 /// The bodies row `c` moves ([`Constraint::moved`]), in one word: A's
-/// index and B's, each `u32::MAX` when the row only reads it.
+/// index and B's, each `u32::MAX` when the row does not move it (a static,
+/// kinematic or sleeping body).
 fn moved_key(c: &Constraint) -> u64 {
     let (a, b) = c.moved();
     let index = |i: Option<usize>| i.map_or(u64::from(u32::MAX), |i| i as u64);
@@ -112,6 +116,10 @@ impl Colouring {
         if coloured_now {
             self.colour(rows, picked.clone());
         } else {
+            #[cfg(test)]
+            {
+                self.reused += 1;
+            }
             for (i, &colour) in picked.clone().zip(&self.colour_of) {
                 if colour == OVERFLOW {
                     self.overflow.push(rows[i]);
@@ -470,39 +478,57 @@ mod tests {
             .collect();
         rows.extend((0..40).map(|i| row(i, None, 0.0)));
         rows.extend((1..200).map(|i| row(0, Some(100 + i), 1.0)));
-        let fresh = |rows: &[Constraint], n: usize| {
+        let fresh = |rows: &[Constraint], picked: &[usize]| {
             let mut c = Colouring {
                 blocks_always: true,
                 ..Colouring::default()
             };
-            c.build(rows, 0..n, 300, &[]);
+            c.build(rows, picked.iter().copied(), 300, &[]);
             c
         };
-        let mut kept = fresh(&rows, rows.len());
+        let assert_same = |kept: &Colouring, fresh: &Colouring| {
+            assert_eq!(kept.blocks, fresh.blocks);
+            assert_eq!(kept.colours, fresh.colours);
+            assert_eq!(kept.colour_of, fresh.colour_of);
+            assert_eq!(kept.overflow, fresh.overflow);
+            assert_eq!(kept.overflow_rows, fresh.overflow_rows);
+        };
+        let all: Vec<usize> = (0..rows.len()).collect();
+        let mut kept = fresh(&rows, &all);
         assert!(!kept.overflow.is_empty() && !kept.blocks.is_empty());
         // The next step: the same bodies, other impulses and normals.
         for (k, r) in rows.iter_mut().enumerate() {
             r.normal_impulse = k as f32;
             r.normal = Vec2::new(0.6, 0.8);
         }
-        kept.build(&rows, 0..rows.len(), 300, &[]);
-        let again = fresh(&rows, rows.len());
-        assert_eq!(kept.blocks, again.blocks);
-        assert_eq!(kept.colours, again.colours);
-        assert_eq!(kept.overflow_rows, again.overflow_rows);
-        assert!(kept.masks.iter().all(|&m| m == 0), "masks left clear");
+        kept.build(&rows, all.iter().copied(), 300, &[]);
+        assert_eq!(kept.reused, 1, "the colours were taken");
+        let again = fresh(&rows, &all);
+        assert_same(&kept, &again);
         // A body that falls asleep is only read now: new colours.
         rows[5].inv_mass_b = 0.0;
-        kept.build(&rows, 0..rows.len(), 300, &[]);
-        let asleep = fresh(&rows, rows.len());
-        assert_eq!(kept.blocks, asleep.blocks);
-        assert_eq!(kept.colour_of, asleep.colour_of);
+        kept.build(&rows, all.iter().copied(), 300, &[]);
+        assert_eq!(kept.reused, 1, "coloured anew");
+        assert_same(&kept, &fresh(&rows, &all));
         assert_ne!(kept.colour_of, again.colour_of);
-        // Fewer rows: new colours too.
-        kept.build(&rows, 0..rows.len() - 1, 300, &[]);
-        let shorter = fresh(&rows, rows.len() - 1);
-        assert_eq!(kept.blocks, shorter.blocks);
-        assert_eq!(kept.overflow_rows, shorter.overflow_rows);
+        // A row gone, at the end (an overflow row) or in the middle (a
+        // coloured one): new colours too.
+        for gone in [rows.len() - 1, 3] {
+            let picked: Vec<usize> = all.iter().copied().filter(|&i| i != gone).collect();
+            kept.build(&rows, picked.iter().copied(), 300, &[]);
+            assert_eq!(kept.reused, 1, "coloured anew");
+            assert_same(&kept, &fresh(&rows, &picked));
+        }
+        // Mostly padding (a stack, solved one by one): the same again.
+        let stack: Vec<_> = (0..10).map(|i| row(i, Some(i + 1), 1.0)).collect();
+        let mut one_by_one = Colouring::default();
+        one_by_one.build(&stack, 0..stack.len(), 11, &[]);
+        assert!(one_by_one.blocks.is_empty());
+        let first = one_by_one.overflow_rows.clone();
+        one_by_one.build(&stack, 0..stack.len(), 11, &[]);
+        assert_eq!(one_by_one.reused, 1);
+        assert!(one_by_one.blocks.is_empty() && one_by_one.colours.is_empty());
+        assert_eq!(one_by_one.overflow_rows, first);
     }
 
     #[test]

@@ -469,6 +469,7 @@ impl Motion {
     /// no push yet; see [`Start`]. In chunks on the thread pool when
     /// `parallel` and the world is large (each body on its own).
     pub(crate) fn load(&mut self, vel: &[Vec2], start: Start, parallel: bool) {
+        debug_assert_eq!(self.replay.len(), vel.len(), "a replay entry a body");
         // Every state is written below: only the length and the rest
         // state after the bodies are set here.
         self.state.resize(vel.len(), BodyState::default());
@@ -508,6 +509,7 @@ impl Motion {
             Some(&BodyState::default()),
             "the rest state"
         );
+        debug_assert_eq!(self.replay.len(), vel.len(), "a replay entry a body");
         let parts = (
             vel,
             &self.state[..self.state.len() - 1],
