@@ -127,7 +127,7 @@ impl Colouring {
                 }
             }
         }
-        // (None yet before the first build.)
+        // (Empty until a build has worked colours out: no rows yet.)
         let mut counts = [0usize; COLOURS];
         counts[..self.counts.len()].copy_from_slice(&self.counts);
 
