@@ -75,7 +75,7 @@ fn tile_container(world: &mut World, width: f32, height: f32) {
         at(Vec2::new(-width * 0.5 + 0.01, 0.01)),
         at(Vec2::new(width * 0.5 - 0.01, height)),
     );
-    let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = xorshift(0x9E37_79B9_7F4A_7C15);
     for y in 0..cells {
         for x in 0..cells {
             let in_box = (lo.0..=hi.0).contains(&x) && (lo.1..=hi.1).contains(&y);
@@ -83,10 +83,7 @@ fn tile_container(world: &mut World, width: f32, height: f32) {
             let solid_cell = if in_box {
                 !hollow
             } else {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
-                seed.is_multiple_of(10) && !(lo.0.saturating_sub(8)..=hi.0 + 8).contains(&x)
+                next().is_multiple_of(10) && !(lo.0.saturating_sub(8)..=hi.0 + 8).contains(&x)
             };
             if solid_cell {
                 map.set(x, y, Some(solid)).expect("inside");
@@ -107,13 +104,8 @@ fn rain_in(n: usize, columns: usize, container: fn(&mut World, f32, f32)) -> Wor
     let width = columns as f32 * spacing + 1.0;
     let height = rows as f32 * spacing + 5.0;
     container(&mut world, width, height);
-    let mut seed = 0x2545_F491_4F6C_DD1Du64;
-    let mut jitter = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        ((seed >> 40) as f32 / (1u64 << 24) as f32 - 0.5) * 0.03
-    };
+    let mut unit = unit_sequence(0x2545_F491_4F6C_DD1D);
+    let mut jitter = move || (unit() - 0.5) * 0.03;
     for k in 0..n {
         let (i, j) = (k % columns, k / columns);
         let p = Vec2::new(
@@ -164,12 +156,9 @@ pub fn shuffled(world: &World) -> World {
         .bodies()
         .map(|b| b.to_def())
         .partition(|def| def.kind == BodyKind::Dynamic);
-    let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = xorshift(0x9E37_79B9_7F4A_7C15);
     for i in (1..dynamic.len()).rev() {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        dynamic.swap(i, (seed % (i as u64 + 1)) as usize);
+        dynamic.swap(i, (next() % (i as u64 + 1)) as usize);
     }
     for def in fixed.into_iter().chain(dynamic) {
         out.add_body(def).expect("a body of a valid world");
@@ -370,15 +359,22 @@ pub fn fast_circles_in_a_box(n: usize) -> World {
     world
 }
 
-/// Pseudo-random numbers in `[0, 1)` from a xorshift of `seed`, the same
-/// on every run and machine.
-fn unit_sequence(mut seed: u64) -> impl FnMut() -> f32 {
+/// The states of a xorshift from `seed`, the same on every run and
+/// machine.
+fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
     move || {
         seed ^= seed << 13;
         seed ^= seed >> 7;
         seed ^= seed << 17;
-        (seed >> 40) as f32 / (1u64 << 24) as f32
+        seed
     }
+}
+
+/// Pseudo-random numbers in `[0, 1)` from a xorshift of `seed`, the same
+/// on every run and machine.
+fn unit_sequence(seed: u64) -> impl FnMut() -> f32 {
+    let mut next = xorshift(seed);
+    move || (next() >> 40) as f32 / (1u64 << 24) as f32
 }
 
 #[cfg(test)]
