@@ -40,7 +40,14 @@ pub(crate) struct ProxyMargin {
 impl ProxyMargin {
     /// The margin of a body of `shape` moving at `velocity`, metres.
     pub(crate) fn of(&self, velocity: Vec2, shape: &Shape) -> f32 {
-        0.5 * SPECULATIVE_DISTANCE + self.travel(velocity).min(reach(shape))
+        Self::within(self.travel(velocity), reach(shape))
+    }
+
+    /// The margin of a body that may travel `travel` this step, as far as
+    /// its contacts `reach`.
+    #[inline(always)]
+    fn within(travel: f32, reach: f32) -> f32 {
+        0.5 * SPECULATIVE_DISTANCE + travel.min(reach)
     }
 
     /// How far a body moving at `velocity` can travel this step, metres
@@ -69,14 +76,14 @@ impl ProxyMargin {
         let meta = &dynamic.meta[i];
         let shape = meta.shape?;
         let velocity = dynamic.vel[i];
-        // The travel once for both boxes; the margin as `of` gives it.
+        // The travel once, for the margin and both boxes.
         let travel = self.travel(velocity);
         let reach = if meta.kinematic {
             f32::INFINITY
         } else {
             reach(&shape)
         };
-        let margin = 0.5 * SPECULATIVE_DISTANCE + travel.min(reach);
+        let margin = Self::within(travel, reach);
         let aabb = Aabb::from_centre(dynamic.pos[i], shape.half_extents());
         Some(Proxy {
             swept: self.swept(aabb, velocity, travel, reach),
