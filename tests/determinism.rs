@@ -178,6 +178,34 @@ fn big_rain(n: u32) -> World {
     scene.build().unwrap().world
 }
 
+/// The rain of 5 000 with a kinematic body sweeping through it, and (with
+/// `point_mass`) a body without a shape.
+fn large_world_with_a_sweeper(point_mass: bool) -> World {
+    let mut world = big_rain(5000);
+    if point_mass {
+        world
+            .add_body(BodyDef::point_mass(Vec2::new(0.3, 40.0)))
+            .unwrap();
+    }
+    let sweeper = BodyDef::new_kinematic(
+        Vec2::new(-12.0, 1.0),
+        Shape::rect(0.5, 2.0),
+        Vec2::new(3.0, 0.0),
+    );
+    world.add_body(sweeper).unwrap();
+    world
+}
+
+/// The state hash of each of `ticks` steps of `world`.
+fn hashes_of_steps(world: &mut World, ticks: usize) -> Vec<u64> {
+    (0..ticks)
+        .map(|_| {
+            world.step(1.0 / 60.0);
+            world.state_hash()
+        })
+        .collect()
+}
+
 #[test]
 fn a_large_world_with_a_point_mass_and_a_kinematic_body_the_same_bits_on_the_pool() {
     // A body without a shape gets no proxy, so the step cannot give every
@@ -185,27 +213,11 @@ fn a_large_world_with_a_point_mass_and_a_kinematic_body_the_same_bits_on_the_poo
     // path; a kinematic body's proxy covers its whole travel. Without the
     // point mass, every body gets a proxy of its own index.
     let run = |parallel: bool, point_mass: bool| {
-        let mut world = big_rain(5000);
-        if point_mass {
-            world
-                .add_body(BodyDef::point_mass(Vec2::new(0.3, 40.0)))
-                .unwrap();
-        }
-        let sweeper = BodyDef::new_kinematic(
-            Vec2::new(-12.0, 1.0),
-            Shape::rect(0.5, 2.0),
-            Vec2::new(3.0, 0.0),
-        );
-        world.add_body(sweeper).unwrap();
+        let mut world = large_world_with_a_sweeper(point_mass);
         world.set_parallel(parallel);
         // 100 ticks: the rain lands, and its contacts (over 4 096) take
         // the pool's paths too.
-        let hashes: Vec<u64> = (0..100)
-            .map(|_| {
-                world.step(1.0 / 60.0);
-                world.state_hash()
-            })
-            .collect();
+        let hashes = hashes_of_steps(&mut world, 100);
         assert!(world.contacts().count() >= 4096);
         hashes
     };
@@ -218,6 +230,24 @@ fn a_large_world_with_a_point_mass_and_a_kinematic_body_the_same_bits_on_the_poo
     }
 }
 
+/// The state hash of the large world with a sweeper after 100 ticks: a
+/// step of this world splits its contacts in two regions (see
+/// `the_same_bits_whatever_the_number_of_threads`), and the kinematic body
+/// is read by both.
+const EXPECTED_SPLIT: u64 = 0x5b52_ff30_d155_4fe1;
+
+#[test]
+fn a_large_world_split_in_regions_reaches_the_same_bits_as_always() {
+    let mut world = large_world_with_a_sweeper(false);
+    assert!(world.dynamic_len() >= passo_physics::constants::PARALLEL_MIN_ITEMS);
+    let hash = *hashes_of_steps(&mut world, 100).last().unwrap();
+    assert_eq!(
+        hash, EXPECTED_SPLIT,
+        "the large world's bits changed: if the change was intended, set \
+         EXPECTED_SPLIT to {hash:#018x} (see the top of this file)"
+    );
+}
+
 #[test]
 fn the_same_bits_whatever_the_number_of_threads() {
     // `threads`: step on a pool of that many workers; `None`: step from
@@ -226,14 +256,7 @@ fn the_same_bits_whatever_the_number_of_threads() {
         let mut world = big_rain(6000);
         assert!(world.dynamic_len() >= passo_physics::constants::PARALLEL_MIN_ITEMS);
         world.set_parallel(parallel);
-        let mut run = || {
-            (0..90)
-                .map(|_| {
-                    world.step(1.0 / 60.0);
-                    world.state_hash()
-                })
-                .collect::<Vec<u64>>()
-        };
+        let mut run = || hashes_of_steps(&mut world, 90);
         let hashes = match threads {
             Some(n) => rayon::ThreadPoolBuilder::new()
                 .num_threads(n)

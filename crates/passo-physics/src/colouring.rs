@@ -27,7 +27,7 @@
 //! (a stack: one contact a colour), where one by one is faster.
 
 use crate::constraint::Constraint;
-use crate::lanes::{Block, Bodies, LANES, NONE, Rates, View, measure, solve_block, warm_start};
+use crate::lanes::{Block, Bodies, LANES, NONE, Rates, measure, solve_block, warm_start};
 use crate::solver::{self, SolverBodies, SolverParams};
 use std::ops::Range;
 
@@ -273,7 +273,7 @@ impl Colouring {
     }
 
     /// Runs `pass` over every block, colour after colour.
-    pub(crate) fn blocks<V: View>(&mut self, view: &mut V, pass: &Pass) {
+    pub(crate) fn blocks(&mut self, view: &mut Bodies<'_>, pass: &Pass) {
         for range in &self.colours {
             for k in &mut self.blocks[range.clone()] {
                 pass.run(k, view);
@@ -369,7 +369,7 @@ impl Pass {
     }
 
     #[inline(always)]
-    fn run<V: View>(&self, k: &mut Block, view: &mut V) {
+    fn run(&self, k: &mut Block, view: &mut Bodies<'_>) {
         match *self {
             Pass::Begin(ref params, measures) => {
                 warm_start(k, view, params.warm_starting, params.carry_push);
@@ -379,12 +379,12 @@ impl Pass {
             }
             #[cfg(test)]
             Pass::Measure => measure(k, view),
-            Pass::Solve(_, ref rates, true) => solve_block::<true, false, V>(k, view, rates),
-            Pass::Solve(_, ref rates, false) => solve_block::<false, false, V>(k, view, rates),
-            Pass::Fresh(_, ref rates) => solve_block::<true, true, V>(k, view, rates),
+            Pass::Solve(_, ref rates, true) => solve_block::<true, false>(k, view, rates),
+            Pass::Solve(_, ref rates, false) => solve_block::<false, false>(k, view, rates),
+            Pass::Fresh(_, ref rates) => solve_block::<true, true>(k, view, rates),
             Pass::Relax(_, ref rates) => {
                 measure(k, view);
-                solve_block::<false, false, V>(k, view, rates);
+                solve_block::<false, false>(k, view, rates);
             }
         }
     }
@@ -615,23 +615,23 @@ mod tests {
             // A substep that keeps each body's velocity change.
             let mut motion = Motion::default();
             motion.begin(&[Vec2::ZERO; 4]);
-            motion.load(&vel0, Start::Track, false);
+            motion.load(&vel0, Start::Track, false, None);
             colouring.run(&mut motion.bodies(), &Pass::Begin(params, false));
             for _ in 0..2 {
                 colouring.run(&mut motion.bodies(), &Pass::solve(&params, true));
             }
             colouring.run(&mut motion.bodies(), &Pass::relax(&params));
             let mut vel = vel0;
-            motion.unload(&mut vel, true, false);
+            motion.unload(&mut vel, true, false, None);
             // The next substep's velocities before its warm start.
             let next = vel.map(|v| v + Vec2::new(0.0, -0.04));
             // Warm started by a pass over the contacts...
             let (mut passed, mut replayed) = (motion.clone(), motion);
             let mut passed_colouring = colouring.clone();
-            passed.load(&next, Start::Plain, false);
+            passed.load(&next, Start::Plain, false, None);
             passed_colouring.run(&mut passed.bodies(), &Pass::Begin(params, false));
             // ...and by the replay, with a pass that only clears the push.
-            replayed.load(&next, Start::Replay, false);
+            replayed.load(&next, Start::Replay, false, None);
             let (mut fresh, mut fresh_colouring) = (replayed.clone(), colouring.clone());
             let clear = SolverParams {
                 warm_starting: false,

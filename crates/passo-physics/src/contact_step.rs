@@ -11,7 +11,7 @@ use crate::contact_world::{ContactWorld, StepParams};
 use crate::integrator::integrate_velocity;
 use crate::kernel::PointMassKernel;
 use crate::parallel::for_chunks;
-use crate::solver::{self, BodyState, Motion, SolverParams, Start};
+use crate::solver::{self, BodyState, Home, Homes, Motion, SolverParams, Start};
 use crate::world::{World, step_forces};
 use crate::{ContactSettings, Integrator};
 use glam::Vec2;
@@ -226,12 +226,15 @@ impl World {
                 (true, 0) => Start::Track,
                 (true, _) => Start::Replay,
             };
-            cw.motion.load(&self.dynamic.vel, start, self.parallel);
+            let far = cw.regions.far_states();
+            cw.motion.load(&self.dynamic.vel, start, self.parallel, far);
             self.solve(&mut cw, &plan, moved, start == Start::Replay);
-            self.integrate_positions(&mut cw.motion, &plan, &correction);
+            let far = cw.regions.far_states();
+            self.integrate_positions(&mut cw.motion, far, &plan, &correction);
             self.relax(&mut cw, &plan);
+            let far = cw.regions.far_states().map(|(home, far)| (home, &*far));
             cw.motion
-                .unload(&mut self.dynamic.vel, plan.replay, self.parallel);
+                .unload(&mut self.dynamic.vel, plan.replay, self.parallel, far);
         }
         cw.regions.store(&mut cw.solved.rows);
         if plan.substeps > 0 && plan.sweep {
@@ -352,6 +355,7 @@ impl World {
     fn integrate_positions(
         &mut self,
         motion: &mut Motion,
+        far: Option<(&Homes, &mut [BodyState])>,
         plan: &SubstepPlan,
         correction: &[Vec2],
     ) {
@@ -371,9 +375,9 @@ impl World {
         };
         let parallel = self.parallel;
         match limits {
-            None => moves.run(parallel, parts, |_| None),
-            Some(Some(uniform)) => moves.run(parallel, parts, |_| Some(uniform)),
-            Some(None) => moves.run(parallel, parts, |i| Some(arrays.limits[i])),
+            None => moves.run(parallel, parts, far, |_| None),
+            Some(Some(uniform)) => moves.run(parallel, parts, far, |_| Some(uniform)),
+            Some(None) => moves.run(parallel, parts, far, |i| Some(arrays.limits[i])),
         }
     }
 
@@ -438,35 +442,76 @@ impl Moves<'_> {
     /// Applies each body's speed limits (`limit(i)`, if any; with the
     /// replay, a limit's change is taken out of the body's replayed
     /// change), then moves it, and keeps its displacement since the step
-    /// began.
+    /// began. `far`: while the step splits, each body's home and the second
+    /// region's states (see [`Homes`]); each run of bodies is read and
+    /// written where it lives.
     fn run(
         &self,
         parallel: bool,
         parts: (&mut [Vec2], &mut [BodyState], &mut [Vec2], &mut [Vec2]),
+        far: Option<(&Homes, &mut [BodyState])>,
         limit: impl Fn(usize) -> Option<SpeedLimits> + Sync,
     ) {
-        for_chunks(parallel, parts, |offset, (pos, state, delta, replay)| {
-            let bodies = pos.iter_mut().zip(state.iter_mut()).zip(delta.iter_mut());
-            for (k, ((p, s), d)) in bodies.enumerate() {
-                let i = offset + k;
-                if let Some(limits) = limit(i) {
-                    let before = s.vel;
-                    if limits.apply(&mut s.vel) && self.replay {
-                        // The contacts' change so far kept, as if the body
-                        // had started the substep at the limited speed: a
-                        // limit's change is not replayed (and a body no
-                        // contact touched starts the next substep at
-                        // exactly the limited speed).
-                        replay[k] = s.vel - (before - replay[k]);
+        let Some((homes, far)) = far else {
+            for_chunks(parallel, parts, |offset, (pos, state, delta, replay)| {
+                self.move_run(offset, (pos, state, delta, replay), &limit);
+                0
+            });
+            return;
+        };
+        let (pos, state, delta, replay) = parts;
+        let far = &mut far[..pos.len()];
+        let parts = (pos, state, delta, replay, far);
+        for_chunks(
+            parallel,
+            parts,
+            |offset, (pos, state, delta, replay, far)| {
+                homes.each(offset, pos.len(), |run, home| {
+                    let (pos, delta) = (&mut pos[run.clone()], &mut delta[run.clone()]);
+                    let (near, far) = (&mut state[run.clone()], &mut far[run.clone()]);
+                    let replay = &mut replay[run.clone()];
+                    let first = offset + run.start;
+                    match home {
+                        Home::Far => self.move_run(first, (pos, far, delta, replay), &limit),
+                        Home::Near => self.move_run(first, (pos, near, delta, replay), &limit),
+                        Home::Both => {
+                            self.move_run(first, (pos, near, delta, replay), &limit);
+                            far.copy_from_slice(near);
+                        }
                     }
+                });
+                0
+            },
+        );
+    }
+
+    /// [`run`](Self::run) over the bodies from `first` on, whose states
+    /// are `state`.
+    #[inline(always)]
+    fn move_run(
+        &self,
+        first: usize,
+        (pos, state, delta, replay): (&mut [Vec2], &mut [BodyState], &mut [Vec2], &mut [Vec2]),
+        limit: &impl Fn(usize) -> Option<SpeedLimits>,
+    ) {
+        let bodies = pos.iter_mut().zip(state.iter_mut()).zip(delta.iter_mut());
+        for (k, ((p, s), d)) in bodies.enumerate() {
+            let i = first + k;
+            if let Some(limits) = limit(i) {
+                let before = s.vel;
+                if limits.apply(&mut s.vel) && self.replay {
+                    // The contacts' change so far kept, as if the body had
+                    // started the substep at the limited speed: a limit's
+                    // change is not replayed (and a body no contact touched
+                    // starts the next substep at exactly the limited speed).
+                    replay[k] = s.vel - (before - replay[k]);
                 }
-                // Semi-implicit Euler adds an exact zero here, as the
-                // no-contact path does: the same bits either way.
-                let c = self.correction.map_or(Vec2::ZERO, |c| c[i]);
-                *p += (s.vel + s.push) * self.h + c;
-                *d = *p - self.start[i];
             }
-            0
-        });
+            // Semi-implicit Euler adds an exact zero here, as the
+            // no-contact path does: the same bits either way.
+            let c = self.correction.map_or(Vec2::ZERO, |c| c[i]);
+            *p += (s.vel + s.push) * self.h + c;
+            *d = *p - self.start[i];
+        }
     }
 }

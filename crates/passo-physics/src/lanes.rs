@@ -128,21 +128,10 @@ impl Rates {
     }
 }
 
-/// How blocks reach the bodies: velocity and push (a [`BodyState`]) and
-/// displacement by dynamic index. An index out of range ([`NONE`]) reads
-/// as zero (the rest state of [`SolverBodies::state`]) and writes nothing.
-pub(crate) trait View {
-    /// Velocity and push of body `i`.
-    fn state(&self, i: u32) -> BodyState;
-    /// Sets velocity and push of body `i`.
-    fn set_state(&mut self, i: u32, s: BodyState);
-    /// Sets the velocity of body `i` (its push unchanged).
-    fn set_vel(&mut self, i: u32, v: Vec2);
-    /// Displacement of body `i` since the step began (only read).
-    fn delta(&self, i: u32) -> Vec2;
-}
-
-/// The bodies' arrays, borrowed from the solver's view of them.
+/// How blocks reach the bodies, borrowed from the solver's view of them:
+/// velocity and push (a [`BodyState`]) and displacement by dynamic index.
+/// An index out of range ([`NONE`]) reads as zero (the rest state of
+/// [`SolverBodies::state`]) and writes nothing.
 pub(crate) struct Bodies<'a> {
     state: &'a mut [BodyState],
     delta: &'a [Vec2],
@@ -168,7 +157,8 @@ impl<'a> Bodies<'a> {
     }
 }
 
-impl View for Bodies<'_> {
+impl Bodies<'_> {
+    /// Velocity and push of body `i`.
     #[inline(always)]
     fn state(&self, i: u32) -> BodyState {
         // Past the bodies: the rest state. The index is clamped, not
@@ -176,6 +166,7 @@ impl View for Bodies<'_> {
         self.state[(i as usize).min(self.state.len() - 1)]
     }
 
+    /// Sets velocity and push of body `i`.
     #[inline(always)]
     fn set_state(&mut self, i: u32, s: BodyState) {
         if let Some(slot) = self.body(i) {
@@ -183,6 +174,7 @@ impl View for Bodies<'_> {
         }
     }
 
+    /// Sets the velocity of body `i` (its push unchanged).
     #[inline(always)]
     fn set_vel(&mut self, i: u32, v: Vec2) {
         if let Some(slot) = self.body(i) {
@@ -190,6 +182,7 @@ impl View for Bodies<'_> {
         }
     }
 
+    /// Displacement of body `i` since the step began (only read).
     #[inline(always)]
     fn delta(&self, i: u32) -> Vec2 {
         self.delta.get(i as usize).copied().unwrap_or(Vec2::ZERO)
@@ -237,7 +230,7 @@ impl Lanes {
 /// The velocities and pushes of a block's lanes' bodies: each body read
 /// once.
 #[inline(always)]
-fn gather<V: View>(k: &Block, bodies: &V) -> (Lanes, Lanes) {
+fn gather(k: &Block, bodies: &Bodies<'_>) -> (Lanes, Lanes) {
     let (mut v, mut p) = (Lanes::default(), Lanes::default());
     for l in 0..LANES {
         let (a, b) = (bodies.state(k.a[l]), bodies.state(k.b[l]));
@@ -249,7 +242,7 @@ fn gather<V: View>(k: &Block, bodies: &V) -> (Lanes, Lanes) {
 
 /// Writes back the velocities of the bodies the lanes move.
 #[inline(always)]
-fn scatter_vel<V: View>(k: &Block, bodies: &mut V, v: &Lanes) {
+fn scatter_vel(k: &Block, bodies: &mut Bodies<'_>, v: &Lanes) {
     for l in 0..LANES {
         bodies.set_vel(k.write_a[l], v.a(l));
         bodies.set_vel(k.write_b[l], v.b(l));
@@ -259,7 +252,7 @@ fn scatter_vel<V: View>(k: &Block, bodies: &mut V, v: &Lanes) {
 /// Writes back the velocities and pushes of the bodies the lanes move:
 /// each body written once.
 #[inline(always)]
-fn scatter<V: View>(k: &Block, bodies: &mut V, v: &Lanes, p: &Lanes) {
+fn scatter(k: &Block, bodies: &mut Bodies<'_>, v: &Lanes, p: &Lanes) {
     for l in 0..LANES {
         let (a, b) = (k.write_a[l], k.write_b[l]);
         bodies.set_state(
@@ -281,7 +274,7 @@ fn scatter<V: View>(k: &Block, bodies: &mut V, v: &Lanes, p: &Lanes) {
 
 /// Warm start and push carry of one block (see
 /// [`solver::begin_substep`](crate::solver::begin_substep)).
-pub(crate) fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, carry: bool) {
+pub(crate) fn warm_start(k: &mut Block, bodies: &mut Bodies<'_>, warm: bool, carry: bool) {
     let carries = carry && k.carry.iter().any(|&c| c);
     if !carries {
         k.push_impulse = [0.0; LANES];
@@ -320,7 +313,7 @@ pub(crate) fn warm_start<V: View>(k: &mut Block, bodies: &mut V, warm: bool, car
 /// displacement along the normal since the step began (see
 /// `solver::separation`). The bodies move only between the passes,
 /// so the passes of a substep share it.
-pub(crate) fn measure<V: View>(k: &mut Block, bodies: &V) {
+pub(crate) fn measure(k: &mut Block, bodies: &Bodies<'_>) {
     let mut d = Lanes::default();
     for l in 0..LANES {
         d.set(l, bodies.delta(k.a[l]), bodies.delta(k.b[l]));
@@ -338,9 +331,9 @@ pub(crate) fn measure<V: View>(k: &mut Block, bodies: &V) {
 /// lane's push impulse starts from zero (the first pass of a substep whose
 /// warm start pass did not run to clear it).
 #[inline(always)]
-pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool, V: View>(
+pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool>(
     k: &mut Block,
-    bodies: &mut V,
+    bodies: &mut Bodies<'_>,
     r: &Rates,
 ) {
     let (mut v, mut p) = gather(k, bodies);

@@ -30,10 +30,7 @@
 //! assert!((s * (s + 9.81 / 60.0) - vt * vt).abs() < 1e-3);
 //! ```
 #![warn(missing_docs, unreachable_pub)]
-// Unsafe code is denied everywhere but in `regions`, where the two halves
-// of a large step's contacts share the bodies' arrays across threads (its
-// soundness argument is on the type that does it).
-#![deny(unsafe_code)]
+#![forbid(unsafe_code)]
 
 // The modules in the order data flows through them: each imports only
 // modules of the groups above it or earlier in its own group (checked by
@@ -88,7 +85,6 @@ mod solver;
 mod lanes;
 // The contacts in colours, passed over a colour at a time.
 mod colouring;
-#[allow(unsafe_code)]
 mod regions;
 
 mod continuous;

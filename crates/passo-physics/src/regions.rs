@@ -14,22 +14,28 @@
 //! The regions move disjoint sets of bodies and read only their own bodies
 //! and bodies no contact moves (static, kinematic, sleeping: a contact that
 //! reads a body another contact moves is put between the regions), so the
-//! order
-//! in which they run does not matter: the bits are the same on one thread
-//! or several. Whether a step splits depends on the world alone, never on
-//! threads or features, so the bits are also the same with
+//! order in which they run does not matter: the bits are the same on one
+//! thread or several. Whether a step splits depends on the world alone,
+//! never on threads or features, so the bits are also the same with
 //! `World::set_parallel` on or off, and in builds with the feature or
 //! without.
+//!
+//! While the passes run, the second region's bodies keep their states in
+//! an array of their own (see [`Homes`]), and each region's passes work on
+//! one array, with no shared access and no `unsafe`. In one array the two
+//! regions' bodies lie in runs between each other's wherever the storage
+//! order does not follow the split (a rain added row by row and split at
+//! the middle of its width: runs of a hundred), and the two threads slowed
+//! each other by a third through it, although no cache line held bodies of
+//! both (most likely the prefetchers, fetching ahead into the other
+//! region's runs; see BENCHMARKS.md). The stages around the passes read
+//! and write each run of bodies in the array where it lives.
 
 use crate::colouring::{Colouring, Pass};
 use crate::constraint::Constraint;
 use crate::lanes::Bodies;
-#[cfg(feature = "parallel")]
-use crate::lanes::View;
 use crate::parallel::{goes_parallel, join};
-#[cfg(feature = "parallel")]
-use crate::solver::BodyState;
-use crate::solver::SolverBodies;
+use crate::solver::{BodyState, Home, Homes, SolverBodies};
 use glam::Vec2;
 
 /// Dynamic bodies from which a step splits into regions: 4 096 (as the
@@ -57,6 +63,16 @@ pub(crate) struct ContactRegions {
     /// Per dynamic body: 1 if a contact moves it, 2 if one only reads it
     /// (empty when no row holds a body).
     use_of: Vec<u8>,
+    /// While the step splits: where each body's state lives during the
+    /// passes.
+    homes: Homes,
+    /// The states of the bodies whose home is [`Home::Far`] or
+    /// [`Home::Both`], by dynamic index like the solver's (written by the
+    /// solver's load, see `Motion::load`), then the rest state.
+    far: Vec<BodyState>,
+    /// The bodies at home in `far` that contacts between the regions
+    /// move: copied to the solver's array for those contacts and back.
+    far_between: Vec<u32>,
 }
 
 impl ContactRegions {
@@ -122,6 +138,7 @@ impl ContactRegions {
         } else {
             pick(rows, 0, region, use_of, &mut self.picked);
         }
+        self.find_homes(rows);
         let [first, second, between] = &mut self.groups;
         let colour = |colouring: &mut Colouring, picked: &[u32]| {
             colouring.build(rows, picked.iter().map(|&i| i as usize), bodies, deep);
@@ -133,9 +150,10 @@ impl ContactRegions {
             || colour(second, in_second),
         );
         colour(between, in_between);
-        // What makes the regions safe to run side by side (see `Shared`):
-        // a region's blocks move only its bodies, and read only those and
-        // bodies no contact moves.
+        // What lets the regions run side by side, each on its own array of
+        // states (see `Homes`): a region's blocks move only its bodies, and
+        // read only those and bodies no contact moves (held, in both
+        // arrays).
         #[cfg(debug_assertions)]
         for r in 0..2 {
             let own = |i: u32| self.region[i as usize] == r as u8;
@@ -163,6 +181,53 @@ impl ContactRegions {
             .extend(pos.iter().map(|p| u8::from(p[axis] >= middle)));
     }
 
+    /// Each body's home (see [`Home`]) and the far bodies that contacts
+    /// between the regions move; sizes the far array.
+    fn find_homes(&mut self, rows: &[Constraint]) {
+        let (region, use_of) = (&self.region, &self.use_of);
+        let home = |i: usize| match (use_of.get(i) == Some(&2), region[i]) {
+            (true, _) => Home::Both,
+            (false, 0) => Home::Near,
+            (false, _) => Home::Far,
+        };
+        let bodies = region.len();
+        self.homes.set((0..bodies).map(home));
+        // Only the far bodies' entries (written at each load) and the rest
+        // state after the bodies are ever read.
+        self.far.resize(bodies + 1, BodyState::default());
+        self.far[bodies] = BodyState::default();
+        self.far_between.clear();
+        for &r in &self.picked[2] {
+            let (a, b) = rows[r as usize].moved();
+            for i in [a, b].into_iter().flatten() {
+                if home(i) == Home::Far {
+                    self.far_between.push(i as u32);
+                }
+            }
+        }
+        self.far_between.sort_unstable();
+        self.far_between.dedup();
+    }
+
+    /// While the step splits: each body's home and the far array (the
+    /// states of the bodies at home there), for the stages around the
+    /// passes, which read and write each body's state where it lives.
+    pub(crate) fn far_states(&mut self) -> Option<(&Homes, &mut [BodyState])> {
+        self.split.then(|| (&self.homes, &mut self.far[..]))
+    }
+
+    /// Copies the states of the bodies at home in the far array in from
+    /// the solver's `states`, as a load does (for tests).
+    #[cfg(all(test, feature = "parallel"))]
+    pub(crate) fn load_far(&mut self, states: &[BodyState]) {
+        let far = &mut self.far;
+        self.homes.each(0, self.region.len(), |run, home| {
+            if home != Home::Near {
+                far[run.clone()].copy_from_slice(&states[run]);
+            }
+        });
+    }
+
     /// Writes the impulses back to the rows.
     pub(crate) fn store(&self, rows: &mut [Constraint]) {
         for g in &self.groups {
@@ -174,15 +239,39 @@ impl ContactRegions {
     /// when `parallel`), the regions' contacts left over, the contacts
     /// between the regions.
     pub(crate) fn run(&mut self, bodies: &mut SolverBodies<'_>, pass: &Pass, parallel: bool) {
-        let [first, second, between] = &mut self.groups;
         if !self.split {
-            first.run(bodies, pass);
+            self.groups[0].run(bodies, pass);
             return;
         }
-        both(first, second, bodies, pass, parallel);
+        let [first, second, between] = &mut self.groups;
+        let mut far = SolverBodies {
+            state: &mut self.far,
+            delta: bodies.delta,
+            deep: bodies.deep,
+        };
+        both(first, second, bodies, &mut far, pass, parallel);
         first.overflow(bodies, pass);
-        second.overflow(bodies, pass);
+        second.overflow(&mut far, pass);
+        // The contacts between the regions, on the solver's array: the far
+        // bodies they move are copied there for them, and back.
+        for &i in &self.far_between {
+            bodies.state[i as usize] = self.far[i as usize];
+        }
         between.run(bodies, pass);
+        for &i in &self.far_between {
+            self.far[i as usize] = bodies.state[i as usize];
+        }
+    }
+
+    /// Copies the far bodies' states into the solver's array (for tests:
+    /// the step reads each body where it lives).
+    #[cfg(all(test, feature = "parallel"))]
+    pub(crate) fn gather(&self, states: &mut [BodyState]) {
+        self.homes.each(0, self.region.len(), |run, home| {
+            if home == Home::Far {
+                states[run.clone()].copy_from_slice(&self.far[run]);
+            }
+        });
     }
 
     /// Whether this step split (for tests).
@@ -219,121 +308,22 @@ fn pick(
     }
 }
 
-/// The blocks of the two regions: on two threads when `parallel` (and the
-/// feature is on), else one after the other; the same bits either way.
+/// The blocks of the two regions, each on its own array of states: on two
+/// threads when `parallel` (and the feature is on), else one after the
+/// other; the same bits either way.
 fn both(
     first: &mut Colouring,
     second: &mut Colouring,
-    bodies: &mut SolverBodies<'_>,
+    near: &mut SolverBodies<'_>,
+    far: &mut SolverBodies<'_>,
     pass: &Pass,
     parallel: bool,
 ) {
-    #[cfg(feature = "parallel")]
-    if parallel {
-        let shared = Shared::new(bodies);
-        rayon::join(
-            || first.blocks(&mut { shared }, pass),
-            || second.blocks(&mut { shared }, pass),
-        );
-        return;
-    }
-    let _ = parallel;
-    let mut view = Bodies::new(bodies);
-    first.blocks(&mut view, pass);
-    second.blocks(&mut view, pass);
-}
-
-/// The bodies' arrays shared by the two regions' threads.
-///
-/// Soundness: built from a `&mut SolverBodies` that it borrows for its
-/// whole life (`'a`), so nothing else reads or writes the arrays meanwhile,
-/// and every access stays in bounds: a write or a displacement read only
-/// below the bodies' count (`len - 1`), a state read at an index clamped
-/// to `len - 1` (`len >= 1`, asserted in `new`). The element at `len - 1`
-/// is the rest state, which nothing writes, so both threads may read it
-/// (every lane that names no body does). Copies go to the two
-/// closures of one `rayon::join` in [`both`], each running the blocks of
-/// one region. A region's blocks write only the bodies of that region (a
-/// contact is in region `r` only if every body it moves is; checked in
-/// debug builds by [`ContactRegions::build`]) and read only those and
-/// bodies that no contact moves (`build` sends every contact that reads a
-/// body some contact moves between the regions, whatever the rest of the
-/// step does). So no element is written by one thread while
-/// the other reads or writes it. Accesses go through raw pointers, never
-/// through references, so the two copies do not assert exclusive borrows.
-#[cfg(feature = "parallel")]
-#[derive(Clone, Copy)]
-struct Shared<'a> {
-    state: *mut BodyState,
-    delta: *const Vec2,
-    /// States: the bodies, then the rest state.
-    len: usize,
-    _borrow: std::marker::PhantomData<&'a mut [BodyState]>,
-}
-
-// SAFETY: see the type's documentation: the threads that share it touch
-// disjoint elements, except elements only read.
-#[cfg(feature = "parallel")]
-unsafe impl Send for Shared<'_> {}
-// SAFETY: as for `Send`.
-#[cfg(feature = "parallel")]
-unsafe impl Sync for Shared<'_> {}
-
-#[cfg(feature = "parallel")]
-impl<'a> Shared<'a> {
-    fn new(bodies: &'a mut SolverBodies<'_>) -> Self {
-        let len = bodies.state.len();
-        // The bodies, then the rest state.
-        assert!(len == bodies.delta.len() + 1);
-        Self {
-            state: bodies.state.as_mut_ptr(),
-            delta: bodies.delta.as_ptr(),
-            len,
-            _borrow: std::marker::PhantomData,
-        }
-    }
-}
-
-#[cfg(feature = "parallel")]
-impl View for Shared<'_> {
-    // An index out of range ([`NONE`](crate::lanes::NONE)) reads the rest
-    // state (zero) and writes nothing, as for `Bodies`.
-
-    #[inline(always)]
-    fn state(&self, i: u32) -> BodyState {
-        // Past the bodies: the rest state (branch-free).
-        let i = (i as usize).min(self.len - 1);
-        // SAFETY: in bounds (`len >= 1`, checked in `new`); no other
-        // thread writes it (see the type).
-        unsafe { self.state.add(i).read() }
-    }
-
-    #[inline(always)]
-    fn set_state(&mut self, i: u32, s: BodyState) {
-        if (i as usize) < self.len - 1 {
-            // SAFETY: in bounds; this thread's region only (see the type).
-            unsafe { self.state.add(i as usize).write(s) }
-        }
-    }
-
-    #[inline(always)]
-    fn set_vel(&mut self, i: u32, v: Vec2) {
-        if (i as usize) < self.len - 1 {
-            // SAFETY: in bounds; this thread's region only (see the type).
-            // Through a raw pointer to the field, never a reference.
-            unsafe { (&raw mut (*self.state.add(i as usize)).vel).write(v) }
-        }
-    }
-
-    #[inline(always)]
-    fn delta(&self, i: u32) -> Vec2 {
-        if (i as usize) < self.len - 1 {
-            // SAFETY: in bounds; never written while the passes run.
-            unsafe { self.delta.add(i as usize).read() }
-        } else {
-            Vec2::ZERO
-        }
-    }
+    join(
+        parallel,
+        || first.blocks(&mut Bodies::new(near), pass),
+        || second.blocks(&mut Bodies::new(far), pass),
+    );
 }
 
 #[cfg(test)]
@@ -405,6 +395,7 @@ mod tests {
         let mut regions = ContactRegions::default();
         regions.build(&rows, &pos, &[], false, parallel);
         let mut state = BodyState::of(&vel);
+        regions.load_far(&state);
         let delta = vec![Vec2::ZERO; pos.len()];
         let mut bodies = SolverBodies {
             state: &mut state,
@@ -417,6 +408,7 @@ mod tests {
             regions.run(&mut bodies, &Pass::solve(&p, push), parallel);
         }
         regions.store(&mut rows);
+        regions.gather(&mut state);
         let (vel, push) = BodyState::split(&state);
         (vel, push, rows, regions.is_split())
     }
