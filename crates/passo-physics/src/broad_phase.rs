@@ -391,21 +391,31 @@ impl BroadPhase {
             return false;
         }
         self.starts[cells] = end;
-        self.order.clear();
+        // Every entry of the sorted arrays is written below: they are only
+        // sized here (no clearing, which wrote each entry twice a step).
         self.order.resize(proxies.len(), 0);
-        self.sorted_boxes.clear();
-        self.sorted_boxes
-            .resize(proxies.len(), Aabb::from_centre(Vec2::ZERO, Vec2::ZERO));
-        self.sorted_cells.clear();
-        self.sorted_cells.resize(proxies.len(), 0);
         for (i, &c) in self.cell_of.iter().enumerate().rev() {
             let slot = &mut self.starts[c as usize];
             *slot -= 1;
-            let k = *slot as usize;
-            self.order[k] = i as u32;
-            self.sorted_boxes[k] = proxies[i];
-            self.sorted_cells[k] = c;
+            self.order[*slot as usize] = i as u32;
         }
+        // The boxes and cells in that order, gathered in chunks on the pool
+        // (the deal above writes one index a proxy, not its box).
+        let empty = Aabb::from_centre(Vec2::ZERO, Vec2::ZERO);
+        self.sorted_boxes.resize(proxies.len(), empty);
+        self.sorted_cells.resize(proxies.len(), 0);
+        let cell_of = &self.cell_of[..];
+        let sorted = (
+            &mut self.sorted_boxes[..],
+            &mut self.sorted_cells[..],
+            &self.order[..],
+        );
+        for_chunks(parallel, sorted, |_, (boxes, cells, order)| {
+            for ((b, c), &i) in boxes.iter_mut().zip(cells.iter_mut()).zip(order) {
+                (*b, *c) = (proxies[i as usize], cell_of[i as usize]);
+            }
+            0
+        });
 
         let (order, starts) = (&self.order, &self.starts);
         let (boxes, sorted_cells) = (&self.sorted_boxes, &self.sorted_cells);

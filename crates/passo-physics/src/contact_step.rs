@@ -182,10 +182,12 @@ impl World {
         }
         let mut plan = SubstepPlan::new(self, settings, dt, cw.sleeping.any(&self.dynamic));
         plan.solver.carry_push = settings.warm_starting
-            && cw
-                .motion
-                .piles
-                .find(&cw.solved.rows, self.dynamic.len(), DEEP_OVERLAP);
+            && cw.motion.piles.find(
+                &cw.solved.rows,
+                self.dynamic.len(),
+                DEEP_OVERLAP,
+                self.parallel,
+            );
         // The substeps after the first warm start by replaying each body's
         // velocity change (see `Start::Replay`), unless no relax pass
         // measures the separations (the warm start pass does then), or
@@ -238,7 +240,7 @@ impl World {
         }
         cw.regions.store(&mut cw.solved.rows);
         if plan.substeps > 0 && plan.sweep {
-            let stops = cw.sweep_fast_bodies(&mut self.dynamic, &self.statics);
+            let stops = cw.sweep_fast_bodies(&mut self.dynamic, &self.statics, self.parallel);
             self.stats.swept_stops = self.stats.swept_stops.saturating_add(stops as u64);
         }
         self.finish_contacts(&mut cw, &plan);

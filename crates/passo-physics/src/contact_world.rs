@@ -114,16 +114,18 @@ impl ContactWorld {
     }
 
     /// After the substeps: sweeps the bodies that moved beyond their reach
-    /// and moves back those that hit something (see [`Sweeps`]). Returns
-    /// how many were stopped.
+    /// and moves back those that hit something (see [`Sweeps`]; the
+    /// bodies' travel checked on the pool when `parallel`). Returns how
+    /// many were stopped.
     pub(crate) fn sweep_fast_bodies(
         &mut self,
         dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
+        parallel: bool,
     ) -> usize {
         let stops = self
             .sweeps
-            .run(dynamic, statics, &self.proxies, &mut self.motion);
+            .run(dynamic, statics, &self.proxies, &mut self.motion, parallel);
         let candidates = &mut self.narrow.sensor_candidates;
         self.sweeps
             .far_sensor_candidates(dynamic, statics, &self.proxies, candidates);

@@ -47,6 +47,7 @@ use crate::collider::ColliderRef;
 use crate::constants::LINEAR_SLOP;
 use crate::manifold::Faces;
 use crate::narrow_phase::SensorCandidate;
+use crate::parallel::for_chunks_max;
 use crate::proxies::{NO_PROXY, Proxies, ProxyMargin};
 use crate::solver::Motion;
 use glam::Vec2;
@@ -65,6 +66,17 @@ pub(crate) struct Sweeps {
     moving_sensors: Vec<u32>,
 }
 
+/// How far the contacts of the body with proxy `p` ([`NO_PROXY`]: none)
+/// reached this step: its proxy's margin beyond a static body's.
+#[inline(always)]
+fn covered(proxies: &Proxies, p: u32) -> f32 {
+    if p == NO_PROXY {
+        0.0
+    } else {
+        proxies.margins[p as usize] - ProxyMargin::STATIC
+    }
+}
+
 /// A body being swept.
 struct Mover<'a> {
     shape: Shape,
@@ -80,17 +92,34 @@ impl Sweeps {
     /// back those that hit something, in two passes: every fast body
     /// against static and kinematic bodies, then fast bullets against the
     /// dynamic bodies on the paths the first pass left them. Returns how
-    /// many stops were made.
+    /// many stops were made. `parallel`: check the bodies' travel in chunks
+    /// on the pool (see `for_chunks`).
     pub(crate) fn run(
         &mut self,
         dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
         proxies: &Proxies,
         motion: &mut Motion,
+        parallel: bool,
     ) -> usize {
         self.stops.clear();
         self.bullets.clear();
         self.far.clear();
+        // Most steps no body moves beyond its reach: that is checked first,
+        // in chunks on the pool when `parallel`, and the bodies are walked
+        // one by one only if one did.
+        let beyond = for_chunks_max(
+            parallel,
+            (&motion.delta[..], &proxies.of_body[..]),
+            |(delta, proxy)| {
+                // As `fast_body` tests it (a NaN distance is not within).
+                let within = |(d, &p): (&Vec2, &u32)| d.length() <= covered(proxies, p);
+                u64::from(!delta.iter().zip(proxy).all(within))
+            },
+        );
+        if beyond == 0 {
+            return 0;
+        }
         let bodies = &*dynamic;
         for i in 0..bodies.len() {
             let Some(mover) = self.fast_body(i, bodies, proxies, motion) else {
@@ -132,10 +161,7 @@ impl Sweeps {
     ) -> Option<Mover<'a>> {
         // The distance first: most bodies stay within their reach, and the
         // arrays it reads are small, where the body's cold data is not.
-        let covered = match proxies.of_body.get(i) {
-            Some(&p) if p != NO_PROXY => proxies.margins[p as usize] - ProxyMargin::STATIC,
-            _ => 0.0,
-        };
+        let covered = proxies.of_body.get(i).map_or(0.0, |&p| covered(proxies, p));
         let distance = motion.delta[i].length();
         if distance <= covered {
             return None;

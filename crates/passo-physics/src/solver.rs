@@ -44,7 +44,7 @@
 //! [`begin_substep`]).
 
 use crate::constraint::{Constraint, ContactInfo};
-use crate::parallel::for_chunks;
+use crate::parallel::{for_chunks, for_chunks_max};
 use glam::Vec2;
 use std::ops::Range;
 
@@ -355,10 +355,20 @@ impl DeepPiles {
     /// Finds the piles of `constraints` (over `bodies` dynamic bodies)
     /// holding a contact overlapping by more than `depth` metres when the
     /// step begins; returns whether there is any. `O(contacts)` then, and
-    /// one pass over the contacts otherwise.
-    pub(crate) fn find(&mut self, constraints: &[Constraint], bodies: usize, depth: f32) -> bool {
+    /// one pass over the contacts otherwise (in chunks on the pool when
+    /// `parallel`).
+    pub(crate) fn find(
+        &mut self,
+        constraints: &[Constraint],
+        bodies: usize,
+        depth: f32,
+        parallel: bool,
+    ) -> bool {
         self.deep.clear();
-        if !constraints.iter().any(|c| c.base_separation < -depth) {
+        let deep = for_chunks_max(parallel, constraints, |rows| {
+            u64::from(rows.iter().any(|c| c.base_separation < -depth))
+        });
+        if deep == 0 {
             return false;
         }
         self.parent.clear();
