@@ -230,22 +230,56 @@ fn a_large_world_with_a_point_mass_and_a_kinematic_body_the_same_bits_on_the_poo
     }
 }
 
-/// The state hash of the large world with a sweeper after 100 ticks: a
-/// step of this world splits its contacts in two regions (see
-/// `the_same_bits_whatever_the_number_of_threads`), and the kinematic body
-/// is read by both.
-const EXPECTED_SPLIT: u64 = 0x5b52_ff30_d155_4fe1;
+/// The state hashes after 100 ticks of two worlds whose steps split their
+/// contacts in two regions (see `the_same_bits_whatever_the_number_of_threads`):
+/// the large world with a sweeper, and the wide pile with platforms.
+const EXPECTED_SPLIT: [u64; 2] = [0x5b52_ff30_d155_4fe1, 0xcc65_5fb3_627a_134f];
+
+/// A pile of 4 500 circles 45 m wide and 9 m high on the ground (so its
+/// steps split it at the middle of its width), with a kinematic platform
+/// pushing through each half: each region's contacts read a body they do
+/// not move. The world's speed limit (2 m/s) acts on the circles the
+/// platforms push.
+fn wide_pile_with_platforms() -> World {
+    let settings = passo_physics::WorldSettings {
+        max_speed: 2.0,
+        ..Default::default()
+    };
+    let mut world = World::new(settings).unwrap();
+    add_ground(&mut world, 60.0);
+    for row in 0..30 {
+        for col in 0..150 {
+            let p = Vec2::new(-22.35 + col as f32 * 0.3, 0.15 + row as f32 * 0.3);
+            let def = BodyDef::new_dynamic(p, Shape::circle(0.14));
+            world.add_body(def).unwrap();
+        }
+    }
+    for x in [-11.0, 11.0] {
+        let platform = BodyDef::new_kinematic(
+            Vec2::new(x, 1.2),
+            Shape::rect(3.0, 0.3),
+            Vec2::new(1.5, 0.0),
+        );
+        world.add_body(platform).unwrap();
+    }
+    world
+}
 
 #[test]
-fn a_large_world_split_in_regions_reaches_the_same_bits_as_always() {
-    let mut world = large_world_with_a_sweeper(false);
-    assert!(world.dynamic_len() >= passo_physics::constants::PARALLEL_MIN_ITEMS);
-    let hash = *hashes_of_steps(&mut world, 100).last().unwrap();
-    assert_eq!(
-        hash, EXPECTED_SPLIT,
-        "the large world's bits changed: if the change was intended, set \
-         EXPECTED_SPLIT to {hash:#018x} (see the top of this file)"
-    );
+fn worlds_split_in_regions_reach_the_same_bits_as_always() {
+    let worlds = [
+        large_world_with_a_sweeper(false),
+        wide_pile_with_platforms(),
+    ];
+    for (k, mut world) in worlds.into_iter().enumerate() {
+        assert!(world.dynamic_len() >= passo_physics::constants::PARALLEL_MIN_ITEMS);
+        let hash = *hashes_of_steps(&mut world, 100).last().unwrap();
+        assert_eq!(
+            hash, EXPECTED_SPLIT[k],
+            "world {k}'s bits changed: if the change was intended, set \
+             EXPECTED_SPLIT[{k}] to {hash:#018x} (see the top of this file)"
+        );
+    }
 }
 
 #[test]

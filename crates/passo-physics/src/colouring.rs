@@ -266,6 +266,12 @@ impl Colouring {
         }
     }
 
+    /// Contacts left over, solved one by one (for tests).
+    #[cfg(test)]
+    pub(crate) fn left_over(&self) -> usize {
+        self.overflow.len()
+    }
+
     /// Colours in use.
     #[cfg(test)]
     pub(crate) fn colour_count(&self) -> usize {

@@ -79,7 +79,9 @@ impl ContactRegions {
     /// Splits (or not) and colours `rows`, over the dynamic bodies at
     /// positions `pos`; `deep` as for [`Colouring::build`]. `holds`: some
     /// row holds a dynamic body (asleep or kinematic: inverse mass zero in
-    /// the row), which the step knows from its bodies. With `parallel`
+    /// the row), which the step knows from its bodies; should a row hold
+    /// one all the same, sorting the rows notices and the build starts
+    /// again as if `holds` were set. With `parallel`
     /// (and the feature) the rows are sorted into regions in two halves
     /// side by side, and the two regions are coloured side by side.
     pub(crate) fn build(
@@ -116,18 +118,11 @@ impl ContactRegions {
                 }
             }
         }
-        debug_assert!(
-            holds
-                || rows
-                    .iter()
-                    .all(|c| c.moved() == (Some(c.a as usize), c.b.dynamic_index())),
-            "a row holds a dynamic body"
-        );
         let (region, use_of) = (&self.region[..], &self.use_of[..]);
-        if goes_parallel(parallel, rows.len()) {
+        let held = if goes_parallel(parallel, rows.len()) {
             let (head, tail) = rows.split_at(rows.len() / 2);
             let (picked, picked_tail) = (&mut self.picked, &mut self.picked_tail);
-            join(
+            let held = join(
                 true,
                 || pick(head, 0, region, use_of, picked),
                 || pick(tail, head.len(), region, use_of, picked_tail),
@@ -135,8 +130,16 @@ impl ContactRegions {
             for (g, t) in picked.iter_mut().zip(&*picked_tail) {
                 g.extend_from_slice(t);
             }
+            held.0 || held.1
         } else {
-            pick(rows, 0, region, use_of, &mut self.picked);
+            pick(rows, 0, region, use_of, &mut self.picked)
+        };
+        if held && !holds {
+            // A row holds a body the step did not say was held: without
+            // `use_of` such a body could be read by one region from the
+            // array of states it does not live in.
+            self.build(rows, pos, deep, true, parallel);
+            return;
         }
         self.find_homes(rows);
         let [first, second, between] = &mut self.groups;
@@ -218,7 +221,7 @@ impl ContactRegions {
 
     /// Copies the states of the bodies at home in the far array in from
     /// the solver's `states`, as a load does (for tests).
-    #[cfg(all(test, feature = "parallel"))]
+    #[cfg(test)]
     pub(crate) fn load_far(&mut self, states: &[BodyState]) {
         let far = &mut self.far;
         self.homes.each(0, self.region.len(), |run, home| {
@@ -265,7 +268,7 @@ impl ContactRegions {
 
     /// Copies the far bodies' states into the solver's array (for tests:
     /// the step reads each body where it lives).
-    #[cfg(all(test, feature = "parallel"))]
+    #[cfg(test)]
     pub(crate) fn gather(&self, states: &mut [BodyState]) {
         self.homes.each(0, self.region.len(), |run, home| {
             if home == Home::Far {
@@ -285,20 +288,24 @@ impl ContactRegions {
 /// `picked`, cleared first: each contact goes to the region of the bodies
 /// it moves, or between the regions when it moves a body of each or names
 /// a body (`use_of` 3) that one contact moves and another only reads
-/// (`use_of` is empty when no row holds a body).
+/// (`use_of` is empty when no row holds a body). Returns whether some row
+/// holds a dynamic body (reads it without moving it).
 fn pick(
     rows: &[Constraint],
     first: usize,
     region: &[u8],
     use_of: &[u8],
     picked: &mut [Vec<u32>; 3],
-) {
+) -> bool {
     for g in picked.iter_mut() {
         g.clear();
     }
     let shared = |i: usize| use_of.get(i) == Some(&3);
+    let mut held = false;
     for (i, c) in rows.iter().enumerate() {
-        let g = match c.moved() {
+        let moved = c.moved();
+        held |= moved != (Some(c.a as usize), c.b.dynamic_index());
+        let g = match moved {
             _ if shared(c.a as usize) || c.b.dynamic_index().is_some_and(shared) => 2,
             (Some(a), Some(b)) if region[a] != region[b] => 2,
             (Some(x), _) | (None, Some(x)) => region[x],
@@ -306,6 +313,7 @@ fn pick(
         };
         picked[g as usize].push((first + i) as u32);
     }
+    held
 }
 
 /// The blocks of the two regions, each on its own array of states: on two
@@ -330,7 +338,6 @@ fn both(
 mod tests {
     use super::*;
     use crate::collider::ColliderRef;
-    #[cfg(feature = "parallel")]
     use crate::solver::SolverParams;
 
     /// A `side` × `side` lattice of boxes, each touching its right and upper
@@ -387,30 +394,147 @@ mod tests {
         (pos, vel, rows)
     }
 
-    /// Runs a substep's passes (warm start, two passes with the push, one
-    /// without) and returns the velocities, pushes and rows.
-    #[cfg(feature = "parallel")]
-    fn substep(side: u32, parallel: bool) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>, bool) {
-        let (pos, vel, mut rows) = lattice(side);
+    /// A pile's positions, velocities and contacts, the bodies in a deep
+    /// pile, and whether a contact holds a body.
+    type Scene = (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>, Vec<bool>, bool);
+
+    /// How a test runs a substep's passes.
+    #[derive(Clone, Copy, PartialEq)]
+    enum Run {
+        /// As the step does, on two threads if `true`.
+        Step(bool),
+        /// The regions' groups one after the other on one array of states
+        /// (the order of `ContactRegions::run`, with no array of their
+        /// own for the second region's bodies).
+        OneArray,
+    }
+
+    /// Runs a substep's passes over `scene` (warm start, two passes with
+    /// the push, one without) and returns the velocities, pushes and rows,
+    /// and whether the step split.
+    fn substep(scene: &Scene, run: Run) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>, bool) {
+        let (pos, vel, rows, deep, holds) = scene;
+        let mut rows = rows.clone();
+        let parallel = run == Run::Step(true);
         let mut regions = ContactRegions::default();
-        regions.build(&rows, &pos, &[], false, parallel);
-        let mut state = BodyState::of(&vel);
+        regions.build(&rows, pos, deep, *holds, parallel);
+        let mut state = BodyState::of(vel);
         regions.load_far(&state);
         let delta = vec![Vec2::ZERO; pos.len()];
         let mut bodies = SolverBodies {
             state: &mut state,
             delta: &delta,
-            deep: &[],
+            deep,
         };
-        let p = SolverParams::for_tests();
-        regions.run(&mut bodies, &Pass::Begin(p, true), parallel);
-        for push in [true, true, false] {
-            regions.run(&mut bodies, &Pass::solve(&p, push), parallel);
+        let p = SolverParams {
+            carry_push: !deep.is_empty(),
+            ..SolverParams::for_tests()
+        };
+        let passes = [
+            Pass::Begin(p, true),
+            Pass::solve(&p, true),
+            Pass::solve(&p, true),
+        ];
+        for pass in passes.iter().chain([&Pass::solve(&p, false)]) {
+            match run {
+                Run::Step(parallel) => regions.run(&mut bodies, pass, parallel),
+                Run::OneArray => {
+                    let [first, second, between] = &mut regions.groups;
+                    first.blocks(&mut Bodies::new(&mut bodies), pass);
+                    second.blocks(&mut Bodies::new(&mut bodies), pass);
+                    first.overflow(&mut bodies, pass);
+                    second.overflow(&mut bodies, pass);
+                    between.run(&mut bodies, pass);
+                }
+            }
         }
         regions.store(&mut rows);
-        regions.gather(&mut state);
+        if run != Run::OneArray {
+            regions.gather(&mut state);
+        }
         let (vel, push) = BodyState::split(&state);
         (vel, push, rows, regions.is_split())
+    }
+
+    /// The lattice of `side` × `side` with nothing held and no deep pile.
+    fn plain(side: u32) -> Scene {
+        let (pos, vel, rows) = lattice(side);
+        (pos, vel, rows, Vec::new(), false)
+    }
+
+    /// The lattice of 80 × 80, split at x = 39.5, with in the second
+    /// region a body that every contact naming it holds (read by that
+    /// region's blocks from both arrays), a hub touching 140 bodies (more
+    /// contacts than colours: the region's contacts left over, solved one
+    /// by one on its array), a body held in the first region, a body held
+    /// by one contact and moved by others (all of its contacts between the
+    /// regions), every body in a deep pile (pushes carried), and the
+    /// pushes of the last substep.
+    fn held_hub_and_deep() -> Scene {
+        let (pos, vel, mut rows) = lattice(80);
+        let at = |x: u32, y: u32| y * 80 + x;
+        let (held_far, held_near, mixed, hub) = (at(60, 30), at(10, 30), at(20, 50), at(70, 70));
+        for c in &mut rows {
+            if c.a == held_far || c.a == held_near {
+                c.inv_mass_a = 0.0;
+            }
+            if [held_far, held_near]
+                .map(Some)
+                .contains(&c.b.dynamic_index().map(|b| b as u32))
+            {
+                c.inv_mass_b = 0.0;
+            }
+            if c.a == mixed && c.normal == Vec2::X {
+                c.inv_mass_a = 0.0;
+            }
+            c.push_impulse = 0.02;
+        }
+        let template = rows[0];
+        let spoke = |k: u32| Constraint {
+            a: hub,
+            b: ColliderRef::dynamic(at(40 + k % 35, k / 35 * 9 + 1)),
+            normal: Vec2::new(0.6, 0.8),
+            base_separation: -0.01,
+            inv_mass_b: 1.0,
+            mass: 0.5,
+            ..template
+        };
+        rows.extend((0..140).map(spoke));
+        let deep = vec![true; pos.len()];
+        (pos, vel, rows, deep, true)
+    }
+
+    #[test]
+    fn each_region_on_its_own_array_gives_the_bits_of_one_array() {
+        // The last: the held bodies not announced (`holds` false), which
+        // the build notices and handles as if they were.
+        let mut unannounced = held_hub_and_deep();
+        unannounced.4 = false;
+        let scenes = [plain(80), held_hub_and_deep(), unannounced];
+        let reference = [&scenes[0], &scenes[1], &scenes[1]];
+        for (scene, reference) in scenes.iter().zip(reference) {
+            let one = substep(reference, Run::OneArray);
+            assert!(one.3, "the pile splits");
+            let own = substep(scene, Run::Step(false));
+            assert_eq!(own.0, one.0, "velocities");
+            assert_eq!(own.1, one.1, "pushes");
+            assert_eq!(own.2, one.2, "impulses");
+        }
+        // The second scene has what it says: contacts between the regions,
+        // left over in the second region, and held bodies in both arrays.
+        let (pos, _, rows, deep, holds) = held_hub_and_deep();
+        let mut regions = ContactRegions::default();
+        regions.build(&rows, &pos, &deep, holds, false);
+        assert!(!regions.picked[2].is_empty());
+        assert!(regions.groups[1].left_over() > 0);
+        assert!(!regions.far_between.is_empty());
+        let homes = (0..pos.len()).map(|i| regions.homes.of(i));
+        let both: Vec<usize> = homes
+            .enumerate()
+            .filter(|&(_, h)| h == Home::Both)
+            .map(|(i, _)| i)
+            .collect();
+        assert_eq!(both, [30 * 80 + 10, 30 * 80 + 60]);
     }
 
     #[test]
@@ -473,17 +597,19 @@ mod tests {
     #[cfg(feature = "parallel")]
     #[test]
     fn the_regions_give_the_same_bits_on_any_number_of_threads() {
-        let one = substep(80, false);
-        assert!(one.3, "the pile splits");
-        for threads in [1, 2, 4] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            let many = pool.install(|| substep(80, true));
-            assert_eq!(many.0, one.0, "velocities, {threads} threads");
-            assert_eq!(many.1, one.1, "pushes, {threads} threads");
-            assert_eq!(many.2, one.2, "impulses, {threads} threads");
+        for scene in [plain(80), held_hub_and_deep()] {
+            let one = substep(&scene, Run::Step(false));
+            assert!(one.3, "the pile splits");
+            for threads in [1, 2, 4] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let many = pool.install(|| substep(&scene, Run::Step(true)));
+                assert_eq!(many.0, one.0, "velocities, {threads} threads");
+                assert_eq!(many.1, one.1, "pushes, {threads} threads");
+                assert_eq!(many.2, one.2, "impulses, {threads} threads");
+            }
         }
     }
 }
