@@ -234,7 +234,7 @@ impl World {
             let far = cw.regions.far_states();
             self.integrate_positions(&mut cw.motion, far, &plan, &correction);
             self.relax(&mut cw, &plan);
-            let far = cw.regions.far_states().map(|(home, far)| (home, &*far));
+            let far = cw.regions.far_states().map(|(homes, far)| (homes, &*far));
             cw.motion
                 .unload(&mut self.dynamic.vel, plan.replay, self.parallel, far);
         }

@@ -514,6 +514,32 @@ pub(crate) struct Motion {
     pub piles: DeepPiles,
 }
 
+/// The states the passes start from, in `state`, for bodies moving at
+/// `vel`; see [`Start`] (and [`Motion::load`]).
+#[inline(always)]
+fn load_run(state: &mut [BodyState], vel: &[Vec2], replay: &mut [Vec2], start: Start) {
+    let bodies = state.iter_mut().zip(vel).zip(replay);
+    match start {
+        Start::Replay => {
+            for ((s, &v), replay) in bodies {
+                *s = BodyState::moving(v + *replay);
+                *replay = v;
+            }
+        }
+        Start::Track => {
+            for ((s, &v), replay) in bodies {
+                *s = BodyState::moving(v);
+                *replay = v;
+            }
+        }
+        Start::Plain => {
+            for ((s, &v), _) in bodies {
+                *s = BodyState::moving(v);
+            }
+        }
+    }
+}
+
 /// The velocities the passes left in `state`, back into `vel`; with
 /// `track`, each body's change in the substep kept in `replay` (see
 /// [`Motion::unload`]).
@@ -551,26 +577,6 @@ pub(crate) enum Start {
     Replay,
 }
 
-impl Start {
-    /// The state a body moving at `vel` starts the passes with, and what
-    /// `replay` keeps of it for the next substep.
-    #[inline(always)]
-    fn state(self, vel: Vec2, replay: &mut Vec2) -> BodyState {
-        match self {
-            Start::Plain => BodyState::moving(vel),
-            Start::Track => {
-                *replay = vel;
-                BodyState::moving(vel)
-            }
-            Start::Replay => {
-                let replayed = vel + *replay;
-                *replay = vel;
-                BodyState::moving(replayed)
-            }
-        }
-    }
-}
-
 impl Motion {
     /// Starts a step at positions `pos`.
     pub(crate) fn begin(&mut self, pos: &[Vec2]) {
@@ -601,9 +607,7 @@ impl Motion {
         let parts = (&mut self.state[..vel.len()], vel, &mut self.replay[..]);
         let Some((homes, far)) = far else {
             for_chunks(parallel, parts, |_, (state, vel, replay)| {
-                for ((s, &v), replay) in state.iter_mut().zip(vel).zip(replay) {
-                    *s = start.state(v, replay);
-                }
+                load_run(state, vel, replay, start);
                 0
             });
             return;
@@ -613,24 +617,14 @@ impl Motion {
         let parts = (state, vel, replay, far);
         for_chunks(parallel, parts, |offset, (state, vel, replay, far)| {
             homes.each(offset, vel.len(), |run, home| {
-                let bodies = vel[run.clone()].iter().zip(&mut replay[run.clone()]);
+                let (vel, replay) = (&vel[run.clone()], &mut replay[run.clone()]);
+                let (near, far) = (&mut state[run.clone()], &mut far[run]);
                 match home {
-                    Home::Near => {
-                        for (s, (&v, replay)) in state[run].iter_mut().zip(bodies) {
-                            *s = start.state(v, replay);
-                        }
-                    }
-                    Home::Far => {
-                        for (s, (&v, replay)) in far[run].iter_mut().zip(bodies) {
-                            *s = start.state(v, replay);
-                        }
-                    }
+                    Home::Near => load_run(near, vel, replay, start),
+                    Home::Far => load_run(far, vel, replay, start),
                     Home::Both => {
-                        let both = state[run.clone()].iter_mut().zip(&mut far[run]);
-                        for ((s, f), (&v, replay)) in both.zip(bodies) {
-                            let state = start.state(v, replay);
-                            (*s, *f) = (state, state);
-                        }
+                        load_run(near, vel, replay, start);
+                        far.copy_from_slice(near);
                     }
                 }
             });
