@@ -350,7 +350,7 @@ pub(crate) enum Pass {
     /// [`solver::solve`]).
     Solve(SolverParams, Rates, bool),
     /// The first pass with the push of a substep whose warm start was
-    /// replayed (see `solver::Start::Replay`) and whose push no deep pile
+    /// replayed (see `motion::Start::Replay`) and whose push no deep pile
     /// carries: each contact's push starts from zero, as the warm start
     /// pass, which this one makes needless, would have left it.
     Fresh(SolverParams, Rates),
@@ -584,7 +584,7 @@ mod tests {
 
     #[test]
     fn a_replayed_warm_start_gives_the_velocities_of_a_pass_over_the_contacts() {
-        use crate::solver::{Motion, Start};
+        use crate::motion::{Motion, Start};
         // Four boxes and the ground, in blocks (a chain) and, with
         // `blocks_always` off, one by one: both paths.
         let rows = vec![

@@ -9,11 +9,11 @@ use crate::constraint::{Constraint, ContactInfo, ContactList, Merge};
 use crate::contact_state::{ContactState, names_bodies};
 use crate::continuous::Sweeps;
 use crate::events::EventTracker;
+use crate::motion::Motion;
 use crate::narrow_phase::{Narrow, NarrowPhase, Outcome};
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::regions::ContactRegions;
 use crate::sleeping::{SleepingContacts, has_awake_body};
-use crate::solver::Motion;
 use crate::{BodyId, ContactEvents, ContactSettings, SensorPair};
 use glam::Vec2;
 

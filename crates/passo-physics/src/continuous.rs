@@ -46,10 +46,10 @@ use crate::cast::cast_shape;
 use crate::collider::ColliderRef;
 use crate::constants::LINEAR_SLOP;
 use crate::manifold::Faces;
+use crate::motion::Motion;
 use crate::narrow_phase::SensorCandidate;
 use crate::parallel::for_chunks_max;
 use crate::proxies::{NO_PROXY, Proxies, ProxyMargin};
-use crate::solver::Motion;
 use glam::Vec2;
 
 /// The sweeps of one step, with their buffers kept between steps.

@@ -81,6 +81,8 @@ mod constraint;
 
 mod narrow_phase;
 mod solver;
+// The per-body buffers of the substeps.
+mod motion;
 // The wide (lane by lane) contact passes.
 mod lanes;
 // The contacts in colours, passed over a colour at a time.

@@ -34,8 +34,9 @@
 use crate::colouring::{Colouring, Pass};
 use crate::constraint::Constraint;
 use crate::lanes::Bodies;
+use crate::motion::{Home, Homes};
 use crate::parallel::{goes_parallel, join};
-use crate::solver::{BodyState, Home, Homes, SolverBodies};
+use crate::solver::{BodyState, SolverBodies};
 use glam::Vec2;
 
 /// Dynamic bodies from which a step splits into regions: 4 096 (as the
