@@ -10,7 +10,7 @@ use crate::constants::DEEP_OVERLAP;
 use crate::contact_world::{ContactWorld, StepParams};
 use crate::integrator::integrate_velocity;
 use crate::kernel::PointMassKernel;
-use crate::motion::{Home, Homes, Motion, Start};
+use crate::motion::{Homes, Motion, Start};
 use crate::parallel::for_chunks;
 use crate::solver::{self, BodyState, SolverParams};
 use crate::world::{World, step_forces};
@@ -469,19 +469,10 @@ impl Moves<'_> {
             parallel,
             parts,
             |offset, (pos, state, delta, replay, far)| {
-                homes.each(offset, pos.len(), |run, home| {
+                homes.each_state(offset, state, far, |run, states| {
                     let (pos, delta) = (&mut pos[run.clone()], &mut delta[run.clone()]);
-                    let (near, far) = (&mut state[run.clone()], &mut far[run.clone()]);
-                    let replay = &mut replay[run.clone()];
-                    let first = offset + run.start;
-                    match home {
-                        Home::Far => self.move_run(first, (pos, far, delta, replay), &limit),
-                        Home::Near => self.move_run(first, (pos, near, delta, replay), &limit),
-                        Home::Both => {
-                            self.move_run(first, (pos, near, delta, replay), &limit);
-                            far.copy_from_slice(near);
-                        }
-                    }
+                    let moving = (pos, states, delta, &mut replay[run.clone()]);
+                    self.move_run(offset + run.start, moving, &limit);
                 });
                 0
             },

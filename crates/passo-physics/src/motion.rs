@@ -74,6 +74,28 @@ impl Homes {
             (at, r) = (next, r + 1);
         }
     }
+
+    /// Calls `f` with each run of the chunk of bodies from `offset` on (as
+    /// [`each`](Self::each)) and its states where they live: in `near` or
+    /// `far`, the chunk's part of each array. A held run gets its near
+    /// states, and is copied to the far array after.
+    #[inline(always)]
+    pub(crate) fn each_state(
+        &self,
+        offset: usize,
+        near: &mut [BodyState],
+        far: &mut [BodyState],
+        mut f: impl FnMut(Range<usize>, &mut [BodyState]),
+    ) {
+        self.each(offset, near.len(), |run, home| match home {
+            Home::Near => f(run.clone(), &mut near[run]),
+            Home::Far => f(run.clone(), &mut far[run]),
+            Home::Both => {
+                f(run.clone(), &mut near[run.clone()]);
+                far[run.clone()].copy_from_slice(&near[run]);
+            }
+        });
+    }
 }
 
 /// Per-body buffers of the substeps, kept between steps.
@@ -200,17 +222,8 @@ impl Motion {
         let far = &mut far[..vel.len()];
         let parts = (state, vel, replay, far);
         for_chunks(parallel, parts, |offset, (state, vel, replay, far)| {
-            homes.each(offset, vel.len(), |run, home| {
-                let (vel, replay) = (&vel[run.clone()], &mut replay[run.clone()]);
-                let (near, far) = (&mut state[run.clone()], &mut far[run]);
-                match home {
-                    Home::Near => load_run(near, vel, replay, start),
-                    Home::Far => load_run(far, vel, replay, start),
-                    Home::Both => {
-                        load_run(near, vel, replay, start);
-                        far.copy_from_slice(near);
-                    }
-                }
+            homes.each_state(offset, state, far, |run, states| {
+                load_run(states, &vel[run.clone()], &mut replay[run], start);
             });
             0
         });
