@@ -73,7 +73,7 @@ fn covered(proxies: &Proxies, p: u32) -> f32 {
     if p == NO_PROXY {
         0.0
     } else {
-        proxies.margins[p as usize] - ProxyMargin::STATIC
+        ProxyMargin::reached(proxies.margins[p as usize])
     }
 }
 

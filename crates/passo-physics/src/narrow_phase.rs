@@ -217,7 +217,7 @@ impl Narrow<'_> {
         }
         let ProxyMargin { fall, dt, .. } = margin;
         let travel = |speed: f32, margin: f32| {
-            ((speed.max(0.0) + fall) * dt).min(margin - 0.5 * SPECULATIVE_DISTANCE)
+            ((speed.max(0.0) + fall) * dt).min(ProxyMargin::reached(margin))
         };
         let reach =
             travel(vel(a).dot(m.normal), margin_a) + travel(-vel(b).dot(m.normal), margin_b);

@@ -128,6 +128,14 @@ impl ProxyMargin {
 
     /// The margin a static body adds to a pair.
     pub(crate) const STATIC: f32 = 0.5 * SPECULATIVE_DISTANCE;
+
+    /// How far a proxy of margin `margin` lets its body's contacts reach
+    /// beyond a static body's: its travel this step, no farther than its
+    /// reach (see [`within`](Self::within)).
+    #[inline(always)]
+    pub(crate) fn reached(margin: f32) -> f32 {
+        margin - Self::STATIC
+    }
 }
 
 /// A body's boxes and margin this step (see [`ProxyMargin`]).
@@ -486,7 +494,7 @@ impl Proxies {
             .iter()
             .zip(&self.body)
             .filter(|&(_, &i)| !dynamic.meta[i as usize].kinematic)
-            .map(|(&m, _)| m - 0.5 * SPECULATIVE_DISTANCE)
+            .map(|(&m, _)| ProxyMargin::reached(m))
             .fold(0.0f32, f32::max);
         for &k in &dynamic.kinematic {
             let p = self.of_body[k as usize];
