@@ -581,6 +581,7 @@ fn ordered(a: u32, b: u32) -> (u32, u32) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::uniform;
     use proptest::prelude::*;
 
     fn brute_force(proxies: &[Aabb]) -> Vec<(u32, u32)> {
@@ -593,16 +594,6 @@ mod tests {
             }
         }
         pairs
-    }
-
-    /// Numbers in `[0, 1)`, the same for the same seed (xorshift).
-    fn uniform(mut seed: u64) -> impl FnMut() -> f32 {
-        move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 40) as f32 / (1u64 << 24) as f32
-        }
     }
 
     fn grid_pairs(proxies: &[Aabb]) -> Vec<(u32, u32)> {

@@ -145,3 +145,7 @@ pub use snapshot::WorldSnapshot;
 pub use step::Stage;
 pub use tile_map::{ASCII_LEGEND, MAX_TILE_CELLS, TileKind, TileMap, TileRect};
 pub use world::{StepStats, World};
+
+// Helpers of the unit tests (after the modules above: only tests use it).
+#[cfg(test)]
+mod testing;

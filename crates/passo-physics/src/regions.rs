@@ -340,6 +340,7 @@ mod tests {
     use super::*;
     use crate::collider::ColliderRef;
     use crate::solver::SolverParams;
+    use crate::testing::uniform;
 
     /// A `side` × `side` lattice of boxes, each touching its right and upper
     /// neighbours, the bottom row on the ground, with some velocity and
@@ -505,6 +506,102 @@ mod tests {
         (pos, vel, rows, deep, true)
     }
 
+    /// A pile of 80 × 80 bodies jittered off a lattice, with random
+    /// velocities and contacts between random near neighbours (up to three
+    /// columns and one row apart), some on one of two static bodies, three
+    /// hubs of up to 250 contacts each, random normals, overlaps, masses and
+    /// impulses, about one end in twenty held (never a hub's), and for even seeds a deep
+    /// pile over about a third of the bodies.
+    fn random_pile(seed: u64) -> Scene {
+        let side = 80u32;
+        let mut next = uniform(seed);
+        let mut between = |lo: f32, hi: f32| lo + (hi - lo) * next();
+        let mut pos = Vec::new();
+        let mut vel = Vec::new();
+        for y in 0..side {
+            for x in 0..side {
+                let jitter = Vec2::new(between(-0.3, 0.3), between(-0.3, 0.3));
+                pos.push(Vec2::new(x as f32, y as f32) + jitter);
+                vel.push(Vec2::new(between(-3.0, 3.0), between(-3.0, 3.0)));
+            }
+        }
+        let mut ends = std::collections::BTreeSet::new();
+        let mut near = |x: u32, y: u32, between: &mut dyn FnMut(f32, f32) -> f32| {
+            for (dx, dy) in [(1, 0), (2, 0), (3, 0), (0, 1), (1, 1), (-1, 1)] {
+                let (bx, by) = (x as i32 + dx, y as i32 + dy);
+                let inside = (0..side as i32).contains(&bx) && (0..side as i32).contains(&by);
+                if inside && between(0.0, 1.0) < 0.5 {
+                    ends.insert((y * side + x, by as u32 * side + bx as u32));
+                }
+            }
+        };
+        for y in 0..side {
+            for x in 0..side {
+                near(x, y, &mut between);
+            }
+        }
+        let mut hubs = Vec::new();
+        for _ in 0..3 {
+            let hub = (between(0.0, 1.0) * (side * side) as f32) as u32;
+            hubs.push(hub);
+            let (hx, hy) = (hub % side, hub / side);
+            let spokes = between(100.0, 250.0) as u32;
+            for _ in 0..spokes {
+                let x = (hx as f32 + between(-12.0, 12.0)).clamp(0.0, side as f32 - 1.0) as u32;
+                let y = (hy as f32 + between(-12.0, 12.0)).clamp(0.0, side as f32 - 1.0) as u32;
+                let other = y * side + x;
+                if other != hub {
+                    ends.insert((hub.min(other), hub.max(other)));
+                }
+            }
+        }
+        let statics = (0..side * side).filter(|&i| i < side || between(0.0, 1.0) < 0.02);
+        let statics: Vec<(u32, ColliderRef)> =
+            statics.map(|a| (a, ColliderRef::fixed(a % 2))).collect();
+        let dynamic = ends.into_iter().map(|(a, b)| (a, ColliderRef::dynamic(b)));
+        let mut rows = Vec::new();
+        for (a, b) in dynamic.chain(statics) {
+            let angle = between(0.0, std::f32::consts::TAU);
+            // A hub is never held (its contacts would all go between
+            // the regions).
+            let mut held = |end: u32| {
+                if between(0.0, 1.0) < 0.05 && !hubs.contains(&end) {
+                    0.0
+                } else {
+                    between(0.5, 2.0)
+                }
+            };
+            let inv_mass_a = held(a);
+            let inv_mass_b = match b.dynamic_index() {
+                Some(b) => held(b as u32),
+                None => 0.0,
+            };
+            rows.push(Constraint {
+                a,
+                b,
+                normal: Vec2::new(angle.cos(), angle.sin()),
+                base_separation: between(-0.03, 0.01),
+                inv_mass_a,
+                inv_mass_b,
+                mass: 1.0 / (inv_mass_a + inv_mass_b).max(0.5),
+                friction: between(0.0, 1.0),
+                normal_impulse: between(0.0, 0.2),
+                tangent_impulse: between(-0.02, 0.02),
+                push_impulse: between(0.0, 0.03),
+                max_normal_impulse: 0.0,
+            });
+        }
+        let deep = match seed % 2 {
+            0 => (0..pos.len()).map(|_| between(0.0, 1.0) < 0.3).collect(),
+            _ => Vec::new(),
+        };
+        let holds = rows.iter().any(|c| {
+            let (write_a, write_b) = c.moved();
+            write_a.is_none() || (c.b.dynamic_index().is_some() && write_b.is_none())
+        });
+        (pos, vel, rows, deep, holds)
+    }
+
     #[test]
     fn each_region_on_its_own_array_gives_the_bits_of_one_array() {
         // The last: the held bodies not announced (`holds` false), which
@@ -536,6 +633,39 @@ mod tests {
             .map(|(i, _)| i)
             .collect();
         assert_eq!(both, [30 * 80 + 10, 30 * 80 + 60]);
+    }
+
+    #[test]
+    fn random_piles_on_their_regions_arrays_give_the_bits_of_one_array() {
+        let (mut left_over, mut held_in_both) = (0, 0);
+        for seed in 1..=12 {
+            let scene = random_pile(seed);
+            assert!(scene.4, "seed {seed}: some body is held");
+            let (pos, _, rows, deep, holds) = &scene;
+            let mut regions = ContactRegions::default();
+            regions.build(rows, pos, deep, *holds, false);
+            assert!(!regions.far_between.is_empty(), "seed {seed}");
+            left_over += regions.groups[0].left_over() + regions.groups[1].left_over();
+            held_in_both += (0..pos.len())
+                .filter(|&i| regions.homes.of(i) == Home::Both)
+                .count();
+            let one = substep(&scene, Run::OneArray);
+            assert!(one.3, "seed {seed}: the pile splits");
+            // The held bodies announced, and not (the build notices them).
+            let mut unannounced = scene.clone();
+            unannounced.4 = false;
+            for scene in [&scene, &unannounced] {
+                let own = substep(scene, Run::Step(false));
+                assert_eq!(own.0, one.0, "seed {seed}: velocities");
+                assert_eq!(own.1, one.1, "seed {seed}: pushes");
+                assert_eq!(own.2, one.2, "seed {seed}: impulses");
+            }
+        }
+        // The piles have what the test is about.
+        assert!(
+            left_over > 0 && held_in_both > 0,
+            "{left_over} {held_in_both}"
+        );
     }
 
     #[test]
@@ -598,7 +728,12 @@ mod tests {
     #[cfg(feature = "parallel")]
     #[test]
     fn the_regions_give_the_same_bits_on_any_number_of_threads() {
-        for scene in [plain(80), held_hub_and_deep()] {
+        for scene in [
+            plain(80),
+            held_hub_and_deep(),
+            random_pile(1),
+            random_pile(2),
+        ] {
             let one = substep(&scene, Run::Step(false));
             assert!(one.3, "the pile splits");
             for threads in [1, 2, 4] {
