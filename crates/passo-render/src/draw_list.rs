@@ -144,6 +144,14 @@ pub struct DrawList {
     pub shapes: Vec<ShapeInstance>,
     /// Line segments.
     pub lines: Vec<LineInstance>,
+    /// Where the shapes and lines may draw, in pixels from the target's
+    /// top-left corner (`[x, y, width, height]`, cut to the target), or
+    /// `None` for the whole target. The background still fills the whole
+    /// target. A window whose user interface covers part of it (a side
+    /// panel) clips the scene to the rest: nothing shows through a panel
+    /// drawn without a fill, which on a software adapter saves filling its
+    /// every pixel again.
+    pub clip: Option<[u32; 4]>,
 }
 
 impl DrawList {
@@ -153,14 +161,17 @@ impl DrawList {
             clear_colour: linear(background),
             shapes: Vec::new(),
             lines: Vec::new(),
+            clip: None,
         }
     }
 
-    /// Empties the list, keeping its capacity, and sets the background.
+    /// Empties the list, keeping its capacity, sets the background and
+    /// draws on the whole target again (no [`clip`](Self::clip)).
     pub fn clear(&mut self, background: [u8; 4]) {
         self.clear_colour = linear(background);
         self.shapes.clear();
         self.lines.clear();
+        self.clip = None;
     }
 
     /// A filled circle with a darker outline.

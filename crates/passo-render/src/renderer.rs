@@ -215,6 +215,12 @@ impl Renderer {
             ..Default::default()
         });
         pass.set_bind_group(0, &self.bind_group, &[]);
+        if let Some(clip) = list.clip {
+            let Some([x, y, w, h]) = within(clip, size) else {
+                return; // nothing of the target is left to draw on
+            };
+            pass.set_scissor_rect(x, y, w, h);
+        }
         if !list.shapes.is_empty() {
             pass.set_pipeline(&self.shapes);
             pass.set_vertex_buffer(0, self.shape_buffer.slice(..));
@@ -226,6 +232,14 @@ impl Renderer {
             pass.draw(0..6, 0..list.lines.len() as u32);
         }
     }
+}
+
+/// `[x, y, width, height]` cut to a target of `size` pixels (a scissor
+/// rectangle must lie inside it), or `None` if nothing is left.
+fn within([x, y, w, h]: [u32; 4], size: (u32, u32)) -> Option<[u32; 4]> {
+    let (x, y) = (x.min(size.0), y.min(size.1));
+    let (w, h) = (w.min(size.0 - x), h.min(size.1 - y));
+    (w > 0 && h > 0).then_some([x, y, w, h])
 }
 
 /// The clear colour for a target: linear for `*Srgb` formats (the hardware

@@ -224,3 +224,52 @@ fn many_instances_grow_the_buffers() {
     let p = camera.world_to_pixel(Vec2::new(29.0 * 1.4 + 1.0, 71.0 * 1.4 + 1.0), target.size());
     assert!(!close(at(&image, p), BACKGROUND, 10), "{:?}", at(&image, p));
 }
+
+#[test]
+fn a_clip_keeps_the_shapes_inside_it_and_the_background_everywhere() {
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 320, 240);
+    let camera = Camera2D::fit(Vec2::new(-8.0, -6.0), Vec2::new(8.0, 6.0), target.size());
+    // A box over the whole target and a line across it, clipped to all but
+    // a 100-pixel strip on the left (where a window's panel would be).
+    let mut list = DrawList::new(BACKGROUND);
+    list.rect(Vec2::ZERO, Vec2::new(20.0, 20.0), RED);
+    list.line(Vec2::new(-20.0, 0.0), Vec2::new(20.0, 0.0), 9.0, GREEN);
+    list.clip = Some([100, 0, 220, 240]);
+    let image = draw(&gpu, &target, &camera, &list);
+    for y in [5, 60, 200] {
+        for x in [0, 50, 99] {
+            assert_eq!(
+                image.get(x, y),
+                Some(BACKGROUND),
+                "({x}, {y}) is left of the clip"
+            );
+        }
+        for x in [100, 200, 319] {
+            assert!(
+                close(image.get(x, y).unwrap(), RED, 1),
+                "({x}, {y}) is inside"
+            );
+        }
+    }
+    let mid = camera.world_to_pixel(Vec2::ZERO, target.size()).y as u32;
+    assert_eq!(image.get(50, mid), Some(BACKGROUND), "the line is cut too");
+    assert!(close(image.get(200, mid).unwrap(), GREEN, 1));
+
+    // A clip reaching past the target is cut to it; one outside it, or of
+    // no width, draws no shape, and the background is still cleared.
+    for (clip, inside) in [
+        ([300, 200, 1000, 1000], true),
+        ([400, 0, 50, 50], false),
+        ([10, 10, 0, 100], false),
+    ] {
+        list.clip = Some(clip);
+        let image = draw(&gpu, &target, &camera, &list);
+        let (corner, beside) = (image.get(319, 239).unwrap(), image.get(5, 5).unwrap());
+        assert_eq!(close(corner, RED, 1), inside, "{clip:?}: {corner:?}");
+        assert_eq!(beside, BACKGROUND, "{clip:?}");
+    }
+    // Clearing the list draws on the whole target again.
+    list.clear(BACKGROUND);
+    assert_eq!(list.clip, None);
+}

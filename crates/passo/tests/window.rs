@@ -131,6 +131,17 @@ fn the_demo_runs_in_a_real_window_and_shows_the_scene() {
             .all(|(a, b)| a.abs_diff(b) <= 2),
         "{got:?}"
     );
+    // The panel has no fill of its own: its margin shows the scene's
+    // background, which the bodies, clipped beside the panel, never cover.
+    for y in [100, size.1 / 2, size.1 - 20] {
+        let got = image.get(3, y).unwrap();
+        assert!(
+            got.iter()
+                .zip(passo::draw::BACKGROUND)
+                .all(|(a, b)| a.abs_diff(b) <= 2),
+            "panel margin at y = {y}: {got:?}"
+        );
+    }
     // The panel's plot (130 px on a grey-20 ground) is whole in the window:
     // it comes right after the scene, so no window cuts it off.
     let plot_rows = (0..image.height)

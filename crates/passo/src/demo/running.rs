@@ -321,6 +321,9 @@ impl Running {
                     };
                     add_world(&mut self.list, &lane.world, &lane.bodies, &options);
                 }
+                // Nothing under the panel, which has no fill of its own.
+                let left = (self.panel_px.floor() as u32).min(size.0);
+                self.list.clip = Some([left, 0, size.0 - left, size.1]);
                 let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("passo demo frame"),
                 });

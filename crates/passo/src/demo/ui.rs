@@ -58,7 +58,13 @@ pub(crate) fn panel(
     input: &PanelInput<'_>,
     actions: &mut Actions,
 ) -> f32 {
+    // No fill: the scene's background shows through, and the scene is
+    // clipped to the right of the panel (`DrawList::clip`). On a software
+    // adapter filling the panel's 260 000 pixels again took 7 of the 17 ms
+    // of a frame at 1280 × 800 (BENCHMARKS.md, Off-screen rendering).
+    let frame = egui::Frame::side_top_panel(ui.style()).fill(egui::Color32::TRANSPARENT);
     let response = egui::Panel::left("passo panel")
+        .frame(frame)
         .default_size(300.0)
         .show(ui, |ui| {
             // The plot comes right after the scene, so it is whole in a
