@@ -146,6 +146,17 @@ pub use step::Stage;
 pub use tile_map::{ASCII_LEGEND, MAX_TILE_CELLS, TileKind, TileMap, TileRect};
 pub use world::{StepStats, World};
 
-// Helpers of the unit tests (after the modules above: only tests use it).
+/// Helpers shared by the unit tests.
 #[cfg(test)]
-mod testing;
+mod testing {
+    /// Numbers in `[0, 1)`, the same for the same seed (xorshift; a seed
+    /// of zero gives zeros).
+    pub(crate) fn uniform(mut seed: u64) -> impl FnMut() -> f32 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+}
