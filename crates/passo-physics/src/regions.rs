@@ -510,8 +510,8 @@ mod tests {
     /// velocities and contacts between random near neighbours (up to three
     /// columns and one row apart), some on one of two static bodies, three
     /// hubs of up to 250 contacts each, random normals, overlaps, masses and
-    /// impulses, about one end in twenty held (never a hub's), and for even seeds a deep
-    /// pile over about a third of the bodies.
+    /// impulses, held bodies and held ends (never a hub's), and for even
+    /// seeds a deep pile over about a third of the bodies.
     fn random_pile(seed: u64) -> Scene {
         let side = 80u32;
         let mut next = uniform(seed);
@@ -559,23 +559,29 @@ mod tests {
         let statics: Vec<(u32, ColliderRef)> =
             statics.map(|a| (a, ColliderRef::fixed(a % 2))).collect();
         let dynamic = ends.into_iter().map(|(a, b)| (a, ColliderRef::dynamic(b)));
+        // Each body's inverse mass; about one body in thirty held (as a
+        // kinematic or sleeping body is: in every contact), never a hub.
+        let inv_mass: Vec<f32> = (0..side * side)
+            .map(|i| match between(0.0, 1.0) < 0.03 && !hubs.contains(&i) {
+                true => 0.0,
+                false => between(0.5, 2.0),
+            })
+            .collect();
         let mut rows = Vec::new();
         for (a, b) in dynamic.chain(statics) {
             let angle = between(0.0, std::f32::consts::TAU);
-            // A hub is never held (its contacts would all go between
-            // the regions).
-            let mut held = |end: u32| {
-                if between(0.0, 1.0) < 0.05 && !hubs.contains(&end) {
-                    0.0
-                } else {
-                    between(0.5, 2.0)
-                }
+            // And about one end in a hundred held by this contact alone
+            // (a body both moved and read: its contacts go between).
+            let mut end = |i: u32| match between(0.0, 1.0) < 0.01 && !hubs.contains(&i) {
+                true => 0.0,
+                false => inv_mass[i as usize],
             };
-            let inv_mass_a = held(a);
+            let inv_mass_a = end(a);
             let inv_mass_b = match b.dynamic_index() {
-                Some(b) => held(b as u32),
+                Some(b) => end(b as u32),
                 None => 0.0,
             };
+            let k = inv_mass_a + inv_mass_b;
             rows.push(Constraint {
                 a,
                 b,
@@ -583,7 +589,7 @@ mod tests {
                 base_separation: between(-0.03, 0.01),
                 inv_mass_a,
                 inv_mass_b,
-                mass: 1.0 / (inv_mass_a + inv_mass_b).max(0.5),
+                mass: if k > 0.0 { 1.0 / k } else { 0.0 },
                 friction: between(0.0, 1.0),
                 normal_impulse: between(0.0, 0.2),
                 tangent_impulse: between(-0.02, 0.02),
@@ -646,9 +652,10 @@ mod tests {
             regions.build(rows, pos, deep, *holds, false);
             assert!(!regions.far_between.is_empty(), "seed {seed}");
             left_over += regions.groups[0].left_over() + regions.groups[1].left_over();
-            held_in_both += (0..pos.len())
-                .filter(|&i| regions.homes.of(i) == Home::Both)
-                .count();
+            let held_here = (0..pos.len()).filter(|&i| regions.homes.of(i) == Home::Both);
+            let held_here = held_here.count();
+            assert!(held_here > 50, "seed {seed}: {held_here} held bodies");
+            held_in_both += held_here;
             let one = substep(&scene, Run::OneArray);
             assert!(one.3, "seed {seed}: the pile splits");
             // The held bodies announced, and not (the build notices them).

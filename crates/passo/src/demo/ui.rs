@@ -5,6 +5,7 @@ use super::catalogue::Entry;
 use super::controls::Knobs;
 use super::replay::Command;
 use super::sim::Sim;
+use crate::draw::BACKGROUND;
 use egui::{Color32, Slider, Stroke};
 use passo_physics::Integrator;
 use passo_render::Camera2D;
@@ -62,41 +63,58 @@ pub(crate) fn panel(
     // clipped to the right of the panel (`DrawList::clip`). On a software
     // adapter filling the panel's 260 000 pixels again took 7 of the 17 ms
     // of a frame at 1280 × 800 (BENCHMARKS.md, Off-screen rendering).
-    let frame = egui::Frame::side_top_panel(ui.style()).fill(egui::Color32::TRANSPARENT);
+    let frame = egui::Frame::side_top_panel(ui.style()).fill(Color32::TRANSPARENT);
+    // What lies behind the panel, told to egui without painting it, so the
+    // scroll area fades its edges into the scene's background.
+    let [r, g, b, _] = BACKGROUND;
+    let behind = egui::Frame::NONE.fill(Color32::from_rgb(r, g, b));
+    let behind = egui::UiStackInfo::new(egui::UiKind::Frame).with_frame(behind);
     let response = egui::Panel::left("passo panel")
         .frame(frame)
         .default_size(300.0)
         .show(ui, |ui| {
-            // The plot comes right after the scene, so it is whole in a
-            // window of any height (at 1280 × 800 it was cut off at the
-            // bottom); the rest scrolls, with its bar always shown.
-            let bar = egui::scroll_area::ScrollBarVisibility::AlwaysVisible;
-            egui::ScrollArea::vertical()
-                .scroll_bar_visibility(bar)
-                .show(ui, |ui| {
-                    scene_section(ui, sim, input, actions);
-                    plot(ui, sim);
-                    ui.separator();
-                    loop_section(ui, sim, actions);
-                    ui.separator();
-                    rewind_section(ui, sim);
-                    ui.separator();
-                    forces_section(ui, sim, actions);
-                    ui.separator();
-                    stats_section(ui, sim, input.fps);
-                    ui.separator();
-                    ui.label(egui::RichText::new("Draw").strong());
-                    ui.horizontal(|ui| {
-                        ui.checkbox(&mut view.velocities, "velocities");
-                        ui.checkbox(&mut view.forces, "forces");
-                        ui.checkbox(&mut view.contacts, "contacts");
-                        ui.checkbox(&mut view.sleeping, "dim sleeping");
-                    });
-                    ui.separator();
-                    help(ui);
-                });
+            ui.scope_builder(egui::UiBuilder::new().ui_stack_info(behind), |ui| {
+                panel_contents(ui, sim, view, input, actions);
+            });
         });
     response.response.rect.width()
+}
+
+/// The panel's sections. The plot comes right after the scene, so it is
+/// whole in a window of any height (at 1280 × 800 it was cut off at the
+/// bottom); the rest scrolls, with its bar always shown.
+fn panel_contents(
+    ui: &mut egui::Ui,
+    sim: &mut Sim,
+    view: &mut ViewOptions,
+    input: &PanelInput<'_>,
+    actions: &mut Actions,
+) {
+    let bar = egui::scroll_area::ScrollBarVisibility::AlwaysVisible;
+    egui::ScrollArea::vertical()
+        .scroll_bar_visibility(bar)
+        .show(ui, |ui| {
+            scene_section(ui, sim, input, actions);
+            plot(ui, sim);
+            ui.separator();
+            loop_section(ui, sim, actions);
+            ui.separator();
+            rewind_section(ui, sim);
+            ui.separator();
+            forces_section(ui, sim, actions);
+            ui.separator();
+            stats_section(ui, sim, input.fps);
+            ui.separator();
+            ui.label(egui::RichText::new("Draw").strong());
+            ui.horizontal(|ui| {
+                ui.checkbox(&mut view.velocities, "velocities");
+                ui.checkbox(&mut view.forces, "forces");
+                ui.checkbox(&mut view.contacts, "contacts");
+                ui.checkbox(&mut view.sleeping, "dim sleeping");
+            });
+            ui.separator();
+            help(ui);
+        });
 }
 
 fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actions: &mut Actions) {
