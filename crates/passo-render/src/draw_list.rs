@@ -145,7 +145,9 @@ pub struct DrawList {
     /// Line segments.
     pub lines: Vec<LineInstance>,
     /// Where the shapes and lines may draw, in pixels from the target's
-    /// top-left corner (`[x, y, width, height]`, cut to the target), or
+    /// top-left corner (`[x, y, width, height]`, cut to the size given to
+    /// [`Renderer::encode`](crate::Renderer::encode), which must be the
+    /// target's), or
     /// `None` for the whole target. The background still fills the whole
     /// target. A window whose user interface covers part of it (a side
     /// panel) clips the scene to the rest: nothing shows through a panel
