@@ -145,14 +145,14 @@ pub struct DrawList {
     /// Line segments.
     pub lines: Vec<LineInstance>,
     /// Where the shapes and lines may draw, in pixels from the target's
-    /// top-left corner (`[x, y, width, height]`, cut to the size given to
+    /// top-left corner (`[x, y, width, height]`), or `None` for the whole
+    /// target. It is cut to the size given to
     /// [`Renderer::encode`](crate::Renderer::encode), which must be the
-    /// target's), or
-    /// `None` for the whole target. The background still fills the whole
-    /// target. A window whose user interface covers part of it (a side
-    /// panel) clips the scene to the rest: nothing shows through a panel
-    /// drawn without a fill, which on a software adapter saves filling its
-    /// every pixel again.
+    /// target's. The background still fills the whole target. A window
+    /// whose user interface covers part of it (a side panel) clips the
+    /// scene to the rest: nothing shows through a panel drawn without a
+    /// fill, which on a software adapter saves filling its every pixel
+    /// again.
     pub clip: Option<[u32; 4]>,
 }
 
