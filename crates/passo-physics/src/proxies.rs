@@ -47,7 +47,7 @@ impl ProxyMargin {
     /// its contacts `reach`.
     #[inline(always)]
     fn within(travel: f32, reach: f32) -> f32 {
-        0.5 * SPECULATIVE_DISTANCE + travel.min(reach)
+        Self::STATIC + travel.min(reach)
     }
 
     /// How far a body moving at `velocity` can travel this step, metres
@@ -111,7 +111,7 @@ impl ProxyMargin {
     /// may turn it far from where it was heading.
     #[inline(always)]
     fn swept(&self, aabb: Aabb, velocity: Vec2, travel: f32, reach: f32) -> Aabb {
-        let grown = aabb.grown(0.5 * SPECULATIVE_DISTANCE);
+        let grown = aabb.grown(Self::STATIC);
         if !self.continuous {
             return grown;
         }
