@@ -228,6 +228,100 @@ fn malformed_maps_are_errors_not_panics() {
     );
 }
 
+/// `bytes` zlib-compressed and base64-encoded, as Tiled writes a layer.
+fn zlib_base64(bytes: &[u8]) -> String {
+    use base64::Engine;
+    use std::io::Write;
+    let mut e = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
+    e.write_all(bytes).unwrap();
+    base64::engine::general_purpose::STANDARD.encode(e.finish().unwrap())
+}
+
+/// A 4 × 2 map whose `solid` layer has `data`, with a one-tile tileset.
+fn tmx_4x2(data: &str) -> String {
+    format!(
+        r#"<?xml version="1.0" encoding="UTF-8"?>
+<map version="1.10" orientation="orthogonal" renderorder="right-down" width="4" height="2" tilewidth="16" tileheight="16" infinite="0">
+ <tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1"/>
+ <layer id="1" name="solid" width="4" height="2">{data}</layer>
+</map>"#
+    )
+}
+
+#[test]
+fn a_compressed_layer_reads_as_its_csv_form() {
+    let csv = tmx_4x2(r#"<data encoding="csv">1,0,0,1,1,1,1,1</data>"#);
+    // Global tile ids as little-endian u32s.
+    let ids: Vec<u8> = [1u32, 0, 0, 1, 1, 1, 1, 1]
+        .iter()
+        .flat_map(|id| id.to_le_bytes())
+        .collect();
+    let zlib = tmx_4x2(&format!(
+        r#"<data encoding="base64" compression="zlib">{}</data>"#,
+        zlib_base64(&ids)
+    ));
+    let from_csv = level_ref("csv.tmx")
+        .load(&map_file("csv.tmx", &csv))
+        .unwrap();
+    let from_zlib = level_ref("z.tmx").load(&map_file("z.tmx", &zlib)).unwrap();
+    assert_eq!(from_csv, from_zlib);
+    let map = &from_csv.map;
+    let filled = (0..2)
+        .flat_map(|y| (0..4).map(move |x| (x, y)))
+        .filter(|&(x, y)| map.get(x, y).is_some())
+        .count();
+    assert_eq!(filled, 6);
+}
+
+#[test]
+fn maps_that_would_exhaust_the_machine_are_errors() {
+    // Group layers nested 100 000 deep (1.5 MB): the `tiled` crate reads
+    // them recursively and would overflow the stack.
+    let deep = tmx_4x2(r#"<data encoding="csv">1,0,0,1,1,1,1,1</data>"#).replace(
+        "</map>",
+        &("<group>".repeat(100_000) + &"</group>".repeat(100_000) + "</map>"),
+    );
+    let err = level_ref("deep.tmx")
+        .load(&map_file("deep.tmx", &deep))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("deep.tmx") && err.contains("64 deep"), "{err}");
+    // A layer of 300 MiB of zeros, compressed to about 2 MB.
+    let zeros = zlib_base64(&vec![0u8; 300 << 20]);
+    let bomb = tmx_4x2(&format!(
+        r#"<data encoding="base64" compression="zlib">{zeros}</data>"#
+    ));
+    let err = level_ref("bomb.tmx")
+        .load(&map_file("bomb.tmx", &bomb))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("bomb.tmx") && err.contains("more than 256 MiB"),
+        "{err}"
+    );
+    // The same checks hold for a tileset file the map names.
+    let tileset = format!(
+        r#"<?xml version="1.0"?><tileset name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1">{}{}</tileset>"#,
+        "<x>".repeat(100),
+        "</x>".repeat(100)
+    );
+    let scene = map_file("deep_set.tsx", &tileset);
+    let map = tmx_4x2(r#"<data encoding="csv">1,0,0,1,1,1,1,1</data>"#).replace(
+        r#"<tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1"/>"#,
+        r#"<tileset firstgid="1" source="deep_set.tsx"/>"#,
+    );
+    let dir = std::path::Path::new(&scene).parent().unwrap();
+    std::fs::write(dir.join("uses_set.tmx"), map).unwrap();
+    let err = level_ref("uses_set.tmx")
+        .load(&scene)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("deep_set.tsx") && err.contains("64 deep"),
+        "{err}"
+    );
+}
+
 #[test]
 fn a_tile_object_is_placed_by_its_bottom_left_corner() {
     // Tiled places an object made from a tile by its bottom-left corner:

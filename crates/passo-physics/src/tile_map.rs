@@ -171,31 +171,34 @@ impl TileMap {
     /// A character not in the legend (naming its line and column), or the
     /// errors of [`TileMap::new`].
     pub fn from_ascii(text: &str, cell_size: Vec2, origin: Vec2) -> Result<Self, PhysicsError> {
-        let mut lines: Vec<&str> = text.lines().collect();
-        while lines.first().is_some_and(|l| l.trim().is_empty()) {
-            lines.remove(0);
-        }
-        while lines.last().is_some_and(|l| l.trim().is_empty()) {
-            lines.pop();
-        }
-        let indent = lines
-            .iter()
-            .filter(|l| !l.trim().is_empty())
+        // The rows between the first and the last line that is not blank,
+        // measured without copying the text, so that a map too large is an
+        // error before anything the size of the text is allocated.
+        let blank = |l: &str| l.trim().is_empty();
+        let first = text.lines().position(|l| !blank(l)).unwrap_or(0);
+        let height = text
+            .lines()
+            .skip(first)
+            .enumerate()
+            .filter(|(_, l)| !blank(l))
+            .last()
+            .map_or(0, |(i, _)| i + 1);
+        let lines = || text.lines().skip(first).take(height);
+        let indent = lines()
+            .filter(|l| !blank(l))
             .map(|l| l.len() - l.trim_start_matches(' ').len())
             .min()
             .unwrap_or(0);
-        let rows: Vec<Vec<char>> = lines
-            .iter()
-            .map(|l| l.chars().skip(indent).collect())
-            .collect();
-        let width = rows.iter().map(Vec::len).max().unwrap_or(0);
-        let height = rows.len();
+        let width = lines()
+            .map(|l| l.chars().count().saturating_sub(indent))
+            .max()
+            .unwrap_or(0);
         let too_big = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
         let mut map = Self::new(too_big(width), too_big(height), cell_size, origin)?;
         let mut kind_of = [None; ASCII_LEGEND.len()];
-        for (line, row) in rows.iter().enumerate() {
+        for (line, row) in lines().enumerate() {
             let y = (height - 1 - line) as u32;
-            for (column, &c) in row.iter().enumerate() {
+            for (column, c) in row.chars().skip(indent).enumerate() {
                 let Some(entry) = ASCII_LEGEND.iter().position(|(ch, _)| *ch == c) else {
                     return Err(PhysicsError::InvalidTileMap(format!(
                         "line {}, column {}: {c:?} is not a tile (use # solid, - one-way, ~ ice, ^ bouncy, . or space empty)",
@@ -369,6 +372,28 @@ impl TileMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ascii_blank_lines_around_a_map_are_dropped_in_one_pass() {
+        // A million blank lines before and after (removing them one by one
+        // from the front of a list took minutes).
+        let blank = "\n".repeat(1_000_000);
+        let text = format!("{blank}  #.\n\n   -{blank}");
+        let map = TileMap::from_ascii(&text, Vec2::ONE, Vec2::ZERO).unwrap();
+        assert_eq!((map.width(), map.height()), (2, 3));
+        assert!(map.get(0, 2).is_some() && map.get(1, 2).is_none());
+        assert!(map.get(0, 1).is_none() && map.get(1, 0).is_some());
+        // Lines are counted from the first row that is not blank, columns
+        // from the start of the line.
+        let err = TileMap::from_ascii(&format!("{blank}  #.\n   x"), Vec2::ONE, Vec2::ZERO)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("line 2, column 4"), "{err}");
+        // A map too wide is refused before its rows are read.
+        let wide = ".".repeat(MAX_TILE_CELLS) + "#";
+        assert!(TileMap::from_ascii(&wide, Vec2::ONE, Vec2::ZERO).is_err());
+        assert!(TileMap::from_ascii(&blank, Vec2::ONE, Vec2::ZERO).is_err());
+    }
 
     #[test]
     fn ascii_rows_run_top_down_and_cells_merge_into_few_rects() {

@@ -26,6 +26,7 @@ mod error;
 mod format;
 mod generate;
 mod level;
+mod limits;
 mod map_ref;
 mod save;
 mod tiled_file;
@@ -35,6 +36,7 @@ pub use build::{BuiltScene, KINEMATIC_COLOUR, Platform, SceneBody};
 pub use error::SceneError;
 pub use format::{BodySpec, Camera, Colour, Forces, Generator, MAX_BODIES, Material, SceneFile};
 pub use level::Level;
+pub use limits::{MAX_FILE_BYTES, MAX_TILE_DATA_BYTES, MAX_XML_DEPTH};
 pub use map_ref::{PlatformPath, TileMapRef};
 pub use save::scene_from_world;
 
@@ -63,7 +65,7 @@ impl Scene {
     /// Reads, parses and validates a scene file.
     pub fn load(path: &Path) -> Result<Self, SceneError> {
         let source = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError::Io {
+        let text = limits::read_text(path).map_err(|e| SceneError::Io {
             source_name: source.clone(),
             message: e.to_string(),
         })?;

@@ -60,7 +60,9 @@ pub(crate) struct RawMap {
 
 pub(crate) fn read_tmx(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneError> {
     let shown = path.display().to_string();
-    let map = tiled::Loader::new()
+    // Every file the map names (tilesets, templates) is read through the
+    // same checks.
+    let map = tiled::Loader::with_reader(crate::limits::read_tiled_xml)
         .load_tmx_map(path)
         .map_err(|e| SceneError::Io {
             source_name: shown.clone(),
@@ -204,7 +206,7 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneE
         message,
     };
     let read = |p: &Path| -> Result<Json, SceneError> {
-        let text = std::fs::read_to_string(p).map_err(|e| SceneError::Io {
+        let text = crate::limits::read_text(p).map_err(|e| SceneError::Io {
             source_name: p.display().to_string(),
             message: e.to_string(),
         })?;

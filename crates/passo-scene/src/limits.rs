@@ -1,0 +1,308 @@
+//! What a file may make the loaders do: how large it may be, how deep a
+//! Tiled XML file may nest its elements, and how far its compressed tile
+//! data may expand. A file past any of them is an error before a parser
+//! sees it, never a stack overflow or memory exhausted inside one.
+
+use std::io::Read;
+use std::path::Path;
+
+/// The largest scene, map or tileset file the loaders read, bytes
+/// (64 MiB; the shipped scenes are a few kilobytes, and a CSV layer of
+/// the largest tile map, 4096 × 4096, fits in about 40 MiB).
+pub const MAX_FILE_BYTES: u64 = 64 << 20;
+
+/// How deep the elements of a Tiled XML file (`.tmx`, `.tsx`, `.tx`) may
+/// nest. Group layers are the only elements that nest without end (the
+/// `tiled` crate reads them recursively); Tiled's own files go a few
+/// levels deep.
+pub const MAX_XML_DEPTH: usize = 64;
+
+/// How many bytes the compressed (zlib or gzip) tile data of one Tiled XML
+/// file may expand to, all its layers together: four bytes a cell, twice
+/// the cells a CSV layer in a file of [`MAX_FILE_BYTES`] could hold (two
+/// bytes a cell, `0,`), so a compressed file can ask no more of the
+/// `tiled` crate than a plain one.
+pub const MAX_TILE_DATA_BYTES: u64 = 4 * MAX_FILE_BYTES;
+
+/// Reads `path` whole, if it is at most [`MAX_FILE_BYTES`] long.
+pub(crate) fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
+    let file = std::fs::File::open(path)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "is larger than a file may be ({} MiB)",
+                MAX_FILE_BYTES >> 20
+            ),
+        ));
+    }
+    Ok(bytes)
+}
+
+/// [`read_file`] as text.
+pub(crate) fn read_text(path: &Path) -> std::io::Result<String> {
+    String::from_utf8(read_file(path)?)
+        .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()))
+}
+
+/// Reads a Tiled XML file for the `tiled` crate: [`read_file`], then
+/// [`check_xml`].
+pub(crate) fn read_tiled_xml(path: &Path) -> std::io::Result<std::io::Cursor<Vec<u8>>> {
+    let bytes = read_file(path)?;
+    check_xml(&bytes).map_err(|m| std::io::Error::new(std::io::ErrorKind::InvalidData, m))?;
+    Ok(std::io::Cursor::new(bytes))
+}
+
+/// Checks a Tiled XML file against [`MAX_XML_DEPTH`] and
+/// [`MAX_TILE_DATA_BYTES`]: a scan of its tags (comments, processing
+/// instructions, declarations and quoted attribute values skipped) that
+/// decodes the text of each `<data>` element compressed with zlib or gzip
+/// (its `<chunk>`s included) and stops as soon as the total passes the
+/// limit. Whether the rest is a valid map is the parser's business.
+pub(crate) fn check_xml(bytes: &[u8]) -> Result<(), String> {
+    scan(bytes, MAX_TILE_DATA_BYTES)
+}
+
+/// [`check_xml`] with a budget of `budget` bytes of expanded tile data.
+fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
+    let mut depth = 0usize;
+    // Inside a compressed `<data>` element: its compression.
+    let mut compressed: Option<Compression> = None;
+    let mut expanded = 0u64;
+    let mut i = 0;
+    while let Some(offset) = bytes[i..].iter().position(|&b| b == b'<') {
+        let text = &bytes[i..i + offset];
+        i += offset;
+        let rest = &bytes[i..];
+        if let Some(c) = compressed {
+            expanded += c.expand(text, budget - expanded)?;
+        }
+        let end = if rest.starts_with(b"<!--") {
+            find(rest, b"-->")? + 3
+        } else if rest.starts_with(b"<![CDATA[") {
+            let end = find(rest, b"]]>")?;
+            if let Some(c) = compressed {
+                expanded += c.expand(&rest[9..end], budget - expanded)?;
+            }
+            end + 3
+        } else if rest.starts_with(b"<?") {
+            find(rest, b"?>")? + 2
+        } else if rest.starts_with(b"<!") {
+            tag_end(rest)? + 1
+        } else if rest.starts_with(b"</") {
+            let end = tag_end(rest)?;
+            if name(&rest[2..end]) == b"data" {
+                compressed = None;
+            }
+            depth = depth.saturating_sub(1);
+            end + 1
+        } else {
+            let end = tag_end(rest)?;
+            let tag = &rest[1..end];
+            if !tag.ends_with(b"/") {
+                depth += 1;
+                if depth > MAX_XML_DEPTH {
+                    return Err(format!("nests its elements more than {MAX_XML_DEPTH} deep"));
+                }
+                if name(tag) == b"data" {
+                    compressed = Compression::of(tag);
+                }
+            }
+            end + 1
+        };
+        i += end;
+    }
+    Ok(())
+}
+
+/// The compressions the `tiled` crate reads (with base64 encoding).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Compression {
+    Zlib,
+    Gzip,
+}
+
+impl Compression {
+    /// The compression of a `<data ...>` tag, if it is base64 and zlib or
+    /// gzip.
+    fn of(tag: &[u8]) -> Option<Self> {
+        if attribute(tag, b"encoding") != Some(b"base64") {
+            return None;
+        }
+        match attribute(tag, b"compression")? {
+            b"zlib" => Some(Self::Zlib),
+            b"gzip" => Some(Self::Gzip),
+            _ => None,
+        }
+    }
+
+    /// How many bytes `text` (base64) expands to, if at most `budget`.
+    fn expand(self, text: &[u8], budget: u64) -> Result<u64, String> {
+        use base64::Engine;
+        let text = text.trim_ascii();
+        if text.is_empty() {
+            return Ok(0);
+        }
+        let data = base64::engine::general_purpose::STANDARD
+            .decode(text)
+            .map_err(|e| format!("has tile data that is not base64: {e}"))?;
+        let reader: Box<dyn Read> = match self {
+            Self::Zlib => Box::new(flate2::bufread::ZlibDecoder::new(&data[..])),
+            Self::Gzip => Box::new(flate2::bufread::GzDecoder::new(&data[..])),
+        };
+        let n = std::io::copy(&mut reader.take(budget + 1), &mut std::io::sink())
+            .map_err(|e| format!("has compressed tile data that does not decompress: {e}"))?;
+        if n > budget {
+            return Err(format!(
+                "has compressed tile data that expands to more than {} MiB",
+                MAX_TILE_DATA_BYTES >> 20
+            ));
+        }
+        Ok(n)
+    }
+}
+
+/// Where `needle` starts in `hay`.
+fn find(hay: &[u8], needle: &[u8]) -> Result<usize, String> {
+    hay.windows(needle.len())
+        .position(|w| w == needle)
+        .ok_or_else(|| "ends inside a tag or comment".to_owned())
+}
+
+/// The index of the `>` that ends the tag `tag` starts, past quoted
+/// attribute values.
+fn tag_end(tag: &[u8]) -> Result<usize, String> {
+    let mut quote = None;
+    for (k, &b) in tag.iter().enumerate() {
+        match (quote, b) {
+            (None, b'"' | b'\'') => quote = Some(b),
+            (Some(q), _) if b == q => quote = None,
+            (None, b'>') => return Ok(k),
+            _ => {}
+        }
+    }
+    Err("ends inside a tag".to_owned())
+}
+
+/// A tag's name: up to the first space, `/` or end.
+fn name(tag: &[u8]) -> &[u8] {
+    let end = tag
+        .iter()
+        .position(|b| b.is_ascii_whitespace() || *b == b'/')
+        .unwrap_or(tag.len());
+    &tag[..end]
+}
+
+/// The value of attribute `key` in a tag (without its quotes).
+fn attribute<'t>(tag: &'t [u8], key: &[u8]) -> Option<&'t [u8]> {
+    let mut rest = &tag[name(tag).len()..];
+    loop {
+        rest = rest.trim_ascii_start();
+        let eq = rest.iter().position(|&b| b == b'=')?;
+        let found = rest[..eq].trim_ascii_end();
+        let value = rest[eq + 1..].trim_ascii_start();
+        let quote = *value.first()?;
+        let close = value[1..].iter().position(|&b| b == quote)?;
+        if found == key {
+            return Some(&value[1..1 + close]);
+        }
+        rest = &value[close + 2..];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::Write;
+
+    fn zlib(bytes: &[u8]) -> String {
+        use base64::Engine;
+        let mut e = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::best());
+        e.write_all(bytes).unwrap();
+        base64::engine::general_purpose::STANDARD.encode(e.finish().unwrap())
+    }
+
+    fn map(data: &str) -> String {
+        format!(
+            r#"<?xml version="1.0"?><!-- a <comment> --><map a="x>y"><layer><data encoding="base64" compression="zlib">{data}</data></layer></map>"#
+        )
+    }
+
+    #[test]
+    fn a_plain_map_passes_and_its_compressed_data_is_counted() {
+        assert_eq!(check_xml(map(&zlib(&[0; 4096])).as_bytes()), Ok(()));
+        assert_eq!(check_xml(b"<map><layer/><layer></layer></map>"), Ok(()));
+    }
+
+    #[test]
+    fn deep_nesting_is_refused_at_the_limit() {
+        let nest = |n: usize| "<group>".repeat(n) + &"</group>".repeat(n);
+        assert_eq!(check_xml(nest(MAX_XML_DEPTH).as_bytes()), Ok(()));
+        let err = check_xml(nest(MAX_XML_DEPTH + 1).as_bytes()).unwrap_err();
+        assert!(err.contains("64 deep"), "{err}");
+        // Self-closing tags and closed siblings do not add up.
+        let flat = "<g/>".repeat(1000) + &"<g></g>".repeat(1000);
+        assert_eq!(check_xml(flat.as_bytes()), Ok(()));
+    }
+
+    fn zeros(mib: usize) -> String {
+        use base64::Engine;
+        let mut e = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
+        let chunk = vec![0u8; 1 << 20];
+        for _ in 0..mib {
+            e.write_all(&chunk).unwrap();
+        }
+        base64::engine::general_purpose::STANDARD.encode(e.finish().unwrap())
+    }
+
+    #[test]
+    fn data_that_expands_past_the_budget_is_refused() {
+        // 257 MiB of zeros compress to about a megabyte.
+        let err = check_xml(map(&zeros(257)).as_bytes()).unwrap_err();
+        assert!(err.contains("more than 256 MiB"), "{err}");
+        assert_eq!(check_xml(map(&zeros(2)).as_bytes()), Ok(()));
+    }
+
+    #[test]
+    fn the_budget_is_the_whole_files_in_text_chunks_and_cdata() {
+        let mib = zeros(1);
+        let budget = 2 << 20;
+        let two = format!(
+            r#"<map><layer><data encoding="base64" compression="zlib">{mib}</data></layer><layer><data compression="zlib" encoding="base64"><chunk>{mib}</chunk></data></layer></map>"#
+        );
+        assert_eq!(scan(two.as_bytes(), budget), Ok(()));
+        let cdata = format!(
+            r#"<layer><data encoding="base64" compression="zlib"><![CDATA[{mib}]]></data></layer></map>"#
+        );
+        let three = two.replace("</map>", &cdata);
+        assert!(scan(three.as_bytes(), budget).is_err());
+        assert_eq!(scan(three.as_bytes(), 3 << 20), Ok(()));
+        // Outside a compressed `<data>` the same text is not counted.
+        let after = two.replace("</map>", &format!("<name>{mib}</name></map>"));
+        assert_eq!(scan(after.as_bytes(), budget), Ok(()));
+    }
+
+    #[test]
+    fn broken_tags_and_bad_data_are_errors() {
+        assert!(check_xml(b"<map a=\"x").is_err());
+        assert!(check_xml(b"<!-- never closed").is_err());
+        assert!(check_xml(map("not base64!").as_bytes()).is_err());
+        assert!(check_xml(map("AAAA").as_bytes()).is_err());
+        // Uncompressed and CSV data are left to the parser.
+        assert_eq!(
+            check_xml(br#"<data encoding="csv">1,2</data><data encoding="base64">AAAA</data>"#),
+            Ok(())
+        );
+    }
+
+    #[test]
+    fn attributes_are_read_in_any_order_and_quote() {
+        let tag = br#"data  compression = 'gzip' encoding="base64""#;
+        assert_eq!(attribute(tag, b"encoding"), Some(&b"base64"[..]));
+        assert_eq!(Compression::of(tag), Some(Compression::Gzip));
+        assert_eq!(Compression::of(br#"data encoding="base64""#), None);
+        assert_eq!(attribute(br#"data x="1"#, b"x"), None);
+    }
+}
