@@ -4,7 +4,7 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyKind, Shape, TileKind};
-use passo_scene::{Scene, TileMapRef};
+use passo_scene::{BuiltScene, Scene, TileMapRef};
 use std::path::PathBuf;
 
 fn assets() -> PathBuf {
@@ -320,6 +320,99 @@ fn maps_that_would_exhaust_the_machine_are_errors() {
         err.contains("deep_set.tsx") && err.contains("64 deep"),
         "{err}"
     );
+}
+
+#[test]
+fn a_level_counts_against_the_scenes_body_limit() {
+    // A checkerboard of 1 500 × 1 500 cells: 1 125 000 one-cell boxes.
+    let row = |odd: usize| -> String {
+        (0..1500)
+            .map(|x| if (x + odd) % 2 == 0 { '#' } else { '.' })
+            .collect()
+    };
+    let ascii: Vec<String> = (0..1500).map(|y| row(y % 2)).collect();
+    let text = format!(
+        "(name: \"board\", collisions: (), tilemap: (ascii: \"{}\"))",
+        ascii.join("\n")
+    );
+    let err = Scene::parse(&text, "board.ron")
+        .unwrap()
+        .build()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("tilemap") && err.contains("makes 1125000 bodies") && err.contains("1000000"),
+        "{err}"
+    );
+}
+
+#[test]
+fn odd_tile_sizes_and_far_spawn_points_are_errors() {
+    let zero_wide = tmx_with("").replace(r#"tilewidth="16""#, r#"tilewidth="0""#);
+    let mut r = level_ref("zero.tmx");
+    r.layer = "ground".into();
+    let err = r
+        .load(&map_file("zero.tmx", &zero_wide))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("zero.tmx") && err.contains("at least 1 px"),
+        "{err}"
+    );
+    let far = r#"<object id="7" name="p1" x="1e39" y="0"><point/></object>"#;
+    let mut r = level_ref("far.tmx");
+    r.layer = "ground".into();
+    let err = r
+        .load(&map_file("far.tmx", &tmx_with(far)))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("object 7 `p1`") && err.contains("beyond the world's coordinates"),
+        "{err}"
+    );
+    // A spawn point where the world reaches is kept.
+    let near = r#"<object id="7" name="p1" x="16" y="0"><point/></object>"#;
+    r.file = Some("near.tmx".into());
+    let level = r.load(&map_file("near.tmx", &tmx_with(near))).unwrap();
+    assert_eq!(level.spawns, vec![("p1".to_owned(), Vec2::new(0.5, 0.5))]);
+}
+
+#[test]
+fn a_platform_path_faster_than_the_world_allows_is_an_error() {
+    let scene = |by: f32, period: f32| {
+        format!(
+            "(name: \"lift\", collisions: (), max_speed: 50, bodies: [(kind: Kinematic, shape: Box(half_extents: (1, 0.2)), position: (0, 0), path: (by: ({by}, 0), period: {period}))])"
+        )
+    };
+    // Peak speed 3 × 10 / 0.5 = 60 m/s.
+    let err = Scene::parse(&scene(10.0, 0.5), "lift.ron")
+        .unwrap()
+        .build()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("bodies[0].path") && err.contains("60 m/s") && err.contains("50 m/s"),
+        "{err}"
+    );
+    // 3 × 10 / 0.6 = 50 m/s: followed to the far end.
+    let mut built = Scene::parse(&scene(10.0, 0.6), "lift.ron")
+        .unwrap()
+        .build()
+        .unwrap();
+    let (lift, dt) = (built.platforms[0].id, 1.0 / 60.0);
+    let mut far: f32 = 0.0;
+    for tick in 1..=36 {
+        BuiltScene::drive_platforms(
+            &built.platforms,
+            &mut built.world,
+            f64::from(tick) * dt,
+            dt as f32,
+        );
+        built.world.step(dt as f32);
+        far = far.max(built.world.body(lift).unwrap().position.x);
+    }
+    assert!((far - 10.0).abs() < 1e-3, "{far}");
+    assert_eq!(built.world.stats().rejected_inputs, 0);
 }
 
 #[test]

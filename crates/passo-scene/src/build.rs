@@ -1,7 +1,7 @@
 //! Building a physics world from a scene.
 
 use crate::error::SceneError;
-use crate::format::{BodySpec, Colour, SceneFile};
+use crate::format::{BodySpec, Colour, MAX_BODIES, SceneFile};
 use crate::generate::generate;
 use crate::map_ref::PlatformPath;
 use passo_physics::glam::Vec2;
@@ -176,6 +176,11 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         field,
         message: e.to_string(),
     };
+    let fail = |field: String, message: String| SceneError::Invalid {
+        source_name: source.to_owned(),
+        field,
+        message,
+    };
     let mut world = World::new(settings(file)).map_err(|e| invalid("settings".into(), e))?;
     let mut bodies = Vec::new();
     let mut platforms = Vec::new();
@@ -183,6 +188,18 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
     // The level's cells first, as boxes coloured by their kind.
     let level = file.tilemap.as_ref().map(|t| t.load(source)).transpose()?;
     if let (Some(level), Some(tilemap)) = (&level, &file.tilemap) {
+        // Each rectangle of the level's cells is a body: a checkerboard of
+        // 4096 × 4096 cells would be eight million.
+        let level_bodies = level.map.rects().len() + level.bodies.len();
+        let total = file.listed_bodies().saturating_add(level_bodies as u64);
+        if total > MAX_BODIES as u64 {
+            return Err(fail(
+                "tilemap".into(),
+                format!(
+                    "makes {level_bodies} bodies, {total} with the rest of the scene; at most {MAX_BODIES} are allowed"
+                ),
+            ));
+        }
         let ids = world
             .add_tile_map(&level.map, tilemap.kind)
             .map_err(|e| invalid("tilemap".into(), e))?;
@@ -196,6 +213,8 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
                 colour: tile_colour(&kind, tilemap.kind),
             });
             if let Some(path) = tilemap.path {
+                path.check_speed(file.max_speed)
+                    .map_err(|message| fail("tilemap.path".into(), message))?;
                 platforms.push(Platform {
                     id,
                     start: aabb.centre(),
@@ -204,9 +223,9 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
             }
         }
     }
-    let mut add = |spec: &BodySpec, position: Vec2, path: &dyn Fn() -> String| {
+    let mut add = |spec: &BodySpec, position: Vec2, path_of: &dyn Fn() -> String| {
         let def = body_def(spec, position);
-        let id = world.add_body(def).map_err(|e| invalid(path(), e))?;
+        let id = world.add_body(def).map_err(|e| invalid(path_of(), e))?;
         let half = spec.shape.map_or(Vec2::ZERO, |s| s.half_extents());
         let aabb = Aabb::from_centre(position, half);
         bounds = Some(bounds.map_or(aabb, |b| b.union(&aabb)));
@@ -221,6 +240,8 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
             colour,
         });
         if let Some(path) = spec.path {
+            path.check_speed(file.max_speed)
+                .map_err(|message| fail(format!("{}.path", path_of()), message))?;
             platforms.push(Platform {
                 id,
                 start: position,

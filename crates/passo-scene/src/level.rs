@@ -27,6 +27,7 @@ use crate::tiled_file::{
     Properties, RawMap, RawObject, RawShape, RawTile, Value, read_tmj, read_tmx,
 };
 use passo_physics::glam::Vec2;
+use passo_physics::constants::MAX_COORDINATE;
 use passo_physics::{BodyKind, Shape, TileKind, TileMap};
 use std::path::{Path, PathBuf};
 
@@ -173,6 +174,15 @@ impl RawMap {
                 format!("there is no such tile layer (the map has {names:?})"),
             ));
         };
+        if !(self.tile_width >= 1.0 && self.tile_height >= 1.0) {
+            return Err(invalid(
+                "map".into(),
+                format!(
+                    "tiles must be at least 1 px wide and high, got {} × {}",
+                    self.tile_width, self.tile_height
+                ),
+            ));
+        }
         let cell = Vec2::splat(wanted.cell);
         let mut map = TileMap::new(self.width, self.height, cell, wanted.origin)
             .map_err(|e| invalid("map".into(), e.to_string()))?;
@@ -249,6 +259,11 @@ impl RawObject {
                 }
                 _ => to_world(self.x, self.y),
             };
+            if !(at.is_finite() && at.abs().max_element() <= MAX_COORDINATE) {
+                return Err(format!(
+                    "is a spawn point at {at}, beyond the world's coordinates (±{MAX_COORDINATE} m)"
+                ));
+            }
             level
                 .spawns
                 .push((name.unwrap_or_else(|| "spawn".to_owned()), at));

@@ -58,6 +58,25 @@ pub struct PlatformPath {
 }
 
 impl PlatformPath {
+    /// The fastest the body moves along the path, m/s: the eased wave's
+    /// steepest slope, `3 |by| / period`.
+    pub fn peak_speed(&self) -> f32 {
+        3.0 * self.by.length() / self.period
+    }
+
+    /// Checks that a world whose kinematic bodies may go at most
+    /// `max_speed` can follow the path (a target beyond it is refused each
+    /// tick, and the platform would stand still).
+    pub(crate) fn check_speed(&self, max_speed: f32) -> Result<(), String> {
+        let peak = self.peak_speed();
+        if peak <= max_speed {
+            return Ok(());
+        }
+        Err(format!(
+            "moves at up to {peak} m/s (3 |by| / period), faster than the scene's max_speed of {max_speed} m/s"
+        ))
+    }
+
     /// The offset from the start at `t` seconds: a smoothstep ease of the
     /// triangle wave (arithmetic only, so every platform computes the same
     /// bits).

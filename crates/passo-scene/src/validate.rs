@@ -48,6 +48,12 @@ impl Check<'_> {
 }
 
 impl SceneFile {
+    /// The bodies the file lists and its generators make (not its level's).
+    pub(crate) fn listed_bodies(&self) -> u64 {
+        let made = self.generators.iter().map(Generator::count);
+        made.fold(self.bodies.len() as u64, u64::saturating_add)
+    }
+
     /// Checks every value; the error names the field and the allowed range.
     pub fn validate(&self, source: &str) -> Result<(), SceneError> {
         let c = Check { source };
@@ -106,12 +112,10 @@ impl SceneFile {
         for (i, body) in self.bodies.iter().enumerate() {
             body.validate(&c, &format!("bodies[{i}]"))?;
         }
-        let mut total = self.bodies.len() as u64;
         for (i, g) in self.generators.iter().enumerate() {
-            let path = format!("generators[{i}]");
-            g.validate(&c, &path)?;
-            total = total.saturating_add(g.count());
+            g.validate(&c, &format!("generators[{i}]"))?;
         }
+        let total = self.listed_bodies();
         if total > MAX_BODIES as u64 {
             return Err(c.fail(
                 "generators",
