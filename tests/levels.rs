@@ -327,7 +327,13 @@ fn a_level_counts_against_the_scenes_body_limit() {
     // A checkerboard of 1 500 × 1 500 cells: 1 125 000 one-cell boxes.
     let row = |odd: usize| -> String {
         (0..1500)
-            .map(|x| if (x + odd) % 2 == 0 { '#' } else { '.' })
+            .map(|x| {
+                if (x + odd).is_multiple_of(2) {
+                    '#'
+                } else {
+                    '.'
+                }
+            })
             .collect()
     };
     let ascii: Vec<String> = (0..1500).map(|y| row(y % 2)).collect();
