@@ -188,3 +188,52 @@ fn subnormal_and_out_of_range_materials_are_refused_where_they_enter() {
         .to_string();
     assert!(err.contains("bodies[0]"), "{err}");
 }
+
+#[test]
+fn a_kinematic_speed_past_the_limit_is_refused_and_counters_saturate() {
+    let mut world = World::default();
+    let lift = world
+        .add_body(BodyDef {
+            kind: passo_physics::BodyKind::Kinematic,
+            velocity: Vec2::new(3.0, 0.0),
+            shape: Some(Shape::rect(2.0, 0.5)),
+            ..BodyDef::default()
+        })
+        .unwrap();
+    world.step(DT);
+    let text = ron::to_string(&world.snapshot()).unwrap();
+    assert!(restore(&text).is_ok());
+    // 3e38 m/s has no finite square (the step would carry the platform
+    // to an infinite position in a few ticks); 2 000 m/s is past the
+    // world's `max_speed` of 1 000, which `add_body` refuses too.
+    for (speed, message) in [("3e38", "its square"), ("2000.0", "max_speed")] {
+        let text = edited(
+            &text,
+            &[("vel:[(3.0,0.0)]", &format!("vel:[({speed},0.0)]"))],
+        );
+        let err = restore(&text).map(|_| ()).unwrap_err();
+        assert!(
+            err.contains("dynamic body 0") && err.contains(message),
+            "{speed}: {err}"
+        );
+    }
+    // Counters at their end saturate instead of overflowing.
+    let text = edited(
+        &text,
+        &[
+            ("rejected_inputs:0", "rejected_inputs:18446744073709551615"),
+            (
+                "non_finite_resets:0",
+                "non_finite_resets:18446744073709551615",
+            ),
+        ],
+    );
+    let mut world = restore(&text).unwrap();
+    world.set_velocity(lift, Vec2::new(f32::NAN, 0.0));
+    world.step(DT);
+    let stats = world.stats();
+    assert_eq!(
+        (stats.rejected_inputs, stats.non_finite_resets),
+        (u64::MAX, u64::MAX)
+    );
+}

@@ -74,7 +74,7 @@ impl World {
 
     fn count_rejected(&mut self, result: Result<(), PhysicsError>) {
         if result.is_err() {
-            self.stats.rejected_inputs += 1;
+            self.stats.rejected_inputs = self.stats.rejected_inputs.saturating_add(1);
         }
     }
 

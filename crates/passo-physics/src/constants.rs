@@ -54,6 +54,14 @@ pub const MAX_FRICTION: f32 = 1.0e3;
 /// keeps flying.
 pub const MAX_COORDINATE: f32 = 1.0e7;
 
+/// Longest step [`World::step`](crate::World::step) takes, seconds: an
+/// hour. Far past any game's step (a fixed-timestep loop runs at 1 Hz or
+/// more), and short enough that no finite velocity (its square is finite,
+/// so under 2e19 m/s) moves a body from the world's coordinates to an
+/// infinite position in fewer than 10¹⁵ steps. A step of 1e38 s sent
+/// bodies to infinity in one.
+pub const MAX_STEP: f32 = 3600.0;
+
 /// Largest radius or half extent a shape may have, metres: 10⁶.
 pub const MAX_SHAPE_SIZE: f32 = 1.0e6;
 

@@ -255,7 +255,7 @@ impl World {
         );
         self.contacts = Some(cw);
         self.correction = correction;
-        self.stats.non_finite_resets += resets;
+        self.stats.non_finite_resets = self.stats.non_finite_resets.saturating_add(resets);
     }
 
     /// Substep stage: forces turned into velocities over `h`; the

@@ -4,7 +4,7 @@ use crate::bodies::{DynamicBodies, StaticBodies, heap};
 use crate::collider::ColliderRef;
 use crate::contact_state::ContactState;
 use crate::contact_world::ContactWorld;
-use crate::world::{Location, Slot};
+use crate::world::{Location, Slot, check_start_velocity};
 use crate::{BodyId, BodyKind, PhysicsError, StepStats, World, WorldSettings};
 
 /// Everything a world needs to continue exactly where it was: settings,
@@ -167,8 +167,9 @@ impl WorldSnapshot {
             crate::error::mass("mass", m.mass)
                 .map_err(|e| invalid(format!("dynamic body {i}: {e}")))?;
         }
-        body.to_def()
-            .validate()
+        let def = body.to_def();
+        def.validate()
+            .and_then(|()| check_start_velocity(&def, self.settings.max_speed))
             .map_err(|e| invalid(format!("dynamic body {i}: {e}")))?;
         // A kinematic body has inverse mass zero and infinite mass.
         let mass_ok = if m.kinematic {

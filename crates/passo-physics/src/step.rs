@@ -18,6 +18,7 @@
 //! [`World::active_stages`] and [`World::contact_stages`] read the same
 //! plan the step runs, so the list a user reads is the list that runs.
 use crate::bodies::SpeedLimits;
+use crate::constants::MAX_STEP;
 use crate::integrator::integrate_velocity;
 use crate::parallel::for_chunks;
 use crate::world::{World, step_forces};
@@ -130,12 +131,14 @@ impl World {
     /// a variable `dt` makes the result depend on the frame rate.
     ///
     /// # Panics
-    /// If `dt` is not finite and > 0: a zero, negative or NaN timestep is a
-    /// programming error, not a state the world can be in.
+    /// If `dt` is not in `(0, MAX_STEP]` seconds
+    /// ([`MAX_STEP`](crate::constants::MAX_STEP), an hour): a zero,
+    /// negative, NaN or enormous timestep is a programming error, not a
+    /// state the world can be in.
     pub fn step(&mut self, dt: f32) {
         assert!(
-            dt.is_finite() && dt > 0.0,
-            "World::step: dt must be finite and > 0 seconds, got {dt}"
+            dt > 0.0 && dt <= MAX_STEP,
+            "World::step: dt must be finite and > 0 seconds, at most {MAX_STEP}, got {dt}"
         );
         let plan = self.plan();
         if plan.store_previous {
@@ -169,7 +172,8 @@ impl World {
     /// time: a single pass over the arrays.
     fn step_bodies(&mut self, dt: f32, limits: Option<Option<SpeedLimits>>) {
         if let Some(kernel) = self.kernel(limits) {
-            self.stats.non_finite_resets += kernel.run(&mut self.dynamic, dt, self.parallel);
+            let resets = kernel.run(&mut self.dynamic, dt, self.parallel);
+            self.stats.non_finite_resets = self.stats.non_finite_resets.saturating_add(resets);
             return;
         }
         let integrator = self.settings().integrator;
@@ -190,7 +194,7 @@ impl World {
             }
             resets
         });
-        self.stats.non_finite_resets += resets;
+        self.stats.non_finite_resets = self.stats.non_finite_resets.saturating_add(resets);
     }
 
     /// Notes where each kinematic body is and how fast it goes, before
@@ -276,15 +280,45 @@ mod tests {
     }
 
     #[test]
-    #[should_panic(expected = "dt must be finite and > 0 seconds, got 0")]
+    #[should_panic(expected = "dt must be finite and > 0 seconds, at most 3600, got 0")]
     fn zero_timestep_panics_with_a_clear_message() {
         World::default().step(0.0);
     }
 
     #[test]
-    #[should_panic(expected = "dt must be finite and > 0 seconds, got NaN")]
+    #[should_panic(expected = "dt must be finite and > 0 seconds, at most 3600, got NaN")]
     fn nan_timestep_panics_with_a_clear_message() {
         World::default().step(f32::NAN);
+    }
+
+    #[test]
+    #[should_panic(expected = "at most 3600, got 100000000")]
+    fn an_enormous_timestep_panics_with_a_clear_message() {
+        World::default().step(1e8);
+    }
+
+    #[test]
+    fn the_longest_step_moves_the_fastest_body_a_finite_way() {
+        // No speed clamp, no forces: the largest velocity a body may have
+        // (its square just finite) over the longest step.
+        let settings = WorldSettings {
+            forces: ForceModels::none(),
+            max_speed: f32::INFINITY,
+            ..WorldSettings::default()
+        };
+        let mut world = World::new(settings).unwrap();
+        let v = Vec2::new(1.8e19, 0.0);
+        let id = world
+            .add_body(BodyDef {
+                velocity: v,
+                ..BodyDef::default()
+            })
+            .unwrap();
+        world.step(MAX_STEP);
+        let b = world.body(id).unwrap();
+        assert_eq!(b.velocity, v);
+        assert_eq!(b.position.x, v.x * MAX_STEP);
+        assert!(b.position.is_finite());
     }
 
     struct Broken;

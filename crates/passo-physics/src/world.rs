@@ -19,7 +19,9 @@ use std::sync::Arc;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StepStats {
-    /// Steps taken since the world was made.
+    /// Steps taken since the world was made. (Every counter here
+    /// saturates at `u64::MAX` rather than wrapping, so a restored
+    /// snapshot may hold any value.)
     pub steps: u64,
     /// Body-steps in which a force produced a non-finite velocity (a custom
     /// model returning NaN, or an overflow from an enormous force on a tiny
@@ -306,7 +308,7 @@ impl World {
     /// Adds a body; its definition is checked first.
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyId, PhysicsError> {
         def.validate()?;
-        self.check_start_velocity(&def)?;
+        check_start_velocity(&def, self.settings.max_speed)?;
         let index = match self.free.pop() {
             Some(index) => index,
             None => {
@@ -594,27 +596,6 @@ impl World {
         }
     }
 
-    /// A new body's velocity must have a finite square, and a kinematic
-    /// body's speed (which nothing else limits) must not exceed the world's
-    /// maximum speed, as [`try_set_velocity`](Self::try_set_velocity) asks.
-    fn check_start_velocity(&self, def: &BodyDef) -> Result<(), PhysicsError> {
-        let speed_sq = def.velocity.length_squared();
-        let max = self.settings.max_speed;
-        if !speed_sq.is_finite() {
-            return Err(PhysicsError::NonFinite {
-                what: "BodyDef::velocity (its square)",
-            });
-        }
-        if def.kind == BodyKind::Kinematic && speed_sq > max * max {
-            return Err(PhysicsError::OutOfRange {
-                what: "BodyDef::velocity",
-                value: speed_sq.sqrt(),
-                allowed: "at most WorldSettings::max_speed for a kinematic body",
-            });
-        }
-        Ok(())
-    }
-
     /// A body was added, removed or moved by hand: queries rebuild their
     /// index (the static tree too if it was a static body).
     pub(crate) fn note_edit(&mut self, is_static: bool) {
@@ -697,6 +678,27 @@ pub(crate) fn step_forces<'a>(
         settings.force_form,
         settings.integrator,
     )
+}
+
+/// A new (or restored) body's velocity must have a finite square, and a
+/// kinematic body's speed (which nothing else limits) must not exceed the
+/// world's maximum speed `max_speed`, as
+/// [`try_set_velocity`](World::try_set_velocity) asks.
+pub(crate) fn check_start_velocity(def: &BodyDef, max_speed: f32) -> Result<(), PhysicsError> {
+    let speed_sq = def.velocity.length_squared();
+    if !speed_sq.is_finite() {
+        return Err(PhysicsError::NonFinite {
+            what: "BodyDef::velocity (its square)",
+        });
+    }
+    if def.kind == BodyKind::Kinematic && speed_sq > max_speed * max_speed {
+        return Err(PhysicsError::OutOfRange {
+            what: "BodyDef::velocity",
+            value: speed_sq.sqrt(),
+            allowed: "at most WorldSettings::max_speed for a kinematic body",
+        });
+    }
+    Ok(())
 }
 
 #[cfg(test)]
