@@ -322,12 +322,14 @@ fn the_same_bits_whatever_the_number_of_threads() {
 
 /// State hash of `every_force_model` after `TICKS` ticks, per integrator
 /// (`Integrator::ALL` order). Added with the portable-maths work; the
-/// constants above are unchanged by it.
+/// constants above are unchanged by it. Verlet's and RK4's moved when they
+/// began to split dry friction off their stages (the Euler methods'
+/// stayed).
 const EXPECTED_FORCES: [u64; 4] = [
     0xde22_2354_2723_d25e,
     0xa7ce_b580_83ea_c1a7,
-    0xef07_e8d4_123a_f646,
-    0xd0ea_306b_3114_6ce7,
+    0x3467_3a89_4276_fef5,
+    0xb179_4fda_3260_85ab,
 ];
 
 /// A world with every force model on (gravity, a force field, a spring,

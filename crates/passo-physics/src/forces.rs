@@ -325,6 +325,18 @@ impl Dissipation {
     /// The plain explicit acceleration of drag and friction at velocity `v`.
     #[inline(always)]
     pub(crate) fn accel(&self, v: Vec2, b: &BodyParams) -> Vec2 {
+        let mut a = self.drag_accel(v, b);
+        let decel = self.friction_decel(b);
+        if decel > 0.0 {
+            a -= v.normalize_or_zero() * decel;
+        }
+        a
+    }
+
+    /// The plain explicit acceleration of drag alone (no friction) at
+    /// velocity `v`.
+    #[inline(always)]
+    pub(crate) fn drag_accel(&self, v: Vec2, b: &BodyParams) -> Vec2 {
         let mut a = Vec2::ZERO;
         let rel = v - self.air;
         if let Some(half_rho) = self.half_rho {
@@ -333,11 +345,23 @@ impl Dissipation {
         if let Some(damping) = self.linear {
             a -= rel * (damping * b.inv_mass);
         }
+        a
+    }
+
+    /// Friction alone over `dt` in its exact form (see
+    /// [`apply_stable`](Self::apply_stable)): the speed falls by the
+    /// friction deceleration times `dt`, to zero and never past it.
+    /// Unchanged bits without friction.
+    #[inline(always)]
+    pub(crate) fn apply_friction(&self, mut v: Vec2, b: &BodyParams, dt: f32) -> Vec2 {
         let decel = self.friction_decel(b);
         if decel > 0.0 {
-            a -= v.normalize_or_zero() * decel;
+            let speed = v.length();
+            if speed > 0.0 {
+                v *= (speed - decel * dt).max(0.0) / speed;
+            }
         }
-        a
+        v
     }
 
     /// Applies drag and friction over `dt` as exact velocity factors, one
@@ -364,14 +388,7 @@ impl Dissipation {
         if let Some(damping) = self.linear {
             v = self.air + (v - self.air) * libm::expf(-damping * b.inv_mass * dt);
         }
-        let decel = self.friction_decel(b);
-        if decel > 0.0 {
-            let speed = v.length();
-            if speed > 0.0 {
-                v *= (speed - decel * dt).max(0.0) / speed;
-            }
-        }
-        v
+        self.apply_friction(v, b, dt)
     }
 }
 

@@ -27,10 +27,19 @@ pub enum Integrator {
     /// Velocity Verlet: `p += v dt + a0 dt^2 / 2; v += (a0 + a1) dt / 2`.
     /// Second order, two force evaluations. For velocity-dependent forces
     /// `a1` is evaluated at the predicted velocity `v + a0 dt`, which keeps
-    /// the method second order.
+    /// the method second order. Dry friction is split off (see
+    /// [`Rk4`](Self::Rk4)).
     VelocityVerlet,
     /// Classical fourth-order Runge-Kutta on `(p, v)`, every force model
     /// evaluated at each of the four stages. Fourth order, four evaluations.
+    ///
+    /// Dry friction (surface and game-applied) is not a smooth force: it
+    /// flips with the velocity's direction, and evaluated in the stages its
+    /// flips cancel, so a body slower than about `mu g dt` kept coasting for
+    /// ever. Verlet and RK4 apply it in its exact form for half a step
+    /// before their stages and half after (Strang splitting): a sliding
+    /// body stops exactly and never reverses, and the rest of the forces
+    /// keep the method's order.
     Rk4,
 }
 
@@ -55,8 +64,9 @@ impl Integrator {
     }
 
     /// Whether drag and friction can be applied in their stable form. Only
-    /// the Euler methods split them off; Verlet and RK4 evaluate every force
-    /// as written, which is what makes them higher order.
+    /// the Euler methods split them off; Verlet and RK4 evaluate every other
+    /// force as written, which is what makes them higher order, and split
+    /// off dry friction alone (see [`Rk4`](Self::Rk4)).
     pub(crate) fn splits_dissipation(self) -> bool {
         matches!(self, Self::ExplicitEuler | Self::SemiImplicitEuler)
     }
@@ -90,6 +100,18 @@ impl<'a> Forces<'a> {
         let a = self.drive.accel(p, v, b);
         if self.dissipation.is_active() {
             a + self.dissipation.accel(v, b)
+        } else {
+            a
+        }
+    }
+
+    /// Total acceleration but dry friction, every force in its plain form
+    /// (the stages of Verlet and RK4).
+    #[inline(always)]
+    fn smooth_accel(&self, p: Vec2, v: Vec2, b: &BodyParams) -> Vec2 {
+        let a = self.drive.accel(p, v, b);
+        if self.dissipation.is_active() {
+            a + self.dissipation.drag_accel(v, b)
         } else {
             a
         }
@@ -130,24 +152,28 @@ pub(crate) fn integrate_body(
             (v1, (v - v1) * dt)
         }
         Integrator::VelocityVerlet => {
-            let a0 = forces.accel(p, v, b);
+            let friction = |v| forces.dissipation.apply_friction(v, b, 0.5 * dt);
+            let v = friction(v);
+            let a0 = forces.smooth_accel(p, v, b);
             let dp = v * dt + a0 * (0.5 * dt * dt);
-            let a1 = forces.accel(p + dp, v + a0 * dt, b);
-            let v1 = v + (a0 + a1) * (0.5 * dt);
+            let a1 = forces.smooth_accel(p + dp, v + a0 * dt, b);
+            let v1 = friction(v + (a0 + a1) * (0.5 * dt));
             (v1, dp - v1 * dt)
         }
         Integrator::Rk4 => {
             let h = 0.5 * dt;
-            let a1 = forces.accel(p, v, b);
+            let friction = |v| forces.dissipation.apply_friction(v, b, h);
+            let v = friction(v);
+            let a1 = forces.smooth_accel(p, v, b);
             let v2 = v + a1 * h;
-            let a2 = forces.accel(p + v * h, v2, b);
+            let a2 = forces.smooth_accel(p + v * h, v2, b);
             let v3 = v + a2 * h;
-            let a3 = forces.accel(p + v2 * h, v3, b);
+            let a3 = forces.smooth_accel(p + v2 * h, v3, b);
             let v4 = v + a3 * dt;
-            let a4 = forces.accel(p + v3 * dt, v4, b);
+            let a4 = forces.smooth_accel(p + v3 * dt, v4, b);
             let sixth = dt / 6.0;
             let dp = (v + (v2 + v3) * 2.0 + v4) * sixth;
-            let v1 = v + (a1 + (a2 + a3) * 2.0 + a4) * sixth;
+            let v1 = friction(v + (a1 + (a2 + a3) * 2.0 + a4) * sixth);
             (v1, dp - v1 * dt)
         }
     }

@@ -187,7 +187,10 @@ pub fn cases() -> Vec<Case> {
             dissipative: true,
             smooth: false,
             note: "Not smooth (the body stops): no method shows its order; the stable forms stop \
-                   the body within one step of the closed-form distance and never reverse it.",
+                   the body within one step of the closed-form distance and never reverse it. \
+                   Verlet and RK4 apply friction exactly for half a step before their stages and \
+                   half after, so the slide itself is exact and only rounding and the last step \
+                   remain.",
         },
         Case {
             name: "spring",
