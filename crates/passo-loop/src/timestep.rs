@@ -25,7 +25,9 @@ pub const MAX_TIME_SCALE: f64 = 1000.0;
 /// A value the loop cannot use.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LoopError {
-    /// A rate that is not finite and > 0 Hz, or too high for a 1 ns step.
+    /// A rate that is not finite and > 0 Hz, too high for a 1 ns step, or
+    /// too low for a step that fits in `u64::MAX` ns (about 584 years; a
+    /// rate below about 5.4e-11 Hz).
     InvalidRate(f64),
     /// A step that is not finite and > 0 seconds, or rounds to 0 ns.
     InvalidStep(f64),
@@ -41,7 +43,8 @@ impl fmt::Display for LoopError {
             Self::InvalidRate(hz) => {
                 write!(
                     f,
-                    "fixed rate must be finite, > 0 and at most 1e9 Hz, got {hz}"
+                    "fixed rate must be finite, > 0 and at most 1e9 Hz, with a step of at \
+                     most u64::MAX ns (about 584 years), got {hz}"
                 )
             }
             Self::InvalidStep(s) => {
@@ -80,9 +83,10 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// The numbers of the ticks to run, in order.
+    /// The numbers of the ticks to run, in order (never past `u64::MAX`;
+    /// see [`FixedTimestep::tick`]).
     pub fn tick_numbers(&self) -> Range<u64> {
-        self.first_tick..self.first_tick + u64::from(self.ticks)
+        self.first_tick..self.first_tick.saturating_add(u64::from(self.ticks))
     }
 }
 
@@ -171,7 +175,10 @@ impl FixedTimestep {
     /// Changes the step. It takes effect from the next call to
     /// [`advance`](Self::advance): the ticks of the frame already advanced
     /// keep the step their [`Frame`] names. The accumulated remainder is
-    /// kept (it is time, not ticks).
+    /// kept (it is time, not ticks), so after a change to a shorter step it
+    /// can hold a whole step or more: the next `advance` that is not paused
+    /// runs those whole steps as ticks (within the per-frame cap), and until
+    /// then [`alpha`](Self::alpha) stays just below one.
     ///
     /// # Panics
     /// If `step` is zero.
@@ -259,19 +266,29 @@ impl FixedTimestep {
     }
 
     /// Ticks run so far; also the number of the next tick.
+    ///
+    /// The count stops at `u64::MAX` (584 years of ticks at 1 GHz, so only
+    /// a snapshot restored with such a count gets there) instead of
+    /// overflowing: from there frames run no tick, and the time is dropped.
     pub fn tick(&self) -> u64 {
         self.tick
     }
 
-    /// Accumulated time not yet simulated, less than one step.
+    /// Accumulated time not yet simulated: less than one step, except
+    /// after a change to a shorter step (see [`set_step`](Self::set_step))
+    /// or a restore of a snapshot holding more, until the next `advance`
+    /// that is not paused takes the whole steps out.
     pub fn remainder(&self) -> Duration {
         self.accumulator
     }
 
-    /// `remainder / step`, in `[0, 1)`.
+    /// `remainder / step`, in `[0, 1)`: kept just below one when the
+    /// remainder rounds to a whole step in `f32` or holds one or more (see
+    /// [`remainder`](Self::remainder)).
     pub fn alpha(&self) -> f32 {
         let a = (self.accumulator.as_nanos() as f64 / self.step.as_nanos() as f64) as f32;
-        // Rounding to f32 could reach 1.0 for a remainder one ns short of a step.
+        // Rounding to f32 could reach 1.0 for a remainder one ns short of a
+        // step, and a remainder after a change to a shorter step can pass it.
         a.min(1.0 - f32::EPSILON / 2.0)
     }
 
@@ -289,6 +306,7 @@ impl FixedTimestep {
     /// drivers that step a fixed number of ticks (simulations, replays):
     /// the accumulator, pause state and guards are untouched.
     pub fn advance_ticks(&mut self, n: u32) -> Frame {
+        let n = n.min(self.ticks_left());
         let frame = Frame {
             ticks: n,
             first_tick: self.tick,
@@ -303,7 +321,9 @@ impl FixedTimestep {
     }
 
     /// Checks a timestep read from outside (a snapshot file): a step of at
-    /// least 1 ns, a cap of at least one tick, a valid time scale.
+    /// least 1 ns, a cap of at least one tick, a valid time scale. Any tick
+    /// count is accepted: the count stops at `u64::MAX` (see
+    /// [`tick`](Self::tick)).
     pub fn validate(&self) -> Result<(), LoopError> {
         if self.step.is_zero() {
             return Err(LoopError::InvalidStep(0.0));
@@ -338,6 +358,7 @@ impl FixedTimestep {
         let mut dropped = Duration::ZERO;
         let ticks = if self.paused {
             let ticks = self.queued_steps.min(self.max_ticks_per_frame);
+            let ticks = ticks.min(self.ticks_left());
             self.queued_steps = 0;
             ticks
         } else {
@@ -345,7 +366,8 @@ impl FixedTimestep {
             dropped = self.scale(frame_time - counted);
             self.accumulator = self.accumulator.saturating_add(self.scale(counted));
             let wanted = self.accumulator.as_nanos() / self.step.as_nanos();
-            let ticks = wanted.min(u128::from(self.max_ticks_per_frame)) as u32;
+            let cap = self.max_ticks_per_frame.min(self.ticks_left());
+            let ticks = wanted.min(u128::from(cap)) as u32;
             // Whole steps beyond the cap are dropped; the sub-step remainder stays.
             let whole = self.accumulator - self.accumulator_remainder();
             let run = self.step * ticks;
@@ -365,6 +387,11 @@ impl FixedTimestep {
         };
         self.last_frame = Some(frame);
         frame
+    }
+
+    /// Ticks that can still be counted before the count reaches `u64::MAX`.
+    fn ticks_left(&self) -> u32 {
+        u32::try_from(u64::MAX - self.tick).unwrap_or(u32::MAX)
     }
 
     fn accumulator_remainder(&self) -> Duration {
@@ -389,12 +416,18 @@ fn step_from_hz(hz: f64) -> Result<Duration, LoopError> {
     if !(hz.is_finite() && hz > 0.0 && hz <= 1e9) {
         return Err(LoopError::InvalidRate(hz));
     }
-    Ok(Duration::from_nanos((1e9 / hz).round() as u64))
+    // A rate so low that the step does not fit in u64 nanoseconds
+    // (`u64::MAX as f64` is 2^64, one past the largest).
+    let ns = (1e9 / hz).round();
+    if ns >= u64::MAX as f64 {
+        return Err(LoopError::InvalidRate(hz));
+    }
+    Ok(Duration::from_nanos(ns as u64))
 }
 
 fn step_from_seconds(seconds: f64) -> Result<Duration, LoopError> {
     let ns = (seconds * 1e9).round();
-    if !(seconds.is_finite() && ns >= 1.0 && ns <= u64::MAX as f64) {
+    if !(seconds.is_finite() && ns >= 1.0 && ns < u64::MAX as f64) {
         return Err(LoopError::InvalidStep(seconds));
     }
     Ok(Duration::from_nanos(ns as u64))
@@ -533,25 +566,93 @@ mod tests {
     #[test]
     fn alpha_is_always_below_one() {
         let mut t = FixedTimestep::new(ns(1_000_000_007));
+        // No cut to 250 ms: the whole frame, one ns short of a step, stays.
+        t.set_max_frame_time(Duration::MAX);
         let frame = t.advance(ns(1_000_000_006));
         assert_eq!(frame.ticks, 0);
+        assert_eq!(t.remainder(), ns(1_000_000_006));
+        // Unclamped, the ratio rounds to 1.0 in f32.
+        assert_eq!((1_000_000_006f64 / 1_000_000_007f64) as f32, 1.0);
+        assert!(frame.alpha < 1.0, "{}", frame.alpha);
+        assert!(t.alpha() < 1.0);
+        assert!(frame.alpha > 0.999_999);
+    }
+
+    #[test]
+    fn a_shorter_step_while_paused_keeps_the_time_and_runs_it_on_resume() {
+        let mut t = FixedTimestep::new(10 * MS);
+        t.advance(9 * MS);
+        t.pause();
+        t.set_step(2 * MS);
+        // 9 ms kept: four whole new steps and 1 ms, owed until time resumes.
+        assert_eq!(t.remainder(), 9 * MS);
+        assert!(t.alpha() < 1.0 && t.alpha() > 0.999_999, "{}", t.alpha());
+        let frame = t.advance(5 * MS);
+        assert_eq!((frame.ticks, t.remainder()), (0, 9 * MS));
         assert!(frame.alpha < 1.0);
+        t.resume();
+        // 9 ms + 1 ms: five ticks of 2 ms, nothing dropped or lost.
+        let frame = t.advance(MS);
+        assert_eq!(
+            (frame.ticks, frame.step, frame.dropped),
+            (5, 2 * MS, Duration::ZERO)
+        );
+        assert_eq!((t.remainder(), frame.alpha), (Duration::ZERO, 0.0));
+        assert_eq!(t.tick(), 5);
+    }
+
+    #[test]
+    fn a_restored_tick_count_at_the_top_stops_there_instead_of_overflowing() {
+        let mut t = FixedTimestep::new(10 * MS);
+        t.tick = u64::MAX - 1;
+        t.validate().unwrap();
+        // Three ticks due, one left to count: the other two are dropped.
+        let frame = t.advance(30 * MS);
+        assert_eq!((frame.ticks, frame.first_tick), (1, u64::MAX - 1));
+        assert_eq!(frame.tick_numbers(), u64::MAX - 1..u64::MAX);
+        assert_eq!(frame.dropped, 20 * MS);
+        assert_eq!(t.tick(), u64::MAX);
+        let frame = t.advance_ticks(2);
+        assert_eq!(frame.ticks, 0);
+        assert_eq!(frame.tick_numbers(), u64::MAX..u64::MAX);
+        t.pause();
+        t.step_once();
+        assert_eq!(t.advance(MS).ticks, 0);
+        assert_eq!(t.tick(), u64::MAX);
+        // A frame that names more ticks than the count has left.
+        let frame = Frame {
+            first_tick: u64::MAX - 1,
+            ticks: 5,
+            ..frame
+        };
+        assert_eq!(frame.tick_numbers(), u64::MAX - 1..u64::MAX);
     }
 
     #[test]
     fn invalid_rates_and_steps_are_refused() {
-        for hz in [0.0, -60.0, f64::NAN, f64::INFINITY, 2e9] {
+        // Below about 5.4e-11 Hz the step would not fit in u64 ns.
+        for hz in [0.0, -60.0, f64::NAN, f64::INFINITY, 2e9, 5e-11, 1e-300] {
             assert!(matches!(
                 FixedTimestep::from_hz(hz),
                 Err(LoopError::InvalidRate(_))
             ));
+            let mut t = FixedTimestep::default();
+            assert!(matches!(t.set_hz(hz), Err(LoopError::InvalidRate(_))));
+            assert_eq!(t.step(), ns(16_666_667), "a refused rate changes nothing");
         }
+        // The lowest rates whose step fits: about 584 years.
+        let slow = FixedTimestep::from_hz(5.5e-11).unwrap();
+        assert_eq!(slow.step(), ns((1e9 / 5.5e-11f64).round() as u64));
+        assert!(slow.step() < ns(u64::MAX));
+        assert!(FixedTimestep::from_seconds(1.8e10).is_ok());
+        assert!(FixedTimestep::from_seconds(1.9e10).is_err());
         for s in [0.0, -0.1, f64::NAN, 1e-10] {
             assert!(FixedTimestep::from_seconds(s).is_err());
         }
         assert_eq!(
             FixedTimestep::from_hz(0.0).unwrap_err().to_string(),
-            "fixed rate must be finite, > 0 and at most 1e9 Hz, got 0"
+            "fixed rate must be finite, > 0 and at most 1e9 Hz, with a step of at most \
+             u64::MAX ns (about 584 years), got 0"
         );
         assert_eq!(FixedTimestep::from_seconds(0.02).unwrap().step(), 20 * MS);
     }

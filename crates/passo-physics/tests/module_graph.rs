@@ -4,12 +4,17 @@
 //! in a circle.
 //!
 //! The check reads the sources as text: every `crate::…` path outside
-//! comments and outside `#[cfg(test)]` modules is an import, and a name the
+//! comments, string literals and code marked `#[cfg(test)]` (a test
+//! module, or a single test-only item, field, statement or match arm) is an
+//! import, and a name the
 //! crate root re-exports (`crate::World`) counts as an import of the module
 //! that defines it. Run it with
 //! `cargo test -p passo-physics --test module_graph -- --nocapture` to see
 //! the graph.
 
+mod source_scan;
+
+use source_scan::strip;
 use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
@@ -49,21 +54,6 @@ fn crate_root(src: &Path) -> (Vec<String>, BTreeMap<String, String>) {
         }
     }
     (order, exports)
-}
-
-/// The code of a file without comments and without its test module.
-fn strip(text: &str) -> String {
-    let text = match text.find("#[cfg(test)]") {
-        Some(i) => &text[..i],
-        None => text,
-    };
-    text.lines()
-        .map(|line| match line.find("//") {
-            Some(i) => &line[..i],
-            None => line,
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
 }
 
 /// The first segment of each path in a `use` tree or path that follows
@@ -177,4 +167,53 @@ fn the_checker_sees_imports_through_groups_and_re_exports() {
     // Comments and test modules do not count.
     let code = "// crate::world\nfn f() {}\n#[cfg(test)]\nmod tests { use crate::World; }";
     assert!(imports(&strip(code), &modules, &exports).is_empty());
+}
+
+#[test]
+fn the_checker_skips_only_the_code_marked_for_tests() {
+    let modules: Vec<String> = ["body", "world", "solver", "step", "shape"]
+        .map(String::from)
+        .to_vec();
+    let exports = BTreeMap::new();
+    let code = r#"
+struct S {
+    #[cfg(test)]
+    seen: crate::world::Seen,
+    kept: crate::body::Body,
+}
+impl S {
+    /// A helper for tests.
+    #[cfg(test)]
+    #[allow(dead_code)]
+    pub(crate) fn for_tests() -> Self { crate::world::make() }
+    fn run(&self, p: Pass) {
+        match p {
+            #[cfg(test)]
+            Pass::Measure => {}
+            #[cfg(test)]
+            Pass::Other => crate::world::other(),
+            Pass::Solve => crate::solver::solve(),
+        }
+        #[cfg(test)]
+        let n = if a { crate::world::a() } else { crate::world::b() };
+        #[cfg(test)]
+        {
+            crate::world::count();
+        }
+        let s = "crate::world }";
+        let c = '{';
+        crate::shape::f(s, c);
+    }
+}
+#[cfg(test)]
+mod tests;
+fn after() { crate::step::run() }
+"#;
+    let stripped = strip(code);
+    assert_eq!(
+        imports(&stripped, &modules, &exports),
+        ["body", "shape", "solver", "step"],
+        "{stripped}"
+    );
+    assert_eq!(stripped.lines().count(), code.lines().count());
 }

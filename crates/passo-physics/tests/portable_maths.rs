@@ -5,9 +5,13 @@
 //! come from the pure-Rust `libm` crate instead. Square roots, which IEEE
 //! 754 rounds exactly everywhere, are allowed.
 //!
-//! The check reads the sources (outside comments and test modules) for a
-//! call of a forbidden method.
+//! The check reads the sources (outside comments, string literals and code
+//! marked `#[cfg(test)]`: a test module, or a single test-only item, field,
+//! statement or match arm) for a call of a forbidden method.
 
+mod source_scan;
+
+use source_scan::strip;
 use std::fs;
 use std::path::Path;
 
@@ -16,15 +20,12 @@ const FORBIDDEN: [&str; 22] = [
     "tan", "asin", "acos", "atan", "atan2", "sin_cos", "sinh", "cosh", "tanh", "hypot",
 ];
 
-/// The forbidden calls in a file's code (comments and tests left out).
+/// The forbidden calls in a file's code (comments, string literals and
+/// code marked `#[cfg(test)]` left out).
 fn forbidden_calls(text: &str) -> Vec<String> {
-    let code = match text.find("#[cfg(test)]") {
-        Some(i) => &text[..i],
-        None => text,
-    };
+    let code = strip(text);
     let mut found = Vec::new();
     for (n, line) in code.lines().enumerate() {
-        let line = line.split("//").next().unwrap_or("");
         for name in FORBIDDEN {
             let calls = [
                 format!(".{name}("),
@@ -76,4 +77,38 @@ fn the_check_sees_a_call_and_skips_comments_and_tests() {
     assert!(
         forbidden_calls("fn f() {}\n#[cfg(test)]\nmod tests { fn g() { 1f32.sin(); } }").is_empty()
     );
+}
+
+#[test]
+fn the_check_sees_calls_after_single_test_only_items() {
+    let code = r#"struct S {
+    #[cfg(test)]
+    seen: f32,
+    kept: f32,
+}
+impl S {
+    #[cfg(test)]
+    fn for_tests() -> f32 { 1f32.sin() }
+    fn run(&self, p: Pass) -> f32 {
+        let a = match p {
+            #[cfg(test)]
+            Pass::Measure => {}
+            #[cfg(test)]
+            Pass::Other => 2f32.cos(),
+            Pass::Solve => self.kept.exp(),
+        };
+        #[cfg(test)]
+        let n = if a { a.ln() } else { a.log2() };
+        let s = "x.tan() }";
+        let c = '{';
+        a.powf(2.0)
+    }
+}
+#[cfg(test)]
+mod tests;
+fn after(x: f32) -> f32 { x.atan2(1.0) }
+"#;
+    let found = forbidden_calls(code);
+    let lines: Vec<&str> = found.iter().map(|f| f.split(':').next().unwrap()).collect();
+    assert_eq!(lines, ["line 15", "line 21", "line 26"], "{found:?}");
 }

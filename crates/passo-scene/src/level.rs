@@ -26,8 +26,8 @@ use crate::map_ref::{PlatformPath, TileMapRef};
 use crate::tiled_file::{
     Properties, RawMap, RawObject, RawShape, RawTile, Value, read_tmj, read_tmx,
 };
-use passo_physics::glam::Vec2;
 use passo_physics::constants::MAX_COORDINATE;
+use passo_physics::glam::Vec2;
 use passo_physics::{BodyKind, Shape, TileKind, TileMap};
 use std::path::{Path, PathBuf};
 

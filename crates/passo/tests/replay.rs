@@ -190,23 +190,123 @@ fn passo_replay_checks_the_final_state() {
 }
 
 #[test]
-fn replays_out_of_order_past_the_end_or_at_absurd_rates_are_refused() {
+fn replays_out_of_order_past_the_end_absurd_or_endless_are_refused() {
     let replay = record(Duration::from_micros(16_667));
     let mut late = replay.clone();
-    late.commands.push((u64::MAX, passo::demo::Command::Reset));
+    late.commands.push((u64::MAX, Command::Reset));
     let mut backwards = replay.clone();
     backwards.inputs.reverse();
+    let (first, _) = backwards.inputs[0];
+    let (second, _) = backwards.inputs[1];
     let mut slow = replay.clone();
-    slow.commands
-        .push((replay.ticks, passo::demo::Command::Rate(1e-300)));
-    for (what, bad) in [("late", late), ("backwards", backwards), ("slow", slow)] {
-        let err = Replay::from_ron(&bad.to_ron()).unwrap_err().to_string();
-        assert!(
-            err.contains("past the last tick")
-                || err.contains("out of order")
-                || err.contains("Hz"),
-            "{what}: {err}"
-        );
+    slow.commands.push((replay.ticks, Command::Rate(1e-300)));
+    let mut huge_rain = replay.clone();
+    huge_rain
+        .commands
+        .push((replay.ticks, Command::RainCount(1_000_000)));
+    let mut rebuilds = replay.clone();
+    rebuilds
+        .commands
+        .extend((0..=Replay::MAX_REBUILDS).map(|i| match i % 2 {
+            0 => (replay.ticks, Command::Reset),
+            _ => (replay.ticks, Command::RainCount(100)),
+        }));
+    let endless = Replay {
+        ticks: u64::MAX,
+        ..replay.clone()
+    };
+    let cases = [
+        (
+            "late",
+            late,
+            format!(
+                "a command at tick {} is past the last tick, {}",
+                u64::MAX,
+                replay.ticks
+            ),
+        ),
+        (
+            "backwards",
+            backwards,
+            format!("an input at tick {second} comes after one at tick {first}: out of order"),
+        ),
+        (
+            "slow",
+            slow,
+            format!(
+                "the rate set at tick {} must be in [1, 10000] Hz, got 1e-300",
+                replay.ticks
+            ),
+        ),
+        (
+            "huge_rain",
+            huge_rain,
+            format!(
+                "the rain count set at tick {} must be at most 20000, got 1000000",
+                replay.ticks
+            ),
+        ),
+        (
+            "rebuilds",
+            rebuilds,
+            format!(
+                "the replay rebuilds the scene {} times (resets and rain counts), more than the \
+                 most a replay may, 4096",
+                Replay::MAX_REBUILDS + 1
+            ),
+        ),
+        (
+            "endless",
+            endless.clone(),
+            format!(
+                "the replay has {} ticks, more than the most a replay may have, 4294967296",
+                u64::MAX
+            ),
+        ),
+    ];
+    for (what, bad, want) in cases {
+        let Err(err) = Replay::from_ron(&bad.to_ron()) else {
+            panic!("the {what} replay was accepted");
+        };
+        assert_eq!(err.to_string(), want, "{what}");
     }
     assert!(Replay::from_ron(&replay.to_ron()).is_ok());
+
+    // The limits themselves are allowed.
+    let longest = Replay {
+        ticks: Replay::MAX_TICKS,
+        commands: vec![(0, Command::RainCount(Replay::MAX_RAIN_COUNT))],
+        ..replay.clone()
+    };
+    longest.validate().unwrap();
+    // A list of commands longer than the cap is refused before it is read
+    // through.
+    let mut many = replay.clone();
+    many.commands = vec![(0, Command::Rate(60.0)); Replay::MAX_COMMANDS];
+    many.validate().unwrap();
+    many.commands.push((0, Command::Rate(60.0)));
+    assert_eq!(
+        many.validate().unwrap_err().to_string(),
+        format!(
+            "the replay has {} commands, more than the most a replay may have, {}",
+            Replay::MAX_COMMANDS + 1,
+            Replay::MAX_COMMANDS
+        )
+    );
+
+    // `passo replay` refuses an endless file at once instead of playing it.
+    let file = std::env::temp_dir().join(format!("passo-endless-{}.ron", std::process::id()));
+    endless.save(&file).unwrap();
+    let out = Process::new(env!("CARGO_BIN_EXE_passo"))
+        .arg("replay")
+        .arg(&file)
+        .output()
+        .unwrap();
+    std::fs::remove_file(&file).unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("more than the most a replay may have"),
+        "{stderr}"
+    );
 }

@@ -282,19 +282,51 @@ fn stopping_short_or_not_moving_is_none() {
 #[test]
 fn tiny_and_huge_translations_stay_finite() {
     let shapes = [circle(1.0), rect(1.0, 0.5)];
+    let half_height = |s: &Shape| s.half_extents().y;
     for a in &shapes {
         for b in &shapes {
+            // A standing on top of B, touching (separation exactly 0).
+            let top = half_height(a) + half_height(b);
+            let touching = Vec2::new(0.0, top);
+            // Into B, however little: a hit at once, out of B's top.
             for d in [
-                Vec2::new(1e-30, 0.0),
+                Vec2::new(0.0, -1e-30),
                 Vec2::new(1e-44, -1e-44),
-                Vec2::new(1e30, 1e-30),
                 Vec2::new(0.0, -1e18),
             ] {
-                if let Some(hit) = cast_shape(a, Vec2::new(0.0, 5.0), d, b, Vec2::ZERO) {
-                    assert!((0.0..=1.0).contains(&hit.fraction));
-                    assert!(hit.point.is_finite() && hit.normal.is_finite());
-                }
+                let hit = cast_shape(a, touching, d, b, Vec2::ZERO)
+                    .unwrap_or_else(|| panic!("{a:?} on {b:?} moved by {d}"));
+                assert_eq!((hit.fraction, hit.normal), (0.0, Vec2::Y), "{d}");
+                assert!(hit.point.is_finite(), "{d}");
+                assert!((hit.point.y - half_height(b)).abs() < 1e-6, "{d}");
+                assert!(hit.point.x.abs() <= 1.0, "{d}");
             }
+            // Along B's top or away from it: no hit.
+            for d in [
+                Vec2::new(1e-30, 0.0),
+                Vec2::new(-1e-44, 0.0),
+                Vec2::new(1e30, 1e-30),
+                Vec2::new(0.0, 1e-44),
+            ] {
+                assert_eq!(cast_shape(a, touching, d, b, Vec2::ZERO), None, "{d}");
+            }
+            // One step of f32 above touching: a tiny move down stops short,
+            // a move of a micrometre hits after that step.
+            let above = Vec2::new(0.0, top.next_up());
+            let gap = f64::from(above.y) - f64::from(top);
+            assert_eq!(
+                cast_shape(a, above, Vec2::new(0.0, -1e-30), b, Vec2::ZERO),
+                None
+            );
+            let d = Vec2::new(0.0, -1e-6);
+            let hit = cast_shape(a, above, d, b, Vec2::ZERO).expect("a hit");
+            let want = gap / 1e-6;
+            assert!(
+                (f64::from(hit.fraction) - want).abs() < 1e-3,
+                "fraction {} for {want}",
+                hit.fraction
+            );
+            assert_eq!(hit.normal, Vec2::Y);
             // Straight down from 5 m by 1e18 m: hits at a tiny fraction.
             let hit =
                 cast_shape(a, Vec2::new(0.0, 5.0), Vec2::new(0.0, -1e18), b, Vec2::ZERO).unwrap();

@@ -54,22 +54,71 @@ fn swap_remove_keeps_every_other_id_pointing_at_its_body() {
 #[test]
 fn static_bodies_never_move_and_ignore_forces() {
     let mut world = World::default();
+    // Ground from y = -1.5 to -0.5, and a 1 kg box resting on it.
+    let ground_at = Vec2::new(0.0, -1.0);
     let ground = world
-        .add_body(BodyDef::new_static(
-            Vec2::new(0.0, -1.0),
-            Shape::rect(10.0, 1.0),
-        ))
+        .add_body(BodyDef::new_static(ground_at, Shape::rect(10.0, 1.0)))
         .unwrap();
-    world.apply_force(ground, Vec2::new(1e6, 1e6));
-    world.apply_impulse(ground, Vec2::new(1e6, 1e6));
-    world.set_velocity(ground, Vec2::new(5.0, 5.0));
-    for _ in 0..100 {
+    let crate_at = Vec2::new(0.0, 0.0);
+    let boxed = world
+        .add_body(BodyDef::new_dynamic(crate_at, Shape::rect(1.0, 1.0)))
+        .unwrap();
+    assert!(world.active_stages().contains(&crate::Stage::Contacts));
+
+    // The `try_` forms ignore a static body: they succeed and change
+    // nothing. A value they refuse is still refused, with its reason.
+    let push = Vec2::new(1e3, 1e3);
+    assert_eq!(world.try_apply_force(ground, push), Ok(()));
+    assert_eq!(world.try_apply_impulse(ground, push), Ok(()));
+    assert_eq!(world.try_set_velocity(ground, Vec2::new(5.0, 5.0)), Ok(()));
+    let nan = Vec2::new(f32::NAN, 0.0);
+    assert_eq!(
+        world.try_apply_force(ground, nan),
+        Err(PhysicsError::NonFinite { what: "force" })
+    );
+    assert_eq!(
+        world.try_apply_impulse(ground, nan),
+        Err(PhysicsError::NonFinite { what: "impulse" })
+    );
+    assert_eq!(
+        world.try_set_velocity(ground, nan),
+        Err(PhysicsError::NonFinite { what: "velocity" })
+    );
+    assert_eq!(world.stats().rejected_inputs, 0, "try_ calls count nothing");
+    // The per-tick forms count only what their `try_` form refuses.
+    world.apply_force(ground, push);
+    world.apply_impulse(ground, push);
+    world.set_velocity(ground, push);
+    assert_eq!(world.stats().rejected_inputs, 0, "ignoring is not refusing");
+    world.apply_force(ground, nan);
+    assert_eq!(world.stats().rejected_inputs, 1);
+
+    for n in 0..300 {
+        world.apply_force(ground, push);
+        world.apply_impulse(ground, push);
+        world.set_velocity(ground, push);
         world.step(1.0 / 60.0);
+        if n < 30 {
+            // Awake, the box is solved against the ground every step.
+            let contacts: Vec<_> = world.contacts_of(ground).collect();
+            assert_eq!(contacts.len(), 1, "step {n}");
+            assert_eq!(contacts[0].b, boxed, "step {n}");
+        }
     }
-    let b = world.body(ground).unwrap();
-    assert_eq!(b.position, Vec2::new(0.0, -1.0));
+    assert_eq!(world.stats().rejected_inputs, 1);
+    let g = world.body(ground).unwrap();
+    assert_eq!(
+        g.position.to_array().map(f32::to_bits),
+        ground_at.to_array().map(f32::to_bits)
+    );
+    assert_eq!(g.velocity, Vec2::ZERO);
+    assert_eq!(g.mass, f32::INFINITY);
+    // The box rests on the ground, still, and in the end asleep.
+    let b = world.body(boxed).unwrap();
+    assert!((b.position - crate_at).length() < 0.01, "{}", b.position);
     assert_eq!(b.velocity, Vec2::ZERO);
-    assert_eq!(b.mass, f32::INFINITY);
+    assert_eq!(world.standing_on(boxed, 0.8), Some(ground));
+    assert_eq!(world.is_asleep(boxed), Some(true));
     assert_eq!(world.kinetic_energy(), 0.0);
 }
 

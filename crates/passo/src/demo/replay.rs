@@ -62,6 +62,24 @@ pub struct Replay {
 }
 
 impl Replay {
+    /// Most ticks a replay may have: 2^32, over two years of play at
+    /// 60 Hz. A file asking for more would keep `passo replay` busy for
+    /// ever.
+    pub const MAX_TICKS: u64 = 1 << 32;
+
+    /// Most commands a replay may have: 2^20, more than one every frame of
+    /// four hours of slider dragging at 60 FPS. (Commands can outnumber
+    /// ticks: a slider dragged while paused records one a frame.)
+    pub const MAX_COMMANDS: usize = 1 << 20;
+
+    /// Most commands that rebuild the scene ([`Command::Reset`] and
+    /// [`Command::RainCount`]) a replay may have: 4096.
+    pub const MAX_REBUILDS: usize = 4096;
+
+    /// Largest rain count a [`Command::RainCount`] may set: 20 000, the top
+    /// of the panel's slider.
+    pub const MAX_RAIN_COUNT: u32 = 20_000;
+
     /// RON text.
     pub fn to_ron(&self) -> String {
         ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::new().struct_names(false))
@@ -76,11 +94,30 @@ impl Replay {
     }
 
     /// Checks what a recording could have produced: inputs and commands in
-    /// tick order, none after the last tick, and fixed rates a scene file
-    /// may have (1 to 10 000 Hz). A command out of order would be applied
-    /// at the wrong tick and one past the end never, so they are refused.
+    /// tick order, none after the last tick, fixed rates a scene file may
+    /// have (1 to 10 000 Hz), and at most [`MAX_TICKS`](Self::MAX_TICKS)
+    /// ticks, [`MAX_COMMANDS`](Self::MAX_COMMANDS) commands,
+    /// [`MAX_REBUILDS`](Self::MAX_REBUILDS) of them rebuilding the scene,
+    /// and rain counts up to [`MAX_RAIN_COUNT`](Self::MAX_RAIN_COUNT). A
+    /// command out of order would be applied at the wrong tick and one past
+    /// the end never, so they are refused; the limits keep a replay from
+    /// running for ever.
     pub fn validate(&self) -> anyhow::Result<()> {
         use anyhow::bail;
+        if self.ticks > Self::MAX_TICKS {
+            bail!(
+                "the replay has {} ticks, more than the most a replay may have, {}",
+                self.ticks,
+                Self::MAX_TICKS
+            );
+        }
+        if self.commands.len() > Self::MAX_COMMANDS {
+            bail!(
+                "the replay has {} commands, more than the most a replay may have, {}",
+                self.commands.len(),
+                Self::MAX_COMMANDS
+            );
+        }
         let in_order = |ticks: &mut dyn Iterator<Item = u64>, what: &str| {
             let mut last = 0;
             for tick in ticks {
@@ -99,12 +136,28 @@ impl Replay {
         };
         in_order(&mut self.inputs.iter().map(|(t, _)| *t), "an input")?;
         in_order(&mut self.commands.iter().map(|(t, _)| *t), "a command")?;
+        let mut rebuilds = 0;
         for (tick, command) in &self.commands {
-            if let Command::Rate(hz) = command
-                && !(hz.is_finite() && (1.0..=10_000.0).contains(hz))
-            {
-                bail!("the rate set at tick {tick} must be in [1, 10000] Hz, got {hz:?}");
+            match *command {
+                Command::Rate(hz) if !(hz.is_finite() && (1.0..=10_000.0).contains(&hz)) => {
+                    bail!("the rate set at tick {tick} must be in [1, 10000] Hz, got {hz:?}");
+                }
+                Command::RainCount(n) if n > Self::MAX_RAIN_COUNT => {
+                    bail!(
+                        "the rain count set at tick {tick} must be at most {}, got {n}",
+                        Self::MAX_RAIN_COUNT
+                    );
+                }
+                Command::Reset | Command::RainCount(_) => rebuilds += 1,
+                _ => {}
             }
+        }
+        if rebuilds > Self::MAX_REBUILDS {
+            bail!(
+                "the replay rebuilds the scene {rebuilds} times (resets and rain counts), \
+                 more than the most a replay may, {}",
+                Self::MAX_REBUILDS
+            );
         }
         Ok(())
     }
