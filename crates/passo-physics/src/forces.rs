@@ -193,7 +193,9 @@ pub struct CentralGravity {
 /// ```
 pub trait ForceModel: Send + Sync {
     /// The force, newtons, on a body of `mass` kilograms at `position`
-    /// moving at `velocity`. A non-finite result is dropped by the step (see
+    /// moving at `velocity`. Called for dynamic bodies only, so `mass` is
+    /// finite and > 0 (a kinematic body goes where game code steers it,
+    /// whatever the forces). A non-finite result is dropped by the step (see
     /// [`StepStats::non_finite_resets`](crate::StepStats::non_finite_resets)).
     fn force(&self, position: Vec2, velocity: Vec2, mass: f32) -> Vec2;
 
@@ -260,7 +262,10 @@ impl<'a> Drive<'a> {
         if let Some(c) = &self.central {
             a += central_accel(c, p);
         }
-        if !self.custom.is_empty() {
+        // A kinematic body (inverse mass zero) keeps its own velocity
+        // whatever the forces: its infinite mass would make a model's force
+        // `inf * 0 = NaN` and count a false reset every step.
+        if !self.custom.is_empty() && b.inv_mass > 0.0 {
             let mass = 1.0 / b.inv_mass;
             for model in self.custom {
                 a += model.force(p, v, mass) * b.inv_mass;

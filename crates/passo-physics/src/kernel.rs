@@ -325,6 +325,10 @@ mod tests {
                 general.add_body(ground).unwrap();
                 assert!(!fast.contact_stages().is_empty());
             }
+            // The fast world takes the kernel, the other the general path
+            // (else the test would compare the general path with itself).
+            assert!(fast.kernel(fast.speed_limits()).is_some());
+            assert!(general.kernel(general.speed_limits()).is_none());
             for step in 0..300 {
                 if step % 50 == 0 {
                     let kick = Vec2::new(30.0, 80.0);

@@ -17,8 +17,10 @@ pub struct WorldSettings {
     /// Stable or plain explicit drag and friction (Euler methods only).
     /// Default [`ForceForm::Stable`].
     pub force_form: ForceForm,
-    /// Below this speed, metres per second, a velocity becomes exactly zero.
-    /// >= 0; 0 turns the snap off. Default 0.001 ([`DEFAULT_MIN_SPEED`]).
+    /// Below this speed, metres per second, a velocity becomes exactly zero:
+    /// at least 0 and at most `max_speed`; 0 turns the snap off. Keep it well
+    /// under the speed gravity adds in a substep (see
+    /// [`DEFAULT_MIN_SPEED`]). Default 0.001.
     pub min_speed: f32,
     /// Velocities are clamped to this speed, metres per second. > 0;
     /// `f32::INFINITY` turns the clamp off. Default 1000 ([`DEFAULT_MAX_SPEED`]).
@@ -55,6 +57,13 @@ impl WorldSettings {
         self.forces.validate()?;
         non_negative("WorldSettings::min_speed", self.min_speed)?;
         check_max_speed("WorldSettings::max_speed", self.max_speed)?;
+        if self.min_speed > self.max_speed {
+            return Err(PhysicsError::OutOfRange {
+                what: "WorldSettings::min_speed",
+                value: self.min_speed,
+                allowed: "at most WorldSettings::max_speed",
+            });
+        }
         if let Some(contacts) = &self.contacts {
             contacts.validate()?;
         }

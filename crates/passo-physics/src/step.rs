@@ -350,6 +350,52 @@ mod tests {
         }
     }
 
+    /// Buoyancy proportional to mass, as in the `ForceModel` docs.
+    struct Buoyancy;
+    impl ForceModel for Buoyancy {
+        fn force(&self, p: Vec2, _: Vec2, mass: f32) -> Vec2 {
+            if p.y < 0.0 {
+                Vec2::new(0.0, 12.0 * mass)
+            } else {
+                Vec2::ZERO
+            }
+        }
+    }
+
+    #[test]
+    fn a_kinematic_body_never_meets_a_custom_force_model() {
+        // A kinematic body's mass is infinite: the model's `12 * mass` times
+        // its inverse mass, zero, was NaN, and every step counted a reset.
+        for contacts in [false, true] {
+            let mut world = World::new(WorldSettings {
+                contacts: contacts.then(crate::ContactSettings::default),
+                ..Default::default()
+            })
+            .unwrap();
+            world.add_force_model(Arc::new(Buoyancy));
+            let lift = world
+                .add_body(BodyDef {
+                    kind: crate::BodyKind::Kinematic,
+                    velocity: Vec2::new(0.0, 1.0),
+                    shape: Some(crate::Shape::rect(2.0, 0.5)),
+                    ..BodyDef::point_mass(Vec2::new(-3.0, -5.0))
+                })
+                .unwrap();
+            let float = world
+                .add_body(BodyDef::point_mass(Vec2::new(3.0, -3.0)))
+                .unwrap();
+            for _ in 0..30 {
+                world.step(0.1);
+            }
+            assert_eq!(world.stats().non_finite_resets, 0, "contacts {contacts}");
+            let lift = world.body(lift).unwrap();
+            assert_eq!(lift.velocity, Vec2::new(0.0, 1.0));
+            // The dynamic body did feel the model: it rose out of the water
+            // (12 m/s² up against gravity's 9.81).
+            assert!(world.body(float).unwrap().position.y > -3.0);
+        }
+    }
+
     #[test]
     fn an_overflowing_force_is_clamped_not_turned_into_nan() {
         let mut world = World::new(WorldSettings {

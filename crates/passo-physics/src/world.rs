@@ -188,9 +188,14 @@ impl World {
     /// current positions.
     pub fn set_settings(&mut self, settings: WorldSettings) -> Result<(), PhysicsError> {
         settings.validate()?;
-        self.wake_all();
         let limits_changed = settings.min_speed != self.settings.min_speed
             || settings.max_speed != self.settings.max_speed;
+        if limits_changed && self.speed_overrides > 0 {
+            for meta in self.dynamic.meta.iter().filter(|m| !m.kinematic) {
+                check_speed_limits(meta.min_speed, meta.max_speed, &settings)?;
+            }
+        }
+        self.wake_all();
         self.settings = settings;
         if limits_changed {
             for i in 0..self.dynamic.len() {
@@ -308,7 +313,7 @@ impl World {
     /// Adds a body; its definition is checked first.
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyId, PhysicsError> {
         def.validate()?;
-        check_start_velocity(&def, self.settings.max_speed)?;
+        check_body_in(&def, &self.settings)?;
         let index = match self.free.pop() {
             Some(index) => index,
             None => {
@@ -680,22 +685,50 @@ pub(crate) fn step_forces<'a>(
     )
 }
 
-/// A new (or restored) body's velocity must have a finite square, and a
-/// kinematic body's speed (which nothing else limits) must not exceed the
-/// world's maximum speed `max_speed`, as
-/// [`try_set_velocity`](World::try_set_velocity) asks.
-pub(crate) fn check_start_velocity(def: &BodyDef, max_speed: f32) -> Result<(), PhysicsError> {
+/// What a new (or restored) body must be in a world of `settings`, beyond
+/// its own checks: its velocity has a finite square, a kinematic body's
+/// speed (which nothing else limits) is at most the world's maximum speed,
+/// as [`try_set_velocity`](World::try_set_velocity) asks, and a dynamic
+/// body's speed limits ([`check_speed_limits`]) leave it room to move.
+pub(crate) fn check_body_in(def: &BodyDef, settings: &WorldSettings) -> Result<(), PhysicsError> {
     let speed_sq = def.velocity.length_squared();
     if !speed_sq.is_finite() {
         return Err(PhysicsError::NonFinite {
             what: "BodyDef::velocity (its square)",
         });
     }
-    if def.kind == BodyKind::Kinematic && speed_sq > max_speed * max_speed {
+    let max = settings.max_speed;
+    if def.kind == BodyKind::Kinematic && speed_sq > max * max {
         return Err(PhysicsError::OutOfRange {
             what: "BodyDef::velocity",
             value: speed_sq.sqrt(),
             allowed: "at most WorldSettings::max_speed for a kinematic body",
+        });
+    }
+    if def.kind == BodyKind::Dynamic {
+        check_speed_limits(def.min_speed, def.max_speed, settings)?;
+    }
+    Ok(())
+}
+
+/// A dynamic body's minimum speed (its own or the world's) must not exceed
+/// its maximum (its own or the world's): the snap to zero tests the speed
+/// before the clamp, so speeds between the two would stop dead and faster
+/// ones drop to the maximum.
+pub(crate) fn check_speed_limits(
+    min: Option<f32>,
+    max: Option<f32>,
+    settings: &WorldSettings,
+) -> Result<(), PhysicsError> {
+    let (min, max) = (
+        min.unwrap_or(settings.min_speed),
+        max.unwrap_or(settings.max_speed),
+    );
+    if min > max {
+        return Err(PhysicsError::OutOfRange {
+            what: "minimum speed (the body's min_speed, or the world's)",
+            value: min,
+            allowed: "at most the maximum speed (the body's max_speed, or the world's)",
         });
     }
     Ok(())

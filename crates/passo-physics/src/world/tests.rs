@@ -195,3 +195,64 @@ fn bad_body_definitions_are_rejected_with_the_field_named() {
     };
     assert!(world.add_body(ground).is_ok());
 }
+
+#[test]
+fn a_minimum_speed_above_the_maximum_is_refused_wherever_it_comes_from() {
+    // The snap tests the speed before the clamp: with a minimum of 10 and a
+    // maximum of 5, a body at 7 m/s would stop dead and one at 12 drop to 5.
+    let settings = WorldSettings {
+        min_speed: 10.0,
+        max_speed: 5.0,
+        ..WorldSettings::default()
+    };
+    let err = World::new(settings).unwrap_err().to_string();
+    assert!(err.contains("WorldSettings::min_speed"), "{err}");
+    let mut world = World::new(WorldSettings {
+        max_speed: 5.0,
+        ..WorldSettings::default()
+    })
+    .unwrap();
+    let body = |min: Option<f32>, max: Option<f32>| BodyDef {
+        min_speed: min,
+        max_speed: max,
+        ..BodyDef::point_mass(Vec2::ZERO)
+    };
+    // Its own minimum against the world's maximum, or against its own.
+    for def in [body(Some(10.0), None), body(Some(10.0), Some(8.0))] {
+        let err = world.add_body(def).unwrap_err().to_string();
+        assert!(err.contains("minimum speed") && err.contains("10"), "{err}");
+    }
+    assert!(world.is_empty());
+    let fast = world.add_body(body(Some(10.0), Some(20.0))).unwrap();
+    // Kinematic bodies have no speed limits.
+    let kinematic = BodyDef {
+        kind: BodyKind::Kinematic,
+        ..body(Some(10.0), None)
+    };
+    assert!(world.add_body(kinematic).is_ok());
+    // A world maximum below a body's own minimum is refused, and changes
+    // nothing.
+    let before = *world.settings();
+    let slower = WorldSettings {
+        max_speed: 4.0,
+        min_speed: 12.0,
+        ..before
+    };
+    assert!(world.set_settings(slower).is_err());
+    let lower_min = WorldSettings {
+        min_speed: 0.5,
+        ..before
+    };
+    world.set_settings(lower_min).unwrap();
+    assert_eq!(world.body(fast).unwrap().max_speed, Some(20.0));
+    // A body with its own minimum of 3 m/s and the world's maximum: a world
+    // maximum of 2 would leave it no speed to move at.
+    world.add_body(body(Some(3.0), None)).unwrap();
+    let conflict = WorldSettings {
+        max_speed: 2.0,
+        ..lower_min
+    };
+    let err = world.set_settings(conflict).unwrap_err().to_string();
+    assert!(err.contains("minimum speed") && err.contains('3'), "{err}");
+    assert_eq!(world.settings().max_speed, 5.0);
+}
