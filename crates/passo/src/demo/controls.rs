@@ -128,8 +128,9 @@ const WALK_ACCELERATION: f32 = 8.0;
 const WALK_RESPONSE: f32 = 0.15;
 /// Upward speed a jump gives, m/s.
 const JUMP_SPEED: f32 = 6.5;
-/// How much of the contact normal must point up to count as standing.
-const STANDING_NORMAL_Y: f32 = 0.8;
+/// Steepest support that counts as standing, radians from up (0.8 rad,
+/// about 46°).
+const MAX_STANDING_SLOPE: f32 = 0.8;
 /// Drag-area multiplier while gliding.
 const GLIDE_DRAG: f32 = 40.0;
 
@@ -148,7 +149,7 @@ pub(crate) fn drive_player(
         return;
     };
     let m = body.mass;
-    let standing = world.is_standing(player, STANDING_NORMAL_Y);
+    let standing = world.is_standing(player, MAX_STANDING_SLOPE);
     let dir = f32::from(u8::from(input.right)) - f32::from(u8::from(input.left));
     if dir != 0.0 {
         let target = dir * if input.run { RUN_SPEED } else { WALK_SPEED };

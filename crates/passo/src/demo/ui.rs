@@ -3,7 +3,7 @@
 
 use super::catalogue::Entry;
 use super::controls::Knobs;
-use super::replay::Command;
+use super::replay::{Command, Replay};
 use super::sim::Sim;
 use crate::draw::BACKGROUND;
 use egui::{Color32, Slider, Stroke};
@@ -139,7 +139,7 @@ fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actio
     if let Some(count) = sim.scene.rain_count() {
         let mut n = count;
         let response = ui.add(
-            Slider::new(&mut n, 100..=20_000)
+            Slider::new(&mut n, 100..=Replay::MAX_RAIN_COUNT)
                 .logarithmic(true)
                 .text("bodies"),
         );
