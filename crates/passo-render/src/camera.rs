@@ -13,6 +13,15 @@ pub struct Camera2D {
     pub height: f32,
 }
 
+impl Camera2D {
+    /// Whether the camera shows something: a finite centre and a finite
+    /// height > 0. (Its fields are public; the renderer draws only the
+    /// background through a camera that is not.)
+    pub fn is_usable(&self) -> bool {
+        self.centre.is_finite() && self.height.is_finite() && self.height > 0.0
+    }
+}
+
 impl Default for Camera2D {
     /// Centred on the origin, 20 m tall.
     fn default() -> Self {
@@ -47,11 +56,18 @@ impl Camera2D {
     }
 
     /// Zooms by `factor` (> 1 zooms in) keeping the world point `anchor`
-    /// where it is on screen (the point under the mouse cursor).
+    /// where it is on screen (the point under the mouse cursor). A factor
+    /// not finite and > 0 changes nothing; an anchor not finite zooms about
+    /// the centre.
     pub fn zoom_about(&mut self, factor: f32, anchor: Vec2) {
         if !(factor.is_finite() && factor > 0.0) {
             return;
         }
+        let anchor = if anchor.is_finite() {
+            anchor
+        } else {
+            self.centre
+        };
         let height = (self.height / factor).clamp(1e-3, 1e7);
         let applied = self.height / height;
         self.centre = anchor + (self.centre - anchor) / applied;

@@ -17,7 +17,10 @@ pub struct OffscreenTarget {
 const ROW_ALIGN: u32 = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
 
 impl OffscreenTarget {
-    /// A `width` × `height` target (each at least 1 pixel; 0 is raised to 1).
+    /// A `width` × `height` target: each side at least 1 pixel and at most
+    /// the device's largest texture (`max_texture_dimension_2d`, 8192 or
+    /// more); 0 is raised to 1 and a larger side lowered to that, so
+    /// [`size`](Self::size) is the size made.
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
         Self::with_format(gpu, width, height, wgpu::TextureFormat::Rgba8UnormSrgb)
     }
@@ -31,7 +34,8 @@ impl OffscreenTarget {
             ),
             "OffscreenTarget reads back RGBA8 formats only, not {format:?}"
         );
-        let size = (width.max(1), height.max(1));
+        let max = gpu.device.limits().max_texture_dimension_2d;
+        let size = (width.clamp(1, max), height.clamp(1, max));
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("passo offscreen target"),
             size: wgpu::Extent3d {

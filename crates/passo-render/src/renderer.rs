@@ -32,7 +32,9 @@ pub struct Globals {
 ///
 /// Owns its pipelines and buffers. Instance buffers grow to the largest
 /// list seen and are reused, so frames that draw no more than before
-/// allocate nothing.
+/// allocate nothing. A list longer than the device's largest buffer
+/// (`max_buffer_size`: 4 194 304 shapes or 5 592 405 lines in 256 MiB) draws
+/// as many as that holds, in the list's order, and logs a warning.
 #[derive(Debug)]
 pub struct Renderer {
     device: wgpu::Device,
@@ -162,7 +164,9 @@ impl Renderer {
     /// Records the drawing of `list` into `encoder`, clearing `view` first,
     /// so a caller can add its own passes (a user interface) before
     /// submitting. Uploads go through the queue: encode one list per
-    /// submission. A zero-sized target draws nothing.
+    /// submission. A zero-sized target draws nothing; a camera that is not
+    /// [usable](Camera2D::is_usable) (a NaN centre, a zero height) draws
+    /// the background alone.
     pub fn encode(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
@@ -184,7 +188,7 @@ impl Renderer {
         };
         self.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
-        upload(
+        let shapes = upload(
             &self.device,
             &self.queue,
             &mut self.shape_buffer,
@@ -192,7 +196,7 @@ impl Renderer {
             "passo shape instances",
             &list.shapes,
         );
-        upload(
+        let lines = upload(
             &self.device,
             &self.queue,
             &mut self.line_buffer,
@@ -214,6 +218,9 @@ impl Renderer {
             })],
             ..Default::default()
         });
+        if !camera.is_usable() {
+            return;
+        }
         pass.set_bind_group(0, &self.bind_group, &[]);
         if let Some(clip) = list.clip {
             let Some([x, y, w, h]) = within(clip, size) else {
@@ -221,15 +228,15 @@ impl Renderer {
             };
             pass.set_scissor_rect(x, y, w, h);
         }
-        if !list.shapes.is_empty() {
+        if shapes > 0 {
             pass.set_pipeline(&self.shapes);
             pass.set_vertex_buffer(0, self.shape_buffer.slice(..));
-            pass.draw(0..6, 0..list.shapes.len() as u32);
+            pass.draw(0..6, 0..shapes);
         }
-        if !list.lines.is_empty() {
+        if lines > 0 {
             pass.set_pipeline(&self.lines);
             pass.set_vertex_buffer(0, self.line_buffer.slice(..));
-            pass.draw(0..6, 0..list.lines.len() as u32);
+            pass.draw(0..6, 0..lines);
         }
     }
 }
@@ -271,8 +278,9 @@ fn instance_buffer(device: &wgpu::Device, label: &str, bytes: usize) -> wgpu::Bu
     })
 }
 
-/// Writes instances to `buffer`, first growing it (to the next power of
-/// two) if they do not fit.
+/// Writes instances to `buffer`, first growing it (see [`fitting`]), and
+/// returns how many it holds for drawing: all of `items`, or as many as
+/// the device's largest buffer holds (logged).
 fn upload<T: Pod>(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -280,13 +288,63 @@ fn upload<T: Pod>(
     capacity: &mut usize,
     label: &str,
     items: &[T],
-) {
+) -> u32 {
     if items.is_empty() {
-        return;
+        return 0;
     }
-    if items.len() > *capacity {
-        *capacity = items.len().next_power_of_two();
-        *buffer = instance_buffer(device, label, *capacity * std::mem::size_of::<T>());
+    let size = std::mem::size_of::<T>();
+    let (grown, drawn) = fitting(
+        items.len(),
+        *capacity,
+        device.limits().max_buffer_size,
+        size,
+    );
+    if drawn < items.len() {
+        log::warn!(
+            "{label}: {} to draw, the device's largest buffer holds {drawn}; drawing those",
+            items.len()
+        );
     }
-    queue.write_buffer(buffer, 0, bytemuck::cast_slice(items));
+    if grown != *capacity {
+        *capacity = grown;
+        *buffer = instance_buffer(device, label, grown * size);
+    }
+    queue.write_buffer(buffer, 0, bytemuck::cast_slice(&items[..drawn]));
+    // A buffer of u64 bytes holds far fewer than u32::MAX instances of a
+    // few dozen bytes on any device; saturate anyway.
+    u32::try_from(drawn).unwrap_or(u32::MAX)
+}
+
+/// For `len` instances of `size` bytes in a buffer of `capacity`: the
+/// capacity to have (grown to the next power of two, at most what a buffer
+/// of `max_bytes` holds) and how many instances fit in it.
+fn fitting(len: usize, capacity: usize, max_bytes: u64, size: usize) -> (usize, usize) {
+    let most = usize::try_from(max_bytes / size as u64).unwrap_or(usize::MAX);
+    let capacity = if len > capacity {
+        len.checked_next_power_of_two()
+            .unwrap_or(usize::MAX)
+            .min(most)
+    } else {
+        capacity
+    };
+    (capacity, len.min(capacity))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fitting;
+
+    #[test]
+    fn instances_past_the_devices_largest_buffer_are_not_drawn() {
+        // 64-byte shapes, a 256 MiB buffer: 4 194 304 fit.
+        let max = 256 << 20;
+        assert_eq!(fitting(10, 256, max, 64), (256, 10));
+        assert_eq!(fitting(300, 256, max, 64), (512, 300));
+        assert_eq!(fitting(4_194_304, 256, max, 64), (4_194_304, 4_194_304));
+        // Six million lines of 48 bytes: 8 388 608 rounded up would need
+        // 402 MB; the buffer stops at 5 592 405 and that many are drawn.
+        assert_eq!(fitting(6_000_000, 256, max, 48), (5_592_405, 5_592_405));
+        // A list that shrinks keeps the buffer.
+        assert_eq!(fitting(100, 5_592_405, max, 48), (5_592_405, 100));
+    }
 }

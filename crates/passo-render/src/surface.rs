@@ -127,14 +127,17 @@ impl WindowSurface {
 
     /// Follows the window's new size. A 0×0 size (minimised) is ignored:
     /// the surface keeps its old configuration and frames are skipped until
-    /// a real size arrives.
+    /// a real size arrives. A side larger than the device's largest texture
+    /// (`max_texture_dimension_2d`) is lowered to it (the compositor
+    /// stretches the picture).
     pub fn resize(&mut self, device: &wgpu::Device, size: (u32, u32)) {
         if size.0 == 0 || size.1 == 0 {
             self.configured = false;
             return;
         }
-        self.config.width = size.0;
-        self.config.height = size.1;
+        let max = device.limits().max_texture_dimension_2d;
+        self.config.width = size.0.min(max);
+        self.config.height = size.1.min(max);
         self.surface.configure(device, &self.config);
         self.configured = true;
         self.stale = false;

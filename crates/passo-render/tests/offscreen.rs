@@ -273,3 +273,44 @@ fn a_clip_keeps_the_shapes_inside_it_and_the_background_everywhere() {
     list.clear(BACKGROUND);
     assert_eq!(list.clip, None);
 }
+
+#[test]
+fn a_camera_that_shows_nothing_and_an_oversized_target_are_safe() {
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 64, 48);
+    let mut list = DrawList::new(BACKGROUND);
+    list.rect(Vec2::ZERO, Vec2::new(100.0, 100.0), RED);
+    // A NaN centre, a zero or NaN height: the background alone.
+    for camera in [
+        Camera2D {
+            centre: Vec2::new(f32::NAN, 0.0),
+            height: 10.0,
+        },
+        Camera2D {
+            centre: Vec2::ZERO,
+            height: 0.0,
+        },
+        Camera2D {
+            centre: Vec2::ZERO,
+            height: f32::NAN,
+        },
+    ] {
+        assert!(!camera.is_usable());
+        let image = draw(&gpu, &target, &camera, &list);
+        assert_eq!(image.get(32, 24), Some(BACKGROUND), "{camera:?}");
+    }
+    // The same list through a usable camera covers the target.
+    let image = draw(&gpu, &target, &Camera2D::default(), &list);
+    assert!(close(image.get(32, 24).unwrap(), RED, 1));
+    // A zoom about a NaN point zooms about the centre.
+    let mut camera = Camera2D::default();
+    camera.zoom_about(2.0, Vec2::new(f32::NAN, 1.0));
+    assert_eq!((camera.centre, camera.height), (Vec2::ZERO, 10.0));
+    // A side past the device's largest texture is lowered to it (wgpu
+    // would otherwise refuse the texture and panic).
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    let wide = OffscreenTarget::new(&gpu, u32::MAX, 2);
+    assert_eq!(wide.size(), (max, 2));
+    let image = draw(&gpu, &wide, &Camera2D::default(), &list);
+    assert_eq!((image.width, image.height), (max, 2));
+}
