@@ -214,7 +214,10 @@ pub enum ForceForm {
     #[default]
     Stable,
     /// The plain explicit forces, `a dt` added to the velocity. Kept so the
-    /// accuracy report can compare; unstable when `k |v| dt / m > 2`.
+    /// accuracy report can compare. Unstable once the step is long for the
+    /// damping: quadratic drag when `k |v| dt / m > 2` (`k = rho Cd A / 2`),
+    /// linear drag when `b dt / m > 2`; and plain friction reverses any
+    /// velocity slower than its deceleration times `dt` (`mu g dt`).
     Explicit,
 }
 
