@@ -171,16 +171,12 @@ fn body_def(spec: &BodySpec, position: Vec2) -> BodyDef {
 }
 
 pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneError> {
-    let invalid = |field: String, e: passo_physics::PhysicsError| SceneError::Invalid {
-        source_name: source.to_owned(),
-        field,
-        message: e.to_string(),
-    };
     let fail = |field: String, message: String| SceneError::Invalid {
         source_name: source.to_owned(),
         field,
         message,
     };
+    let invalid = |field: String, e: passo_physics::PhysicsError| fail(field, e.to_string());
     let mut world = World::new(settings(file)).map_err(|e| invalid("settings".into(), e))?;
     let mut bodies = Vec::new();
     let mut platforms = Vec::new();
@@ -190,7 +186,8 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
     if let (Some(level), Some(tilemap)) = (&level, &file.tilemap) {
         // Each rectangle of the level's cells is a body: a checkerboard of
         // 4096 × 4096 cells would be eight million.
-        let level_bodies = level.map.rects().len() + level.bodies.len();
+        let rects = level.map.rects();
+        let level_bodies = rects.len() + level.bodies.len();
         let total = file.listed_bodies().saturating_add(level_bodies as u64);
         if total > MAX_BODIES as u64 {
             return Err(fail(
@@ -203,7 +200,7 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         let ids = world
             .add_tile_map(&level.map, tilemap.kind)
             .map_err(|e| invalid("tilemap".into(), e))?;
-        for (id, rect) in ids.into_iter().zip(level.map.rects()) {
+        for (id, rect) in ids.into_iter().zip(rects) {
             let aabb = level.map.rect_aabb(&rect);
             bounds = Some(bounds.map_or(aabb, |b| b.union(&aabb)));
             let kind = level.map.kinds()[rect.kind as usize];
