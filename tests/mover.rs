@@ -347,3 +347,187 @@ proptest! {
         }
     }
 }
+
+/// A game's tick: game gravity on the character's own velocity, reset on
+/// the ground, platforms steered first (see `move_character`).
+fn play(
+    world: &mut World,
+    id: BodyId,
+    velocity: &mut Vec2,
+    steer: impl Fn(&mut World),
+) -> MoveOutcome {
+    steer(world);
+    velocity.y -= 9.81 * DT;
+    let out = world
+        .move_character(id, *velocity * DT, &CharacterMover::default(), DT)
+        .unwrap();
+    if out.on_ground {
+        velocity.y = 0.0;
+    }
+    world.step(DT);
+    out
+}
+
+/// A lift of `boxes` flush kinematic boxes (3 m wide in all), top at 0,
+/// moving at `velocity`; steered by `steer_lift`.
+fn lift(world: &mut World, boxes: usize, one_way: bool) -> Vec<BodyId> {
+    let w = 3.0 / boxes as f32;
+    (0..boxes)
+        .map(|k| {
+            let x = -1.5 + w * (k as f32 + 0.5);
+            let mut def =
+                BodyDef::new_kinematic(Vec2::new(x, -0.25), Shape::rect(w, 0.5), Vec2::ZERO);
+            if one_way {
+                def = def.with_one_way(Vec2::Y);
+            }
+            world.add_body(def).unwrap()
+        })
+        .collect()
+}
+
+fn steer_lift(world: &mut World, boxes: &[BodyId], velocity: Vec2) {
+    for &b in boxes {
+        let p = world.body(b).unwrap().position;
+        world.set_kinematic_target(b, p + velocity * DT, DT);
+    }
+}
+
+#[test]
+fn it_lands_on_a_moving_lift_and_stays_on_it() {
+    // Falling onto a lift going down at 1.5 m/s, one box or two: it used
+    // to see the lift a step behind, land a skin above where it was, and
+    // bounce on it (on the ground 6 ticks of 120). Falling onto a one-way
+    // lift going up, it used to fall through it (29 of 40 drop heights).
+    for (boxes, one_way, v) in [
+        (1, false, -1.5),
+        (2, false, -1.5),
+        (1, true, 1.0),
+        (1, true, 3.0),
+    ] {
+        for drop in [0.3f32, 0.77, 1.3] {
+            let mut world = World::default();
+            let lift = lift(&mut world, boxes, one_way);
+            let id = world
+                .add_body(BodyDef::new_kinematic(
+                    Vec2::new(0.0, drop + HALF.y),
+                    Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
+                    Vec2::ZERO,
+                ))
+                .unwrap();
+            let mut velocity = Vec2::ZERO;
+            let mut landed = None;
+            for tick in 0..120 {
+                let out = play(&mut world, id, &mut velocity, |w| {
+                    steer_lift(w, &lift, Vec2::new(0.0, v));
+                });
+                let top = world.body(lift[0]).unwrap().position.y + 0.25;
+                let gap = at(&world, id).y - HALF.y - top;
+                let what = format!(
+                    "{boxes} box(es), one-way {one_way}, {v} m/s, drop {drop}, tick {tick}"
+                );
+                if let Some(first) = landed {
+                    assert!(
+                        out.on_ground && lift.contains(&out.ground.unwrap()),
+                        "{what}: {out:?}"
+                    );
+                    assert!((-1e-4..=0.011).contains(&gap), "{what}: gap {gap}");
+                    let _: usize = first;
+                } else if out.on_ground {
+                    landed = Some(tick);
+                }
+                assert!(gap > -0.01, "{what}: {gap} below the lift's top");
+            }
+            assert!(
+                landed.is_some_and(|t| t < 80),
+                "{boxes} {one_way} {v} {drop}: {landed:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_one_way_ledge_holds_when_a_tick_falls_exactly_onto_it() {
+    // With game gravity 36 m/s² at 60 Hz the first tick's fall, g dt², is
+    // exactly the skin: the move ended touching the ledge, and the next
+    // cast (from touching, fraction 0) was ignored, so it fell through.
+    let mut world = World::default();
+    let ledge = BodyDef::new_static(Vec2::new(0.0, 1.75), Shape::rect(4.0, 0.5));
+    world.add_body(ledge.with_one_way(Vec2::Y)).unwrap();
+    let id = character(&mut world, 0.0, 2.0);
+    let mut velocity = Vec2::ZERO;
+    for tick in 0..60 {
+        velocity.y -= 36.0 * DT;
+        let out = world
+            .move_character(id, velocity * DT, &CharacterMover::default(), DT)
+            .unwrap();
+        assert!(out.on_ground, "tick {tick}: {out:?}");
+        velocity.y = 0.0;
+        world.step(DT);
+    }
+    let feet = at(&world, id).y - HALF.y;
+    assert!((2.0 - 1e-4..=2.011).contains(&feet), "on the ledge: {feet}");
+}
+
+#[test]
+fn a_slow_walk_climbs_a_step_and_a_crate_is_pushed_not_climbed() {
+    // A 0.25 m step at 0.3 m/s: the walk's few millimetres a tick never
+    // carried it over the edge, and it stood at the step for good.
+    let mut world = level("################");
+    let step = BodyDef::new_static(Vec2::new(4.0, 0.625), Shape::rect(4.0, 0.25));
+    world.add_body(step).unwrap();
+    let id = character(&mut world, 1.0, 0.5);
+    let mut velocity = Vec2::new(0.3, 0.0);
+    for _ in 0..600 {
+        play(&mut world, id, &mut velocity, |_| {});
+    }
+    let p = at(&world, id);
+    assert!(
+        p.x > 2.2 && (p.y - HALF.y - 0.75).abs() < 0.011,
+        "on the step: {p}"
+    );
+    // A crate as high as a step is a body to push: it used to be climbed.
+    let mut world = level("################");
+    let crate_ = world
+        .add_body(BodyDef::new_dynamic(
+            Vec2::new(2.0, 0.5 + 0.125),
+            Shape::rect(0.5, 0.25),
+        ))
+        .unwrap();
+    let id = character(&mut world, 1.0, 0.5);
+    let mut velocity = Vec2::new(3.0, 0.0);
+    for tick in 0..40 {
+        let out = play(&mut world, id, &mut velocity, |_| {});
+        assert_eq!(out.stepped, 0.0, "tick {tick}");
+        assert_ne!(out.ground, Some(crate_), "tick {tick}");
+    }
+    assert!(world.body(crate_).unwrap().position.x > 2.5, "pushed along");
+}
+
+#[test]
+fn walking_off_a_crate_does_not_launch_it() {
+    // Snapping down off the crate's edge moved the character in a straight
+    // line through the crate's corner; caught between it and the floor,
+    // the crate flew up 10 m.
+    for mass in [5.0, 100.0] {
+        let mut world = level("################");
+        let crate_ = world
+            .add_body(
+                BodyDef::new_dynamic(Vec2::new(2.0, 0.5 + 0.125), Shape::rect(0.5, 0.25))
+                    .with_mass(mass),
+            )
+            .unwrap();
+        let id = character(&mut world, 2.0, 0.75);
+        for _ in 0..30 {
+            world.step(DT);
+        }
+        let mut velocity = Vec2::new(3.0, 0.0);
+        let mut fastest: f32 = 0.0;
+        for _ in 0..60 {
+            play(&mut world, id, &mut velocity, |_| {});
+            fastest = fastest.max(world.body(crate_).unwrap().velocity.length());
+        }
+        assert!(fastest < 1.0, "{mass} kg: the crate reached {fastest} m/s");
+        let feet = at(&world, id).y - HALF.y;
+        assert!((0.5..=0.511).contains(&feet), "down on the floor: {feet}");
+    }
+}

@@ -4,18 +4,24 @@
 //!
 //! Each call of [`World::move_character`] takes the translation the game
 //! wants this tick and:
-//! 1. pushes the character out of anything it overlaps (a platform that
-//!    moved into it);
+//! 1. finds what it stands on now;
 //! 2. adds the travel of the kinematic body it stands on (riding);
-//! 3. moves and slides: casts the shape along what is left of the
+//! 3. pushes the character out of anything it overlaps (a platform that
+//!    moves into it);
+//! 4. moves and slides: casts the shape along what is left of the
 //!    translation, stops a skin width short of the first hit, and keeps
 //!    the part of the motion along the surface; up to four times;
-//! 4. climbs a step no higher than `max_step` that blocks it while on the
-//!    ground;
-//! 5. snaps down onto ground up to `snap_down` below, when it was on the
+//! 5. climbs a step no higher than `max_step` that blocks it while on the
+//!    ground (a static or kinematic one: a dynamic body is pushed);
+//! 6. snaps down onto ground up to `snap_down` below, when it was on the
 //!    ground and is not moving up, so it follows small drops instead of
 //!    flying off them;
-//! 6. reports the ground (and the body it stands on), walls and ceilings.
+//! 7. reports the ground (and the body it stands on), walls and ceilings.
+//!
+//! From step 2 on, every kinematic body is met where its velocity takes it
+//! by the end of the step, where the character will be too: a lift it
+//! lands on, rides or is pushed by is met where it will be, not a step
+//! behind. So steer the platforms first each tick.
 //!
 //! The body is then steered to the place found with
 //! [`set_kinematic_target`](World::set_kinematic_target), so the next
@@ -25,7 +31,7 @@
 //! walls and are pushed with an impulse of at most `push_mass` times the
 //! speed it was stopped from.
 
-use crate::constants::LINEAR_SLOP;
+use crate::constants::{LINEAR_SLOP, ONE_WAY_DEPTH};
 use crate::manifold::collide;
 use crate::query::Found;
 use crate::{BodyId, PhysicsError, QueryFilter, Shape, World};
@@ -119,26 +125,60 @@ struct Walker<'a> {
     mover: &'a CharacterMover,
     filter: QueryFilter,
     dropping: bool,
-    /// The kinematic body it rides, and its travel this step: it is seen
-    /// where it will be after the step, as the character will.
-    ridden: Option<(BodyId, Vec2)>,
+    /// Seconds to the end of the step: kinematic bodies are seen where
+    /// they will be then (`position + velocity * dt`), as the character
+    /// will be. `None`: where they are now (to find what it stands on).
+    ahead: Option<f32>,
+    /// The farthest a kinematic body travels this step (queries grow by
+    /// it, so each is found where it will be).
+    reach: f32,
+    /// A body left out of the casts (the platform carrying it, during the
+    /// carry).
+    ignored: Option<BodyId>,
 }
 
 impl Walker<'_> {
-    /// Where a found body is met: the ridden one where it will be.
+    /// Where a found body is met: a kinematic one where it will be after
+    /// the step (unless the walker looks at now).
     fn place(&self, f: &Found<'_>) -> Vec2 {
-        match self.ridden {
-            Some((id, travel)) if id == f.id => f.position + travel,
+        match (self.ahead, f.dynamic) {
+            (Some(dt), Some(i)) if f.meta.kinematic => f.position + self.world.dynamic.vel[i] * dt,
             _ => f.position,
         }
     }
 
-    /// Calls `f` with every candidate near `area` (grown by the ridden
-    /// body's travel, so it is found where it will be).
+    /// Calls `f` with every candidate near `area` (grown by the kinematic
+    /// bodies' travel, so each is found where it will be).
     fn near(&self, area: &crate::Aabb, mut f: impl FnMut(Found<'_>)) {
-        let grow = self.ridden.map_or(0.0, |(_, t)| t.length());
+        let grow = if self.ahead.is_some() {
+            self.reach
+        } else {
+            0.0
+        };
         self.world
-            .candidates(&area.grown(grow), &self.filter, &mut f);
+            .candidates(&area.grown(grow), &self.filter, |found| {
+                if Some(found.id) != self.ignored {
+                    f(found);
+                }
+            });
+    }
+
+    /// Whether the character at `at` stands on one-way body `f`'s solid
+    /// side: not dropping through, and either clear of it or inside it no
+    /// deeper than [`ONE_WAY_DEPTH`] plus how far the body rises into it
+    /// this step, with the way out along the solid side (as the contacts
+    /// of a body landing on it; a lift going up carries it).
+    fn on_solid_side(&self, at: Vec2, f: &Found<'_>, solid: Vec2) -> bool {
+        if self.dropping {
+            return false;
+        }
+        let place = self.place(f);
+        let Some(m) = collide(&self.shape, at, &f.shape, place, 0.0) else {
+            return true;
+        };
+        let rise = (place - f.position).dot(solid).max(0.0);
+        // `m.normal` points from the character to the body.
+        -m.normal.dot(solid) > 0.0 && m.separation >= -(ONE_WAY_DEPTH + rise)
     }
 
     /// The first body `shape` meets moving from `from` by `by`: one-way
@@ -158,12 +198,13 @@ impl Walker<'_> {
             let Some(hit) = crate::cast::cast_shape(&self.shape, from, by, &f.shape, at) else {
                 return;
             };
-            if hit.fraction == 0.0 && self.overlaps(from, &f) {
-                return;
-            }
-            if let Some(solid) = f.meta.one_way
-                && (self.dropping || hit.normal.dot(solid) <= 0.0 || hit.fraction == 0.0)
-            {
+            if let Some(solid) = f.meta.one_way {
+                // From its solid side only: a body inside it deeper than a
+                // landing goes through (and one touching it stays on it).
+                if hit.normal.dot(solid) <= 0.0 || !self.on_solid_side(from, &f, solid) {
+                    return;
+                }
+            } else if hit.fraction == 0.0 && self.overlaps(from, &f) {
                 return;
             }
             let pushable = f.dynamic.filter(|_| !f.meta.kinematic);
@@ -178,6 +219,22 @@ impl Walker<'_> {
             }
         });
         best
+    }
+
+    /// Whether the character moving in a straight line from `from` by `by`
+    /// would pass through a dynamic (not kinematic) body.
+    fn cuts_dynamic(&self, from: Vec2, by: Vec2) -> bool {
+        let half = self.shape.half_extents();
+        let swept =
+            crate::Aabb::from_centre(from, half).union(&crate::Aabb::from_centre(from + by, half));
+        let mut cuts = false;
+        self.near(&swept, |f: Found<'_>| {
+            if f.dynamic.is_some() && !f.meta.kinematic && !cuts {
+                cuts = crate::cast::cast_shape(&self.shape, from, by, &f.shape, f.position)
+                    .is_some_and(|hit| hit.fraction < 1.0 && hit.normal.dot(by) < 0.0);
+            }
+        });
+        cuts
     }
 
     /// Whether the character at `at` overlaps `f` (deeper than touching).
@@ -202,13 +259,16 @@ impl Walker<'_> {
     }
 
     /// Pushes the character at `at` out of every solid body it overlaps
-    /// (one-way platforms excepted), a few rounds.
+    /// (one-way platforms only when it is on their solid side), a few
+    /// rounds.
     fn push_out(&self, mut at: Vec2) -> Vec2 {
         for _ in 0..4 {
             let mut deepest: Option<(f32, Vec2)> = None;
             let area = crate::Aabb::from_centre(at, self.shape.half_extents());
             self.near(&area, |f: Found<'_>| {
-                if f.meta.one_way.is_some() {
+                if let Some(solid) = f.meta.one_way
+                    && !self.on_solid_side(at, &f, solid)
+                {
                     return;
                 }
                 if let Some(m) = collide(&self.shape, at, &f.shape, self.place(&f), 0.0)
@@ -241,7 +301,19 @@ impl World {
     /// climbing steps, following small drops and riding platforms (see
     /// the [`mover`](crate::CharacterMover) settings), and steers it
     /// there with [`set_kinematic_target`](Self::set_kinematic_target).
-    /// Call it once per tick before [`step`](Self::step).
+    /// Call it once per tick before [`step`](Self::step), and after
+    /// steering this tick's platforms: kinematic bodies are met where their
+    /// velocity takes them by the end of the step, so a platform steered
+    /// after the call is met a step late (a rider lags a sideways
+    /// platform, sinks into a lift going up, or is thrown off one that
+    /// turns back).
+    ///
+    /// Limits: a kinematic wall that moves farther than the character is
+    /// wide in one step passes through it; a circle character rolls up a
+    /// block's rounded corner once the corner is under it within
+    /// `ground_normal`, so at speed it may top blocks higher than
+    /// `max_step` (use a box for exact step heights); walking off a
+    /// dynamic body's edge it falls rather than snaps down.
     ///
     /// ```
     /// use passo_physics::{BodyDef, CharacterMover, Shape, TileMap, BodyKind, World, glam::Vec2};
@@ -290,29 +362,43 @@ impl World {
         let i = self
             .dynamic_index(id)?
             .expect("a kinematic body is in the dynamic arrays");
+        // How far any kinematic body goes this step: the queries reach that
+        // much farther.
+        let b = &self.dynamic;
+        let reach = b
+            .kinematic
+            .iter()
+            .map(|&k| b.vel[k as usize].length() * dt)
+            .fold(0.0, f32::max);
         let mut walker = Walker {
             world: self,
             shape,
             mover,
             filter: mover.filter.excluding(id),
             dropping: self.dynamic.meta[i].drop_through > 0.0,
-            ridden: None,
+            ahead: None,
+            reach,
+            ignored: None,
         };
         let mut out = MoveOutcome::default();
-        let mut at = walker.push_out(body.position);
-        // Riding: the platform under it carries it first; from then on
-        // the platform is seen where it will be after the step, as the
-        // character will (so a platform going down does not stop its
-        // rider a skin below it, and the rider stays on it).
-        let under = walker.ground(at, 2.0 * mover.skin);
+        // What it stands on now, where everything is now.
+        let under = walker.ground(body.position, 2.0 * mover.skin);
+        // From here on every kinematic body is seen where it will be after
+        // the step, as the character will be: a platform it lands on or is
+        // carried past is met there, not a step behind.
+        walker.ahead = Some(dt);
+        // Riding: the platform under it carries it first (through nothing
+        // else; the platform itself moves along with it).
+        let mut at = body.position;
         if let Some(ground) = under
             && let Some(b) = self.body(ground.body)
             && b.kind == crate::BodyKind::Kinematic
         {
-            let travel = b.velocity * dt;
-            walker.ridden = Some((ground.body, travel));
-            at = walker.advance(at, travel).0;
+            walker.ignored = Some(ground.body);
+            at = walker.advance(at, b.velocity * dt).0;
+            walker.ignored = None;
         }
+        at = walker.push_out(at);
         let mut pushes: Vec<(usize, Vec2)> = Vec::new();
         let mut remaining = translation;
         for _ in 0..4 {
@@ -327,7 +413,10 @@ impl World {
             let moved = next - at;
             let left = remaining - moved;
             let is_wall = hit.normal.y.abs() < mover.ground_normal;
+            // A step is static or kinematic: a dynamic body in the way is
+            // pushed, not climbed.
             if is_wall
+                && hit.pushable.is_none()
                 && under.is_some()
                 && mover.max_step > 0.0
                 && let Some((stepped_to, height)) = self.step_up(&walker, next, left)
@@ -353,7 +442,11 @@ impl World {
             at = next;
             remaining = left - hit.normal * left.dot(hit.normal);
         }
-        // Following a small drop: it walked off an edge, not jumped.
+        // Following a small drop: it walked off an edge, not jumped. The
+        // step moves it in a straight line, so not while that line would
+        // cut the corner of a dynamic body (walking off a crate): the
+        // crate, caught between it and the ground, would be launched. It
+        // falls instead.
         let mut ground = walker.ground(at, 2.0 * mover.skin);
         if ground.is_none()
             && under.is_some()
@@ -362,8 +455,11 @@ impl World {
             && let Some(hit) = walker.ground(at, mover.snap_down + mover.skin)
         {
             let drop = hit.fraction * (mover.snap_down + mover.skin) - mover.skin;
-            at.y -= drop.max(0.0);
-            ground = Some(hit);
+            let snapped = Vec2::new(at.x, at.y - drop.max(0.0));
+            if !walker.cuts_dynamic(body.position, snapped - body.position) {
+                at = snapped;
+                ground = Some(hit);
+            }
         }
         out.on_ground = ground.is_some();
         out.ground = ground.map(|h| h.body);
@@ -386,13 +482,16 @@ impl World {
     /// how high it climbed, or `None` if there is no step to climb there.
     fn step_up(&self, walker: &Walker<'_>, at: Vec2, left: Vec2) -> Option<(Vec2, f32)> {
         let mover = walker.mover;
-        let forward = Vec2::new(left.x, 0.0);
-        if forward.x.abs() < 1e-6 {
+        if left.x.abs() < 1e-6 {
             return None;
         }
+        // Forward by what is left of the walk, but at least two skins: the
+        // character stopped a skin short of the step's face, and a slow
+        // walk's few millimetres would not carry it over the edge.
+        let forward = Vec2::new(left.x.signum() * left.x.abs().max(2.0 * mover.skin), 0.0);
         let (up, _) = walker.advance(at, Vec2::new(0.0, mover.max_step + mover.skin));
-        let (ahead, _) = walker.advance(up, forward);
-        if (ahead.x - up.x).abs() < mover.skin {
+        let (ahead, blocked) = walker.advance(up, forward);
+        if blocked.is_some() && (ahead.x - up.x).abs() < mover.skin {
             return None; // still blocked: a wall, not a step
         }
         let fall = up.y - at.y + mover.skin;
