@@ -150,3 +150,58 @@ fn a_snapshot_taken_after_a_removal_is_valid_and_queries_the_same() {
     }
     assert_eq!(copy.contacts_of(boxes[0]).count(), 0);
 }
+
+#[test]
+fn a_static_bodys_material_changed_after_a_save_is_rolled_back() {
+    // Changing a static body's friction, restitution, filter, sensor or
+    // one-way side did not count as an edit of the statics: restore_from
+    // kept the changed body, and snapshot_into a reused buffer kept the old
+    // one. A slider on a floor that turns icy after the save ended 2.6 m
+    // from where the saved state takes it.
+    type Edit = fn(&mut World, passo_physics::BodyId);
+    let edits: [(&str, Edit); 5] = [
+        ("friction", |w, id| w.try_set_friction(id, 0.0).unwrap()),
+        ("restitution", |w, id| w.set_restitution(id, 0.9).unwrap()),
+        ("sensor", |w, id| w.set_sensor(id, true).unwrap()),
+        ("one-way", |w, id| {
+            w.set_one_way(id, Some(Vec2::NEG_Y)).unwrap()
+        }),
+        ("filter", |w, id| {
+            let filter = passo_physics::CollisionFilter { layers: 2, mask: 2 };
+            w.set_filter(id, filter).unwrap()
+        }),
+    ];
+    for (what, edit) in edits {
+        let mut world = World::default();
+        let floor = world
+            .add_body(BodyDef::new_static(
+                Vec2::new(0.0, -0.5),
+                Shape::rect(40.0, 1.0),
+            ))
+            .unwrap();
+        let slider = world
+            .add_body(
+                BodyDef::new_dynamic(Vec2::new(0.0, 0.25), Shape::rect(0.5, 0.5))
+                    .with_velocity(Vec2::new(6.0, 0.0)),
+            )
+            .unwrap();
+        let mut saved = WorldSnapshot::default();
+        world.snapshot_into(&mut saved);
+        let straight = {
+            let mut w = World::from_snapshot(saved.clone()).unwrap();
+            (0..60).for_each(|_| w.step(DT));
+            w.state_hash()
+        };
+        edit(&mut world, floor);
+        (0..30).for_each(|_| world.step(DT));
+        // The buffer, saved into again, holds the changed floor.
+        let mut again = saved.clone();
+        world.snapshot_into(&mut again);
+        assert_eq!(again, world.snapshot(), "{what}: the reused buffer");
+        // Rolled back, the world steps as the saved state does.
+        world.restore_from(&saved).unwrap();
+        (0..60).for_each(|_| world.step(DT));
+        assert_eq!(world.state_hash(), straight, "{what}: rolled back");
+        let _ = slider;
+    }
+}

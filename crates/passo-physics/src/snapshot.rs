@@ -4,7 +4,7 @@ use crate::bodies::{DynamicBodies, StaticBodies, heap};
 use crate::collider::ColliderRef;
 use crate::contact_state::ContactState;
 use crate::contact_world::ContactWorld;
-use crate::world::{Location, Slot, check_body_in};
+use crate::world::{Location, Slot, check_restored_body};
 use crate::{BodyId, BodyKind, PhysicsError, StepStats, World, WorldSettings};
 
 /// Everything a world needs to continue exactly where it was: settings,
@@ -169,7 +169,7 @@ impl WorldSnapshot {
         }
         let def = body.to_def();
         def.validate()
-            .and_then(|()| check_body_in(&def, &self.settings))
+            .and_then(|()| check_restored_body(&def, &self.settings))
             .map_err(|e| invalid(format!("dynamic body {i}: {e}")))?;
         // A kinematic body has inverse mass zero and infinite mass.
         let mass_ok = if m.kinematic {
@@ -279,7 +279,7 @@ impl World {
         out.slots.clone_from(&self.slots);
         out.free.clone_from(&self.free);
         out.dynamic.copy_from(&self.dynamic);
-        let source = Some((self.instance.0, self.static_edits));
+        let source = Some((self.instance.0, self.static_revision));
         if out.statics_source != source {
             out.statics.copy_from(&self.statics);
             out.statics_source = source;
@@ -332,7 +332,7 @@ impl World {
 
     /// Puts this world back in the state of `snapshot`, which was checked.
     fn restore_checked(&mut self, snapshot: &WorldSnapshot) {
-        let same_statics = snapshot.statics_source == Some((self.instance.0, self.static_edits));
+        let same_statics = snapshot.statics_source == Some((self.instance.0, self.static_revision));
         self.settings = snapshot.settings;
         self.slots.clone_from(&snapshot.slots);
         self.free.clone_from(&snapshot.free);
@@ -340,6 +340,9 @@ impl World {
         if !same_statics {
             self.statics.copy_from(&snapshot.statics);
             self.statics_dirty = true;
+            // Other statics than the world had: queries rebuild their tree,
+            // and a buffer that holds the statics of before is stale.
+            self.note_edit(true);
         }
         self.speed_overrides = snapshot.speed_overrides;
         self.game_friction = snapshot.game_friction;

@@ -166,6 +166,11 @@ impl World {
         // Saturates rather than wraps: 2^64 steps at 60 Hz is 10^10 years,
         // but a restored snapshot may start anywhere.
         self.stats.steps = self.stats.steps.saturating_add(1);
+        if self.stats.steps == u64::MAX {
+            // The count no longer changes: queries, which rebuild when it
+            // does, see the step as an edit instead.
+            self.edits = self.edits.wrapping_add(1);
+        }
     }
 
     /// Integrates velocities, clamps speeds and moves bodies, one body at a

@@ -108,8 +108,14 @@ pub struct World {
     /// Counts edits that move, add or remove bodies (with the step count,
     /// it tells queries whether their index is current).
     pub(crate) edits: u64,
-    /// Counts edits of static bodies.
+    /// Counts edits of static bodies that queries see (moved, added,
+    /// removed, or restored from a snapshot).
     pub(crate) static_edits: u64,
+    /// Counts every change to the static bodies, those edits and material
+    /// or flag changes (friction, restitution, filter, sensor, one-way) too:
+    /// a snapshot holds a copy of the static bodies at a revision, and
+    /// copies them again only when it differs.
+    pub(crate) static_revision: u64,
     /// Trees and contact lists for queries, built on demand.
     pub(crate) query_cache: QueryCache,
     /// Which world this is (a clone is another), so a snapshot knows
@@ -167,6 +173,7 @@ impl World {
             may_rest: false,
             edits: 0,
             static_edits: 0,
+            static_revision: 0,
             query_cache: QueryCache::default(),
             instance: Instance::new(),
             snapshot_scratch: Vec::new(),
@@ -282,11 +289,15 @@ impl World {
     }
 
     /// A body changed: a dynamic one wakes its island; a static one may
-    /// have held anything up, so every body wakes.
+    /// have held anything up, so every body wakes (and the static bodies
+    /// are a new revision for snapshots).
     pub(crate) fn wake_after_change(&mut self, location: Location) {
         match location {
             Location::Dynamic(i) => self.wake_index(i as usize),
-            Location::Static(_) => self.wake_all(),
+            Location::Static(_) => {
+                self.static_revision += 1;
+                self.wake_all();
+            }
         }
     }
 
@@ -607,6 +618,7 @@ impl World {
         self.edits += 1;
         if is_static {
             self.static_edits += 1;
+            self.static_revision += 1;
         }
     }
 
@@ -685,24 +697,36 @@ pub(crate) fn step_forces<'a>(
     )
 }
 
-/// What a new (or restored) body must be in a world of `settings`, beyond
-/// its own checks: its velocity has a finite square, a kinematic body's
-/// speed (which nothing else limits) is at most the world's maximum speed,
-/// as [`try_set_velocity`](World::try_set_velocity) asks, and a dynamic
-/// body's speed limits ([`check_speed_limits`]) leave it room to move.
+/// What a new body must be in a world of `settings`, beyond its own
+/// checks: what a restored one must be ([`check_restored_body`]), and a
+/// kinematic body's speed (which nothing else limits) at most the world's
+/// maximum speed, as [`try_set_velocity`](World::try_set_velocity) asks.
 pub(crate) fn check_body_in(def: &BodyDef, settings: &WorldSettings) -> Result<(), PhysicsError> {
-    let speed_sq = def.velocity.length_squared();
-    if !speed_sq.is_finite() {
-        return Err(PhysicsError::NonFinite {
-            what: "BodyDef::velocity (its square)",
-        });
-    }
+    check_restored_body(def, settings)?;
     let max = settings.max_speed;
+    let speed_sq = def.velocity.length_squared();
     if def.kind == BodyKind::Kinematic && speed_sq > max * max {
         return Err(PhysicsError::OutOfRange {
             what: "BodyDef::velocity",
             value: speed_sq.sqrt(),
             allowed: "at most WorldSettings::max_speed for a kinematic body",
+        });
+    }
+    Ok(())
+}
+
+/// What a body restored from a snapshot must be in a world of `settings`,
+/// beyond its own checks: its velocity has a finite square, and a dynamic
+/// body's speed limits ([`check_speed_limits`]) leave it room to move. (A
+/// kinematic body may be faster than `max_speed`: the limit was lowered
+/// after it was set going, which `set_settings` allows.)
+pub(crate) fn check_restored_body(
+    def: &BodyDef,
+    settings: &WorldSettings,
+) -> Result<(), PhysicsError> {
+    if !def.velocity.length_squared().is_finite() {
+        return Err(PhysicsError::NonFinite {
+            what: "BodyDef::velocity (its square)",
         });
     }
     if def.kind == BodyKind::Dynamic {
