@@ -216,6 +216,35 @@ fn a_bullet_never_passes_a_thin_wall() {
 }
 
 #[test]
+fn a_bullet_stops_at_a_lone_peg_a_centimetre_wide() {
+    // A static box no larger than the tolerances (1 cm) counted its faces
+    // as covered by neighbours it did not have: the sweep and the contacts
+    // turned away from them, and a circle at 1 000 m/s passed through.
+    for (side, speed) in [(0.01f32, 1000.0f32), (0.005, 1000.0), (0.01, 60.0)] {
+        let mut w = World::new(WorldSettings {
+            forces: ForceModels::none(),
+            ..Default::default()
+        })
+        .unwrap();
+        let h = side / 2.0;
+        add_static_box(&mut w, Vec2::new(5.0 - h, -h), Vec2::new(5.0 + h, h));
+        let bullet = w
+            .add_body(BodyDef {
+                position: Vec2::new(-20.0, 0.0),
+                velocity: Vec2::new(speed, 0.0),
+                shape: Some(Shape::circle(0.02)),
+                ..Default::default()
+            })
+            .unwrap();
+        for _ in 0..60 {
+            w.step(DT);
+        }
+        let x = w.body(bullet).unwrap().position.x;
+        assert!(x < 5.0 - h, "a {side} m peg at {speed} m/s: bullet at {x}");
+    }
+}
+
+#[test]
 fn continuous_collision_off_lets_the_bullet_through() {
     let mut settings = WorldSettings {
         forces: ForceModels::none(),
@@ -318,4 +347,24 @@ fn a_box_pushed_across_the_ground_stops_at_the_closed_form_distance() {
         "{} vs {want}",
         body.position.x
     );
+}
+
+#[test]
+fn a_body_spawned_on_a_static_boxs_centre_leaves_upwards() {
+    // On the tie the normal from the body to the static box was +y, which
+    // pushed the body down: a box spawned in a lone block fell out of its
+    // bottom (y = -5.3 after a second).
+    for shape in [
+        Shape::rect(0.5, 0.5),
+        Shape::rect(0.3, 0.3),
+        Shape::circle(0.25),
+    ] {
+        let mut w = world();
+        add_static_box(&mut w, Vec2::new(-0.25, -0.25), Vec2::new(0.25, 0.25));
+        let id = w.add_body(BodyDef::new_dynamic(Vec2::ZERO, shape)).unwrap();
+        run(&mut w, 1.0, |_| {});
+        let p = w.body(id).unwrap().position;
+        let top = 0.25 + shape.half_extents().y;
+        assert!((p.y - top).abs() < 0.01, "{shape:?} rests on top: {p}");
+    }
 }

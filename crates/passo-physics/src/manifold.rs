@@ -169,7 +169,9 @@ impl Faces {
                 }
                 reach = reach.max(hi);
             }
-            if reach >= a.max[axis] - t {
+            // (Some neighbour must lie against the face: a face no longer
+            // than the tolerances, 1 cm, would pass the test with none.)
+            if !spans.is_empty() && reach >= a.max[axis] - t {
                 covered |= bit;
             }
         }
@@ -618,6 +620,13 @@ mod tests {
             Faces::covered_by_all(&tall, &[right], t, &mut spans),
             Faces::covered_by(&tall, &right, t)
         );
+        // A box 1 cm on a side with no neighbour covers nothing (its faces
+        // are no longer than the tolerances, and passed the walk with no
+        // span at all: fast bodies went through it).
+        for side in [0.01, 0.005, 1e-4] {
+            let tiny = Aabb::from_centre(Vec2::ZERO, Vec2::splat(side / 2.0));
+            assert_eq!(Faces::covered_by_all(&tiny, &[], t, &mut spans), 0);
+        }
     }
 
     #[test]

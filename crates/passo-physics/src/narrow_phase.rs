@@ -160,6 +160,13 @@ impl Narrow<'_> {
                 if pa == pb && !cb.immovable {
                     m.normal = spread_direction(ca.id, cb.id);
                 }
+                // A body level with a static or kinematic one's centre has
+                // no side to leave by along y either; the tie gave +y, from
+                // A to B, which pushed A down and out through the bottom.
+                // It leaves upwards.
+                if cb.immovable && pa.y == pb.y && m.normal == Vec2::Y {
+                    m.normal = Vec2::NEG_Y;
+                }
                 let a = ca.body.index() as u32;
                 let (row, info) =
                     Constraint::new(&m, a, cb.body, self.bodies, self.gravity, self.h);
