@@ -7,7 +7,7 @@ use crate::collider::ColliderRef;
 use crate::constants::{ONE_WAY_DEPTH, SPECULATIVE_DISTANCE};
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::filter::CollisionFilter;
-use crate::manifold::{Faces, Manifold, collide_seamless};
+use crate::manifold::{Faces, Manifold, beyond_corner, collide_seamless};
 use crate::parallel::for_chunks_max;
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::{BodyId, SensorPair, Shape};
@@ -149,7 +149,13 @@ impl Narrow<'_> {
             Faces::default()
         };
         let (pa, pb) = (position(&ca), position(&cb));
-        match collide_seamless(&ca.shape, pa, &cb.shape, pb, margin_a + margin_b, faces) {
+        let found = collide_seamless(&ca.shape, pa, &cb.shape, pb, margin_a + margin_b, faces);
+        // Beyond each other's corner: the face the motion meets first.
+        let found = found.map(|m| {
+            let closing = || self.step_velocity(&cb) - self.step_velocity(&ca);
+            beyond_corner(&ca.shape, pa, &cb.shape, pb, closing, faces).unwrap_or(m)
+        });
+        match found {
             Some(m) if !self.may_close(&ca, margin_a, &cb, margin_b, &m) => Outcome::Skip,
             Some(m) if !one_way_allows(&ca, &cb, &m) => Outcome::Skip,
             Some(mut m) => {
@@ -178,6 +184,17 @@ impl Narrow<'_> {
 }
 
 impl Narrow<'_> {
+    /// How fast `c` may move this step: a dynamic body's velocity with
+    /// what gravity adds over the step, a kinematic body's own, a static
+    /// body's zero.
+    fn step_velocity(&self, c: &Collider) -> Vec2 {
+        match c.body.dynamic_index() {
+            Some(i) if c.immovable => self.bodies.dynamic.vel[i],
+            Some(i) => self.bodies.dynamic.vel[i] + self.gravity * self.proxies.margin.dt,
+            None => Vec2::ZERO,
+        }
+    }
+
     /// Whether the gap of `m` between `a` and `b` (with proxy margins
     /// `margin_a` and `margin_b`) may close within the step: a contact is
     /// kept within [`SPECULATIVE_DISTANCE`], or as far as the two bodies
