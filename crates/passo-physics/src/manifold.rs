@@ -226,21 +226,25 @@ pub(crate) fn collide_seamless(
     (m.separation <= margin).then_some(m)
 }
 
-/// For two boxes beyond each other's corner (apart along both axes), the
-/// contact along the axis whose gap the relative motion closes last, which
-/// is the face they would first meet on; `None` for other shapes (a
-/// circle's contact with a corner has its own normal), when the boxes are
-/// not apart on both axes, when no motion tells (neither gap closes, or
-/// both close at once), or when that face of B is covered (see [`Faces`]).
-/// `closing` gives B's velocity relative to A's (asked only for boxes
-/// apart on both axes, which most pairs are not).
+/// For two bodies beyond each other's corner, the contact along the axis
+/// whose gap the relative motion closes last, the face they would first
+/// meet on:
+/// - two boxes apart along both axes;
+/// - a circle whose centre lies beyond both faces of a box at one corner,
+///   apart from the box along at least one axis, and whose path this step
+///   (`closing` over `dt`) stays clear of that corner (else the corner's
+///   own normal stands: it may meet the corner).
+///
+/// `None` for other shapes and places, when no motion tells (neither gap
+/// closes, or both close at once), or when that face of B is covered (see
+/// [`Faces`]). `closing` gives B's velocity relative to A's (asked only for
+/// bodies beyond a corner, which most pairs are not).
 ///
 /// The contact a step keeps acts as a plane for the whole step. Along the
-/// axis of the larger gap, the default for shapes apart, a box falling
-/// past a ledge's corner with a few centimetres to spare met the plane of
-/// the ledge's top and stopped beside it in mid-air; along the axis whose
-/// gap does not close it meets the plane of the ledge's side, which it
-/// never reaches.
+/// axis of the larger gap, or a corner's normal, a box or circle falling
+/// past a ledge's corner with a few centimetres to spare met a plane it
+/// never reaches and stopped or was knocked aside beside the ledge; along
+/// the axis whose gap does not close it meets the plane of the ledge's side.
 #[inline(always)]
 pub(crate) fn beyond_corner(
     sa: &Shape,
@@ -248,21 +252,32 @@ pub(crate) fn beyond_corner(
     sb: &Shape,
     pb: Vec2,
     closing: impl FnOnce() -> Vec2,
+    dt: f32,
     faces_b: Faces,
 ) -> Option<Manifold> {
-    let (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb }) = (*sa, *sb) else {
-        return None;
-    };
+    let (ha, hb) = (sa.half_extents(), sb.half_extents());
     let d = pb - pa;
     let gap = d.abs() - (ha + hb);
-    if !(gap.x > 0.0 && gap.y > 0.0) {
-        return None;
-    }
-    let closing = closing();
-    // How soon each gap closes: B moving towards A along the axis.
+    let closing = match (*sa, *sb) {
+        (Shape::Box { .. }, Shape::Box { .. }) if gap.x > 0.0 && gap.y > 0.0 => closing(),
+        (Shape::Circle { radius }, Shape::Box { half_extents: h }) => {
+            // The corner of B nearest A, and A's path relative to it.
+            let corner = pb - d.signum() * h;
+            clear_of_corner(d, h, gap, || pa - corner, closing, radius, dt, -1.0)?
+        }
+        (Shape::Box { half_extents: h }, Shape::Circle { radius }) => {
+            let corner = pa + d.signum() * h;
+            clear_of_corner(d, h, gap, || pb - corner, closing, radius, dt, 1.0)?
+        }
+        _ => return None,
+    };
+    // How soon each gap closes (at once if the bodies overlap along it):
+    // B moving towards A along the axis.
     let entry = |k: usize| {
         let speed = -closing[k] * d[k].signum();
-        if speed > 0.0 {
+        if gap[k] <= 0.0 {
+            0.0
+        } else if speed > 0.0 {
             gap[k] / speed
         } else {
             f32::INFINITY
@@ -274,13 +289,47 @@ pub(crate) fn beyond_corner(
     }
     let axis = if tx > ty { 0 } else { 1 };
     let sign = d[axis].signum();
-    if faces_b.covered(axis, -sign) {
+    if gap[axis] <= 0.0 || faces_b.covered(axis, -sign) {
         return None;
     }
     let mut normal = Vec2::ZERO;
     normal[axis] = sign;
     let point = pa + normal * (ha[axis] + 0.5 * gap[axis]);
     Some(Manifold::one(normal, gap[axis], point))
+}
+
+/// For a circle of `radius` and a box of half extents `h` whose centres
+/// are `d` apart (B's minus A's) with bounding-box gaps `gap`: B's velocity
+/// relative to A's (`closing`) if the circle's centre lies beyond both of
+/// the box's faces at a corner, the boxes are apart along some axis, and
+/// the circle's path over `dt` (from `offset`, the circle's centre less the
+/// corner, at `circle_sign * closing`) stays farther than `radius` from
+/// the corner; `None` otherwise.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn clear_of_corner(
+    d: Vec2,
+    h: Vec2,
+    gap: Vec2,
+    offset: impl FnOnce() -> Vec2,
+    closing: impl FnOnce() -> Vec2,
+    radius: f32,
+    dt: f32,
+    circle_sign: f32,
+) -> Option<Vec2> {
+    let beyond = d.x.abs() > h.x && d.y.abs() > h.y;
+    if !(beyond && (gap.x > 0.0 || gap.y > 0.0)) {
+        return None;
+    }
+    let closing = closing();
+    let (p0, u) = (offset(), closing * circle_sign);
+    let speed_sq = u.length_squared();
+    let t = if speed_sq > 0.0 {
+        (-p0.dot(u) / speed_sq).clamp(0.0, dt)
+    } else {
+        0.0
+    };
+    ((p0 + u * t).length() > radius).then_some(closing)
 }
 
 /// Two circles: along the line of centres.

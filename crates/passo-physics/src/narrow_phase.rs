@@ -153,7 +153,8 @@ impl Narrow<'_> {
         // Beyond each other's corner: the face the motion meets first.
         let found = found.map(|m| {
             let closing = || self.step_velocity(&cb) - self.step_velocity(&ca);
-            beyond_corner(&ca.shape, pa, &cb.shape, pb, closing, faces).unwrap_or(m)
+            let dt = self.proxies.margin.dt;
+            beyond_corner(&ca.shape, pa, &cb.shape, pb, closing, dt, faces).unwrap_or(m)
         });
         match found {
             Some(m) if !self.may_close(&ca, margin_a, &cb, margin_b, &m) => Outcome::Skip,
