@@ -231,9 +231,10 @@ pub(crate) fn collide_seamless(
 /// meet on:
 /// - two boxes apart along both axes;
 /// - a circle whose centre lies beyond both faces of a box at one corner,
-///   apart from the box along at least one axis, and whose path this step
-///   (`closing` over `dt`) stays clear of that corner (else the corner's
-///   own normal stands: it may meet the corner).
+///   apart from the box along at least one axis, whose path this step
+///   (`closing` over `dt`) stays clear of that corner, and which meets that
+///   face's plane, if at all, with its centre level with the face (else it
+///   would meet the corner first, and the corner's own normal stands).
 ///
 /// `None` for other shapes and places, when no motion tells (neither gap
 /// closes, or both close at once), or when that face of B is covered (see
@@ -258,16 +259,17 @@ pub(crate) fn beyond_corner(
     let (ha, hb) = (sa.half_extents(), sb.half_extents());
     let d = pb - pa;
     let gap = d.abs() - (ha + hb);
-    let closing = match (*sa, *sb) {
-        (Shape::Box { .. }, Shape::Box { .. }) if gap.x > 0.0 && gap.y > 0.0 => closing(),
-        (Shape::Circle { radius }, Shape::Box { half_extents: h }) => {
-            // The corner of B nearest A, and A's path relative to it.
-            let corner = pb - d.signum() * h;
-            clear_of_corner(d, h, gap, || pa - corner, closing, radius, dt, -1.0)?
+    // For a circle and a box: the circle's radius, and its centre and
+    // velocity relative to the box's.
+    let (closing, circle) = match (*sa, *sb) {
+        (Shape::Box { .. }, Shape::Box { .. }) if gap.x > 0.0 && gap.y > 0.0 => (closing(), None),
+        (Shape::Circle { radius }, Shape::Box { half_extents: h }) if beyond(d, h, gap) => {
+            let closing = closing();
+            (closing, Some((radius, -d, -closing, h)))
         }
-        (Shape::Box { half_extents: h }, Shape::Circle { radius }) => {
-            let corner = pa + d.signum() * h;
-            clear_of_corner(d, h, gap, || pb - corner, closing, radius, dt, 1.0)?
+        (Shape::Box { half_extents: h }, Shape::Circle { radius }) if beyond(d, h, gap) => {
+            let closing = closing();
+            (closing, Some((radius, d, closing, h)))
         }
         _ => return None,
     };
@@ -287,49 +289,44 @@ pub(crate) fn beyond_corner(
     if tx == ty {
         return None;
     }
-    let axis = if tx > ty { 0 } else { 1 };
+    let (axis, when) = if tx > ty { (0, tx) } else { (1, ty) };
     let sign = d[axis].signum();
     if gap[axis] <= 0.0 || faces_b.covered(axis, -sign) {
         return None;
     }
+    if let Some((radius, centre, velocity, h)) = circle {
+        let corner = centre.signum() * h;
+        // Its path this step stays farther than its radius from the corner.
+        let speed_sq = velocity.length_squared();
+        let t = if speed_sq > 0.0 {
+            (-(centre - corner).dot(velocity) / speed_sq).clamp(0.0, dt)
+        } else {
+            0.0
+        };
+        if (centre - corner + velocity * t).length() <= radius {
+            return None;
+        }
+        // It meets the face's plane, if ever, level with the face.
+        let other = 1 - axis;
+        if when.is_finite() && (centre[other] + velocity[other] * when).abs() > h[other] {
+            return None;
+        }
+    }
     let mut normal = Vec2::ZERO;
     normal[axis] = sign;
-    let point = pa + normal * (ha[axis] + 0.5 * gap[axis]);
+    // Midway between the two along the axis, and between their centres
+    // along the other.
+    let mut point = (pa + pb) * 0.5;
+    point[axis] = pa[axis] + sign * (ha[axis] + 0.5 * gap[axis]);
     Some(Manifold::one(normal, gap[axis], point))
 }
 
-/// For a circle of `radius` and a box of half extents `h` whose centres
-/// are `d` apart (B's minus A's) with bounding-box gaps `gap`: B's velocity
-/// relative to A's (`closing`) if the circle's centre lies beyond both of
-/// the box's faces at a corner, the boxes are apart along some axis, and
-/// the circle's path over `dt` (from `offset`, the circle's centre less the
-/// corner, at `circle_sign * closing`) stays farther than `radius` from
-/// the corner; `None` otherwise.
+/// Whether a circle's centre, `d` from the centre of a box of half extents
+/// `h` (either way), lies beyond both of the box's faces at a corner, with
+/// their bounding boxes `gap` apart along some axis.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn clear_of_corner(
-    d: Vec2,
-    h: Vec2,
-    gap: Vec2,
-    offset: impl FnOnce() -> Vec2,
-    closing: impl FnOnce() -> Vec2,
-    radius: f32,
-    dt: f32,
-    circle_sign: f32,
-) -> Option<Vec2> {
-    let beyond = d.x.abs() > h.x && d.y.abs() > h.y;
-    if !(beyond && (gap.x > 0.0 || gap.y > 0.0)) {
-        return None;
-    }
-    let closing = closing();
-    let (p0, u) = (offset(), closing * circle_sign);
-    let speed_sq = u.length_squared();
-    let t = if speed_sq > 0.0 {
-        (-p0.dot(u) / speed_sq).clamp(0.0, dt)
-    } else {
-        0.0
-    };
-    ((p0 + u * t).length() > radius).then_some(closing)
+fn beyond(d: Vec2, h: Vec2, gap: Vec2) -> bool {
+    d.x.abs() > h.x && d.y.abs() > h.y && (gap.x > 0.0 || gap.y > 0.0)
 }
 
 /// Two circles: along the line of centres.
