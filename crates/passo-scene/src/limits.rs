@@ -66,25 +66,39 @@ pub(crate) fn check_xml(bytes: &[u8]) -> Result<(), String> {
 }
 
 /// [`check_xml`] with a budget of `budget` bytes of expanded tile data.
+///
+/// Names are compared by their local part (`x:data` is a `data`, as the
+/// `tiled` crate reads it), attribute values are unescaped, a compressed
+/// `<data>` lasts until its own end tag (an element inside it does not end
+/// it), and each run of its text (comments and CDATA sections included) is
+/// decoded whole, unescaped, at the next tag.
 fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
     let mut depth = 0usize;
-    // Inside a compressed `<data>` element: its compression.
-    let mut compressed: Option<Compression> = None;
+    // Inside a compressed `<data>` element: its compression and depth.
+    let mut compressed: Option<(Compression, usize)> = None;
+    // Its text since the last tag.
+    let mut run: Vec<u8> = Vec::new();
     let mut expanded = 0u64;
+    let mut flush = |run: &mut Vec<u8>, compressed: Option<(Compression, usize)>| {
+        if let Some((c, _)) = compressed {
+            expanded += c.expand(run, budget - expanded)?;
+        }
+        run.clear();
+        Ok::<(), String>(())
+    };
     let mut i = 0;
     while let Some(offset) = bytes[i..].iter().position(|&b| b == b'<') {
-        let text = &bytes[i..i + offset];
+        if compressed.is_some() {
+            run.extend_from_slice(&unescape(&bytes[i..i + offset])?);
+        }
         i += offset;
         let rest = &bytes[i..];
-        if let Some(c) = compressed {
-            expanded += c.expand(text, budget - expanded)?;
-        }
         let end = if rest.starts_with(b"<!--") {
             find(rest, b"-->")? + 3
         } else if rest.starts_with(b"<![CDATA[") {
             let end = find(rest, b"]]>")?;
-            if let Some(c) = compressed {
-                expanded += c.expand(&rest[9..end], budget - expanded)?;
+            if compressed.is_some() {
+                run.extend_from_slice(&rest[9..end]);
             }
             end + 3
         } else if rest.starts_with(b"<?") {
@@ -92,13 +106,14 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
         } else if rest.starts_with(b"<!") {
             tag_end(rest)? + 1
         } else if rest.starts_with(b"</") {
-            let end = tag_end(rest)?;
-            if name(&rest[2..end]) == b"data" {
+            flush(&mut run, compressed)?;
+            if compressed.is_some_and(|(_, at)| at == depth) {
                 compressed = None;
             }
             depth = depth.saturating_sub(1);
-            end + 1
+            tag_end(rest)? + 1
         } else {
+            flush(&mut run, compressed)?;
             let end = tag_end(rest)?;
             let tag = &rest[1..end];
             if !tag.ends_with(b"/") {
@@ -106,8 +121,8 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
                 if depth > MAX_XML_DEPTH {
                     return Err(format!("nests its elements more than {MAX_XML_DEPTH} deep"));
                 }
-                if name(tag) == b"data" {
-                    compressed = Compression::of(tag);
+                if compressed.is_none() && local(name(tag)) == b"data" {
+                    compressed = Compression::of(tag)?.map(|c| (c, depth));
                 }
             }
             end + 1
@@ -127,15 +142,15 @@ enum Compression {
 impl Compression {
     /// The compression of a `<data ...>` tag, if it is base64 and zlib or
     /// gzip.
-    fn of(tag: &[u8]) -> Option<Self> {
-        if attribute(tag, b"encoding") != Some(b"base64") {
-            return None;
+    fn of(tag: &[u8]) -> Result<Option<Self>, String> {
+        if attribute(tag, b"encoding")?.as_deref() != Some(b"base64") {
+            return Ok(None);
         }
-        match attribute(tag, b"compression")? {
-            b"zlib" => Some(Self::Zlib),
-            b"gzip" => Some(Self::Gzip),
+        Ok(match attribute(tag, b"compression")?.as_deref() {
+            Some(b"zlib") => Some(Self::Zlib),
+            Some(b"gzip") => Some(Self::Gzip),
             _ => None,
-        }
+        })
     }
 
     /// How many bytes `text` (base64) expands to, if at most `budget`.
@@ -195,21 +210,78 @@ fn name(tag: &[u8]) -> &[u8] {
     &tag[..end]
 }
 
-/// The value of attribute `key` in a tag (without its quotes).
-fn attribute<'t>(tag: &'t [u8], key: &[u8]) -> Option<&'t [u8]> {
+/// A name without its namespace prefix (`x:data` is `data`).
+fn local(name: &[u8]) -> &[u8] {
+    name.rsplit(|&b| b == b':').next().unwrap_or(name)
+}
+
+/// The value of attribute `key` in a tag, by its local name, unescaped
+/// (without its quotes).
+fn attribute(tag: &[u8], key: &[u8]) -> Result<Option<Vec<u8>>, String> {
     let mut rest = &tag[name(tag).len()..];
     loop {
         rest = rest.trim_ascii_start();
-        let eq = rest.iter().position(|&b| b == b'=')?;
+        let Some(eq) = rest.iter().position(|&b| b == b'=') else {
+            return Ok(None);
+        };
         let found = rest[..eq].trim_ascii_end();
         let value = rest[eq + 1..].trim_ascii_start();
-        let quote = *value.first()?;
-        let close = value[1..].iter().position(|&b| b == quote)?;
-        if found == key {
-            return Some(&value[1..1 + close]);
+        let Some(&quote) = value.first() else {
+            return Ok(None);
+        };
+        let Some(close) = value[1..].iter().position(|&b| b == quote) else {
+            return Ok(None);
+        };
+        if local(found) == key {
+            return unescape(&value[1..1 + close]).map(Some);
         }
         rest = &value[close + 2..];
     }
+}
+
+/// XML text with its entity references (`&amp;`, `&#108;`, `&#x6C;`, ...)
+/// replaced by what they stand for.
+fn unescape(text: &[u8]) -> Result<Vec<u8>, String> {
+    if !text.contains(&b'&') {
+        return Ok(text.to_vec());
+    }
+    let mut out = Vec::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.iter().position(|&b| b == b'&') {
+        out.extend_from_slice(&rest[..at]);
+        let semi = rest[at..]
+            .iter()
+            .position(|&b| b == b';')
+            .ok_or("has an entity reference with no `;`")?;
+        let entity = &rest[at + 1..at + semi];
+        let number = |digits: &[u8], radix: u32| {
+            std::str::from_utf8(digits)
+                .ok()
+                .and_then(|d| u32::from_str_radix(d, radix).ok())
+                .and_then(char::from_u32)
+        };
+        let c = match entity {
+            b"amp" => Some('&'),
+            b"lt" => Some('<'),
+            b"gt" => Some('>'),
+            b"quot" => Some('"'),
+            b"apos" => Some('\''),
+            [b'#', b'x' | b'X', hex @ ..] => number(hex, 16),
+            [b'#', dec @ ..] => number(dec, 10),
+            _ => None,
+        };
+        let c = c.ok_or_else(|| {
+            format!(
+                "has an entity reference it cannot read: &{};",
+                String::from_utf8_lossy(entity)
+            )
+        })?;
+        let mut buf = [0; 4];
+        out.extend_from_slice(c.encode_utf8(&mut buf).as_bytes());
+        rest = &rest[at + semi + 1..];
+    }
+    out.extend_from_slice(rest);
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -300,9 +372,45 @@ mod tests {
     #[test]
     fn attributes_are_read_in_any_order_and_quote() {
         let tag = br#"data  compression = 'gzip' encoding="base64""#;
-        assert_eq!(attribute(tag, b"encoding"), Some(&b"base64"[..]));
-        assert_eq!(Compression::of(tag), Some(Compression::Gzip));
-        assert_eq!(Compression::of(br#"data encoding="base64""#), None);
-        assert_eq!(attribute(br#"data x="1"#, b"x"), None);
+        assert_eq!(attribute(tag, b"encoding"), Ok(Some(b"base64".to_vec())));
+        assert_eq!(Compression::of(tag), Ok(Some(Compression::Gzip)));
+        assert_eq!(Compression::of(br#"data encoding="base64""#), Ok(None));
+        assert_eq!(attribute(br#"data x="1"#, b"x"), Ok(None));
+    }
+
+    #[test]
+    fn prefixes_entities_and_nesting_do_not_hide_compressed_data() {
+        // Each of these expands 3 MiB under a budget of 2: the `tiled`
+        // crate reads names by their local part, unescapes attribute
+        // values and text, and decodes the text of a `<data>` around an
+        // element inside it.
+        let mib3 = zeros(3);
+        let budget = 2 << 20;
+        for file in [
+            format!(r#"<map><x:data encoding="base64" compression="zlib">{mib3}</x:data></map>"#),
+            format!(r#"<map><data encoding="base64" y:compression="zlib">{mib3}</data></map>"#),
+            format!(r#"<map><data encoding="base64" compression="z&#108;ib">{mib3}</data></map>"#),
+            format!(r#"<map><data encoding="base&#x36;4" compression="zlib">{mib3}</data></map>"#),
+            format!(
+                r#"<map><data encoding="base64" compression="zlib"><data></data>{mib3}</data></map>"#
+            ),
+        ] {
+            let err = scan(file.as_bytes(), budget).unwrap_err();
+            assert!(err.contains("more than"), "{err}");
+        }
+        // A comment or a character reference inside the text is read as
+        // the parser reads it: one run of base64.
+        let mib1 = zeros(1);
+        let (head, tail) = mib1.split_at(mib1.len() / 2);
+        let commented = format!(
+            r#"<map><data encoding="base64" compression="zlib">{head}<!-- a note -->{tail}</data></map>"#
+        );
+        assert_eq!(scan(commented.as_bytes(), budget), Ok(()));
+        let escaped = format!(
+            r#"<map><data encoding="base64" compression="zlib">&#10;{mib1}&#10;</data></map>"#
+        );
+        assert_eq!(scan(escaped.as_bytes(), budget), Ok(()));
+        assert!(unescape(b"&bogus;").is_err() && unescape(b"a & b").is_err());
+        assert_eq!(unescape(b"&lt;&amp;&#x41;&#66;"), Ok(b"<&AB".to_vec()));
     }
 }
