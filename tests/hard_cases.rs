@@ -220,7 +220,16 @@ fn a_bullet_stops_at_a_lone_peg_a_centimetre_wide() {
     // A static box no larger than the tolerances (1 cm) counted its faces
     // as covered by neighbours it did not have: the sweep and the contacts
     // turned away from them, and a circle at 1 000 m/s passed through.
-    for (side, speed) in [(0.01f32, 1000.0f32), (0.005, 1000.0), (0.01, 60.0)] {
+    // On a floor too: the floor lies against the peg's sides' lines, and
+    // counted as covering them.
+    let cases = [
+        (0.01f32, 1000.0f32, false),
+        (0.005, 1000.0, false),
+        (0.01, 60.0, false),
+        (0.01, 1000.0, true),
+        (0.005, 1000.0, true),
+    ];
+    for (side, speed, floor) in cases {
         let mut w = World::new(WorldSettings {
             forces: ForceModels::none(),
             ..Default::default()
@@ -228,6 +237,9 @@ fn a_bullet_stops_at_a_lone_peg_a_centimetre_wide() {
         .unwrap();
         let h = side / 2.0;
         add_static_box(&mut w, Vec2::new(5.0 - h, -h), Vec2::new(5.0 + h, h));
+        if floor {
+            add_static_box(&mut w, Vec2::new(-30.0, -1.0 - h), Vec2::new(30.0, -h));
+        }
         let bullet = w
             .add_body(BodyDef {
                 position: Vec2::new(-20.0, 0.0),
@@ -240,7 +252,10 @@ fn a_bullet_stops_at_a_lone_peg_a_centimetre_wide() {
             w.step(DT);
         }
         let x = w.body(bullet).unwrap().position.x;
-        assert!(x < 5.0 - h, "a {side} m peg at {speed} m/s: bullet at {x}");
+        assert!(
+            x < 5.0 - h,
+            "a {side} m peg at {speed} m/s, floor {floor}: bullet at {x}"
+        );
     }
 }
 

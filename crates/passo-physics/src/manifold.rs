@@ -153,11 +153,18 @@ impl Faces {
         let mut covered = 0;
         for (bit, against, axis) in faces {
             spans.clear();
+            // Only neighbours along the face (overlapping it by more than
+            // the tolerance, or half a face shorter than that): a floor
+            // under a box lies against its sides' lines too, but covers
+            // nothing of them.
+            let (from, to) = (a.min[axis], a.max[axis]);
+            let along = t.min(0.5 * (to - from));
             spans.extend(
                 neighbours
                     .iter()
                     .filter(|b| against(a, b, t))
-                    .map(|b| (b.min[axis], b.max[axis])),
+                    .map(|b| (b.min[axis], b.max[axis]))
+                    .filter(|&(lo, hi)| hi.min(to) - lo.max(from) > along),
             );
             spans.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
             // Walk the spans in order: how far along the face is covered
@@ -729,6 +736,23 @@ mod tests {
         for side in [0.01, 0.005, 1e-4] {
             let tiny = Aabb::from_centre(Vec2::ZERO, Vec2::splat(side / 2.0));
             assert_eq!(Faces::covered_by_all(&tiny, &[], t, &mut spans), 0);
+            // Standing on a floor, it is covered below and nowhere else
+            // (the floor lies against its sides' lines, not along them).
+            let h = side / 2.0;
+            let floor = Aabb::from_centre(Vec2::new(0.0, -h - 0.5), Vec2::new(5.0, 0.5));
+            assert_eq!(
+                Faces::covered_by_all(&tiny, &[floor], t, &mut spans),
+                Faces::BOTTOM,
+                "{side}"
+            );
+            // A neighbour as tall, flush on its right (and at least the
+            // 1 cm deep a cover needs), covers that face.
+            let right = Aabb::from_centre(Vec2::new(h + 0.5, 0.0), Vec2::new(0.5, h));
+            assert_eq!(
+                Faces::covered_by_all(&tiny, &[floor, right], t, &mut spans),
+                Faces::BOTTOM | Faces::RIGHT,
+                "{side}"
+            );
         }
     }
 

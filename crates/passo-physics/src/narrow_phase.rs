@@ -170,8 +170,8 @@ impl Narrow<'_> {
                 // A body level with a static or kinematic one's centre has
                 // no side to leave by along y either; the tie gave +y, from
                 // A to B, which pushed A down and out through the bottom.
-                // It leaves upwards.
-                if cb.immovable && pa.y == pb.y && m.normal == Vec2::Y {
+                // It leaves upwards (unless B's top is covered).
+                if cb.immovable && pa.y == pb.y && m.normal == Vec2::Y && !faces.covers(Vec2::Y) {
                     m.normal = Vec2::NEG_Y;
                 }
                 let a = ca.body.index() as u32;
