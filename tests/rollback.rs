@@ -159,8 +159,9 @@ fn a_static_bodys_material_changed_after_a_save_is_rolled_back() {
     // one. A slider on a floor that turns icy after the save ended 2.6 m
     // from where the saved state takes it.
     type Edit = fn(&mut World, passo_physics::BodyId);
-    let edits: [(&str, Edit); 5] = [
+    let edits: [(&str, Edit); 6] = [
         ("friction", |w, id| w.try_set_friction(id, 0.0).unwrap()),
+        ("drag area", |w, id| w.set_drag_area(id, 3.0).unwrap()),
         ("restitution", |w, id| w.set_restitution(id, 0.9).unwrap()),
         ("sensor", |w, id| w.set_sensor(id, true).unwrap()),
         ("one-way", |w, id| {

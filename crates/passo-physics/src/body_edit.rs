@@ -358,7 +358,11 @@ impl World {
                 self.dynamic.meta[i as usize].drag_area = drag_area;
                 self.wake_index(i as usize);
             }
-            Location::Static(i) => self.statics.meta[i as usize].drag_area = drag_area,
+            Location::Static(i) => {
+                // Nothing steps with it, but snapshots carry it.
+                self.statics.meta[i as usize].drag_area = drag_area;
+                self.static_revision += 1;
+            }
         }
         Ok(())
     }

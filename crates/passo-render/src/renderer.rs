@@ -48,6 +48,9 @@ pub struct Renderer {
     shape_capacity: usize,
     line_buffer: wgpu::Buffer,
     line_capacity: usize,
+    /// A list has been longer than the device's largest buffer (warned
+    /// once, not every frame).
+    over_capacity: bool,
 }
 
 impl Renderer {
@@ -136,6 +139,7 @@ impl Renderer {
             shape_capacity: 256,
             line_buffer,
             line_capacity: 256,
+            over_capacity: false,
         }
     }
 
@@ -204,6 +208,15 @@ impl Renderer {
             "passo line instances",
             &list.lines,
         );
+        let cut = shapes as usize != list.shapes.len() || lines as usize != list.lines.len();
+        if cut && !std::mem::replace(&mut self.over_capacity, true) {
+            log::warn!(
+                "{} shapes and {} lines to draw, the device's largest buffer holds {shapes} and \
+                 {lines}: drawing those (said once)",
+                list.shapes.len(),
+                list.lines.len()
+            );
+        }
         let [r, g, b, a] = list.clear_colour.map(f64::from);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("passo bodies"),
@@ -280,7 +293,7 @@ fn instance_buffer(device: &wgpu::Device, label: &str, bytes: usize) -> wgpu::Bu
 
 /// Writes instances to `buffer`, first growing it (see [`fitting`]), and
 /// returns how many it holds for drawing: all of `items`, or as many as
-/// the device's largest buffer holds (logged).
+/// the device's largest buffer holds.
 fn upload<T: Pod>(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -299,12 +312,6 @@ fn upload<T: Pod>(
         device.limits().max_buffer_size,
         size,
     );
-    if drawn < items.len() {
-        log::warn!(
-            "{label}: {} to draw, the device's largest buffer holds {drawn}; drawing those",
-            items.len()
-        );
-    }
     if grown != *capacity {
         *capacity = grown;
         *buffer = instance_buffer(device, label, grown * size);

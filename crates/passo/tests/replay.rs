@@ -279,8 +279,8 @@ fn replays_out_of_order_past_the_end_absurd_or_endless_are_refused() {
         ..replay.clone()
     };
     longest.validate().unwrap();
-    // A list of commands longer than the cap is refused before it is read
-    // through.
+    // A list of commands longer than the cap is refused (after the file is
+    // parsed; the file's size bounds what parsing reads).
     let mut many = replay.clone();
     many.commands = vec![(0, Command::Rate(60.0)); Replay::MAX_COMMANDS];
     many.validate().unwrap();
@@ -308,5 +308,17 @@ fn replays_out_of_order_past_the_end_absurd_or_endless_are_refused() {
     assert!(
         stderr.contains("more than the most a replay may have"),
         "{stderr}"
+    );
+
+    // A file larger than a replay file may be is refused before it is
+    // read.
+    let big = std::env::temp_dir().join(format!("passo-big-{}.ron", std::process::id()));
+    let file = std::fs::File::create(&big).unwrap();
+    file.set_len(passo_scene::MAX_FILE_BYTES + 1).unwrap();
+    let err = Replay::load(&big).unwrap_err().to_string();
+    std::fs::remove_file(&big).unwrap();
+    assert!(
+        err.contains("larger than a replay file may be (64 MiB)"),
+        "{err}"
     );
 }

@@ -162,9 +162,20 @@ impl Replay {
         Ok(())
     }
 
-    /// Reads a replay file.
+    /// Reads a replay file: at most [`passo_scene::MAX_FILE_BYTES`] long
+    /// (a recording of hours is a few megabytes).
     pub fn load(path: &std::path::Path) -> anyhow::Result<Self> {
         use anyhow::Context;
+        let bytes = std::fs::metadata(path)
+            .with_context(|| format!("reading {}", path.display()))?
+            .len();
+        if bytes > passo_scene::MAX_FILE_BYTES {
+            anyhow::bail!(
+                "{} is {bytes} bytes, larger than a replay file may be ({} MiB)",
+                path.display(),
+                passo_scene::MAX_FILE_BYTES >> 20
+            );
+        }
         let text =
             std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
         Self::from_ron(&text).with_context(|| format!("{} is not a Passo replay", path.display()))
