@@ -415,14 +415,28 @@ impl World {
         map: &crate::TileMap,
         kind: BodyKind,
     ) -> Result<Vec<BodyId>, PhysicsError> {
+        self.add_tile_rects(map, &map.rects(), kind)
+    }
+
+    /// [`add_tile_map`](Self::add_tile_map) with the map's rectangles
+    /// already merged ([`TileMap::rects`](crate::TileMap::rects)), for a
+    /// caller that counts them first (a map can merge into millions).
+    ///
+    /// # Errors
+    /// As [`add_tile_map`](Self::add_tile_map).
+    pub fn add_tile_rects(
+        &mut self,
+        map: &crate::TileMap,
+        rects: &[crate::TileRect],
+        kind: BodyKind,
+    ) -> Result<Vec<BodyId>, PhysicsError> {
         if kind == BodyKind::Dynamic {
             return Err(PhysicsError::InvalidTileMap(
                 "a tile map is Static or Kinematic, not Dynamic".into(),
             ));
         }
-        let rects = map.rects();
         let mut ids = Vec::with_capacity(rects.len());
-        for rect in &rects {
+        for rect in rects {
             let aabb = map.rect_aabb(rect);
             let tile = map.kinds()[rect.kind as usize];
             let def = BodyDef {

@@ -198,9 +198,9 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
             ));
         }
         let ids = world
-            .add_tile_map(&level.map, tilemap.kind)
+            .add_tile_rects(&level.map, &rects, tilemap.kind)
             .map_err(|e| invalid("tilemap".into(), e))?;
-        for (id, rect) in ids.into_iter().zip(rects) {
+        for (id, rect) in ids.into_iter().zip(&rects) {
             let aabb = level.map.rect_aabb(&rect);
             bounds = Some(bounds.map_or(aabb, |b| b.union(&aabb)));
             let kind = level.map.kinds()[rect.kind as usize];
