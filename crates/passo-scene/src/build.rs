@@ -201,7 +201,7 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
             .add_tile_rects(&level.map, &rects, tilemap.kind)
             .map_err(|e| invalid("tilemap".into(), e))?;
         for (id, rect) in ids.into_iter().zip(&rects) {
-            let aabb = level.map.rect_aabb(&rect);
+            let aabb = level.map.rect_aabb(rect);
             bounds = Some(bounds.map_or(aabb, |b| b.union(&aabb)));
             let kind = level.map.kinds()[rect.kind as usize];
             bodies.push(SceneBody {
