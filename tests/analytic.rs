@@ -240,6 +240,49 @@ fn friction_slide_stops_without_reversing_at_the_closed_form_distance() {
 }
 
 #[test]
+fn friction_holds_a_gently_pushed_body_and_slows_a_hard_pushed_one() {
+    // mu g = 3.92 m/s². Pushed at 1.5 m/s² a body at rest stays put under
+    // every integrator: under Verlet and RK4 the stages' displacement, from
+    // a push friction held back, crept it 0.125 m in 10 s at zero speed.
+    // Pushed at 6 m/s² it accelerates at 6 - 3.92.
+    let (mu, g) = (0.4f32, G);
+    let forces = ForceModels {
+        gravity: None,
+        surface_friction: Some(SurfaceFriction { gravity: g }),
+        ..Default::default()
+    };
+    for integrator in Integrator::ALL {
+        for (push, want) in [(1.5f32, 0.0f32), (6.0, 6.0 - mu * g)] {
+            let def = BodyDef {
+                friction: mu,
+                ..Default::default()
+            };
+            let (mut world, id) = single(forces, integrator, def);
+            let dt = 1.0 / 60.0;
+            for _ in 0..600 {
+                world.apply_force(id, Vec2::new(push, 0.0));
+                world.step(dt);
+            }
+            let b = world.body(id).unwrap();
+            if want == 0.0 {
+                assert_eq!(
+                    (b.position, b.velocity),
+                    (Vec2::ZERO, Vec2::ZERO),
+                    "{integrator:?}"
+                );
+            } else {
+                let v = want * 10.0;
+                assert!(
+                    (b.velocity.x - v).abs() < 1e-3 * v,
+                    "{integrator:?}: {} against {v}",
+                    b.velocity.x
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn game_applied_friction_stops_and_never_reverses() {
     // The seed's call: friction with mu and a normal force, every step.
     let forces = ForceModels::none();

@@ -361,15 +361,24 @@ impl Dissipation {
     /// friction deceleration times `dt`, to zero and never past it.
     /// Unchanged bits without friction.
     #[inline(always)]
-    pub(crate) fn apply_friction(&self, mut v: Vec2, b: &BodyParams, dt: f32) -> Vec2 {
+    pub(crate) fn apply_friction(&self, v: Vec2, b: &BodyParams, dt: f32) -> Vec2 {
+        self.apply_friction_for(v, b, dt).0
+    }
+
+    /// [`apply_friction`](Self::apply_friction), and how much of `dt` was
+    /// left when the body stopped (zero if it did not, or has no friction).
+    #[inline(always)]
+    pub(crate) fn apply_friction_for(&self, mut v: Vec2, b: &BodyParams, dt: f32) -> (Vec2, f32) {
         let decel = self.friction_decel(b);
+        let mut left = 0.0;
         if decel > 0.0 {
             let speed = v.length();
             if speed > 0.0 {
                 v *= (speed - decel * dt).max(0.0) / speed;
             }
+            left = (dt - speed / decel).max(0.0);
         }
-        v
+        (v, left)
     }
 
     /// Applies drag and friction over `dt` as exact velocity factors, one

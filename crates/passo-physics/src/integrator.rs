@@ -152,18 +152,16 @@ pub(crate) fn integrate_body(
             (v1, (v - v1) * dt)
         }
         Integrator::VelocityVerlet => {
-            let friction = |v| forces.dissipation.apply_friction(v, b, 0.5 * dt);
-            let v = friction(v);
+            let (v, left) = forces.dissipation.apply_friction_for(v, b, 0.5 * dt);
             let a0 = forces.smooth_accel(p, v, b);
             let dp = v * dt + a0 * (0.5 * dt * dt);
             let a1 = forces.smooth_accel(p + dp, v + a0 * dt, b);
-            let v1 = friction(v + (a0 + a1) * (0.5 * dt));
-            (v1, dp - v1 * dt)
+            let v1 = v + (a0 + a1) * (0.5 * dt);
+            held(forces, b, (v, v1), dp, 0.5 * dt + left, dt)
         }
         Integrator::Rk4 => {
             let h = 0.5 * dt;
-            let friction = |v| forces.dissipation.apply_friction(v, b, h);
-            let v = friction(v);
+            let (v, left) = forces.dissipation.apply_friction_for(v, b, h);
             let a1 = forces.smooth_accel(p, v, b);
             let v2 = v + a1 * h;
             let a2 = forces.smooth_accel(p + v * h, v2, b);
@@ -173,10 +171,33 @@ pub(crate) fn integrate_body(
             let a4 = forces.smooth_accel(p + v3 * dt, v4, b);
             let sixth = dt / 6.0;
             let dp = (v + (v2 + v3) * 2.0 + v4) * sixth;
-            let v1 = friction(v + (a1 + (a2 + a3) * 2.0 + a4) * sixth);
-            (v1, dp - v1 * dt)
+            let v1 = v + (a1 + (a2 + a3) * 2.0 + a4) * sixth;
+            held(forces, b, (v, v1), dp, h + left, dt)
         }
     }
+}
+
+/// The end of a Verlet or RK4 step of `dt` whose stages (from velocity
+/// `v`, after the first half step of friction) reached `v1` and moved the
+/// body by `dp`: the second half of friction, over `rest` (half the step,
+/// and whatever of the first half the body spent stopped), and the
+/// position correction. A body that was stopped and is stopped again was
+/// held by friction all along: it does not move (the stages' `dp` came from
+/// forces friction held back; a body pushed gently on the ground crept).
+#[inline(always)]
+fn held(
+    forces: &Forces<'_>,
+    b: &BodyParams,
+    (v, v1): (Vec2, Vec2),
+    dp: Vec2,
+    rest: f32,
+    dt: f32,
+) -> (Vec2, Vec2) {
+    let v1 = forces.dissipation.apply_friction(v1, b, rest);
+    if v == Vec2::ZERO && v1 == Vec2::ZERO {
+        return (v1, Vec2::ZERO);
+    }
+    (v1, dp - v1 * dt)
 }
 
 /// One body's new velocity and position correction over `h`. A non-finite
