@@ -189,9 +189,7 @@ impl Walker<'_> {
         if by == Vec2::ZERO {
             return None;
         }
-        let half = self.shape.half_extents();
-        let swept =
-            crate::Aabb::from_centre(from, half).union(&crate::Aabb::from_centre(from + by, half));
+        let swept = self.swept(from, by);
         let mut best: Option<Hit> = None;
         self.near(&swept, |f: Found<'_>| {
             let at = self.place(&f);
@@ -224,9 +222,7 @@ impl Walker<'_> {
     /// Whether the character moving in a straight line from `from` by `by`
     /// would pass through a dynamic (not kinematic) body.
     fn cuts_dynamic(&self, from: Vec2, by: Vec2) -> bool {
-        let half = self.shape.half_extents();
-        let swept =
-            crate::Aabb::from_centre(from, half).union(&crate::Aabb::from_centre(from + by, half));
+        let swept = self.swept(from, by);
         let mut cuts = false;
         self.near(&swept, |f: Found<'_>| {
             if f.dynamic.is_some() && !f.meta.kinematic && !cuts {
@@ -235,6 +231,12 @@ impl Walker<'_> {
             }
         });
         cuts
+    }
+
+    /// The box the character's shape covers moving from `from` by `by`.
+    fn swept(&self, from: Vec2, by: Vec2) -> crate::Aabb {
+        let half = self.shape.half_extents();
+        crate::Aabb::from_centre(from, half).union(&crate::Aabb::from_centre(from + by, half))
     }
 
     /// Whether the character at `at` overlaps `f` (deeper than touching).
