@@ -3,7 +3,7 @@
 use crate::body::check_max_speed;
 use crate::constants::{DEFAULT_MAX_SPEED, DEFAULT_MIN_SPEED};
 use crate::error::non_negative;
-use crate::{ContactSettings, ForceForm, ForceModels, Integrator, PhysicsError};
+use crate::{BodyDef, BodyKind, ContactSettings, ForceForm, ForceModels, Integrator, PhysicsError};
 
 /// How a world steps. Start from [`Default`] and change what differs.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -66,6 +66,63 @@ impl WorldSettings {
         }
         if let Some(contacts) = &self.contacts {
             contacts.validate()?;
+        }
+        Ok(())
+    }
+
+    /// What a new body must be in a world of these settings, beyond its own
+    /// checks: what a restored one must be
+    /// ([`check_restored_body`](Self::check_restored_body)), and a kinematic
+    /// body's speed (which nothing else limits) at most `max_speed`, as
+    /// [`World::try_set_velocity`](crate::World::try_set_velocity) asks.
+    pub(crate) fn check_new_body(&self, def: &BodyDef) -> Result<(), PhysicsError> {
+        self.check_restored_body(def)?;
+        let max = self.max_speed;
+        let speed_sq = def.velocity.length_squared();
+        if def.kind == BodyKind::Kinematic && speed_sq > max * max {
+            return Err(PhysicsError::OutOfRange {
+                what: "BodyDef::velocity",
+                value: speed_sq.sqrt(),
+                allowed: "at most WorldSettings::max_speed for a kinematic body",
+            });
+        }
+        Ok(())
+    }
+
+    /// What a body restored from a snapshot must be in a world of these
+    /// settings, beyond its own checks: its velocity has a finite square,
+    /// and a dynamic body's speed limits
+    /// ([`check_speed_limits`](Self::check_speed_limits)) leave it room to
+    /// move. (A kinematic body may be faster than `max_speed`: the limit was
+    /// lowered after it was set going, which `set_settings` allows.)
+    pub(crate) fn check_restored_body(&self, def: &BodyDef) -> Result<(), PhysicsError> {
+        if !def.velocity.length_squared().is_finite() {
+            return Err(PhysicsError::NonFinite {
+                what: "BodyDef::velocity (its square)",
+            });
+        }
+        if def.kind == BodyKind::Dynamic {
+            self.check_speed_limits(def.min_speed, def.max_speed)?;
+        }
+        Ok(())
+    }
+
+    /// A dynamic body's minimum speed (`min`, or the world's) must not
+    /// exceed its maximum (`max`, or the world's): the snap to zero tests
+    /// the speed before the clamp, so speeds between the two would stop
+    /// dead and faster ones drop to the maximum.
+    pub(crate) fn check_speed_limits(
+        &self,
+        min: Option<f32>,
+        max: Option<f32>,
+    ) -> Result<(), PhysicsError> {
+        let (min, max) = (min.unwrap_or(self.min_speed), max.unwrap_or(self.max_speed));
+        if min > max {
+            return Err(PhysicsError::OutOfRange {
+                what: "minimum speed (the body's min_speed, or the world's)",
+                value: min,
+                allowed: "at most the maximum speed (the body's max_speed, or the world's)",
+            });
         }
         Ok(())
     }

@@ -4,7 +4,7 @@ use crate::bodies::{DynamicBodies, StaticBodies, heap};
 use crate::collider::ColliderRef;
 use crate::contact_state::ContactState;
 use crate::contact_world::ContactWorld;
-use crate::world::{Location, Slot, check_restored_body};
+use crate::world::{Location, Slot};
 use crate::{BodyId, BodyKind, PhysicsError, StepStats, World, WorldSettings};
 
 /// Everything a world needs to continue exactly where it was: settings,
@@ -169,7 +169,7 @@ impl WorldSnapshot {
         }
         let def = body.to_def();
         def.validate()
-            .and_then(|()| check_restored_body(&def, &self.settings))
+            .and_then(|()| self.settings.check_restored_body(&def))
             .map_err(|e| invalid(format!("dynamic body {i}: {e}")))?;
         // A kinematic body has inverse mass zero and infinite mass.
         let mass_ok = if m.kinematic {

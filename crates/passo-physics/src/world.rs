@@ -199,7 +199,7 @@ impl World {
             || settings.max_speed != self.settings.max_speed;
         if limits_changed && self.speed_overrides > 0 {
             for meta in self.dynamic.meta.iter().filter(|m| !m.kinematic) {
-                check_speed_limits(meta.min_speed, meta.max_speed, &settings)?;
+                settings.check_speed_limits(meta.min_speed, meta.max_speed)?;
             }
         }
         self.wake_all();
@@ -324,7 +324,7 @@ impl World {
     /// Adds a body; its definition is checked first.
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyId, PhysicsError> {
         def.validate()?;
-        check_body_in(&def, &self.settings)?;
+        self.settings.check_new_body(&def)?;
         let index = match self.free.pop() {
             Some(index) => index,
             None => {
@@ -709,67 +709,6 @@ pub(crate) fn step_forces<'a>(
         settings.force_form,
         settings.integrator,
     )
-}
-
-/// What a new body must be in a world of `settings`, beyond its own
-/// checks: what a restored one must be ([`check_restored_body`]), and a
-/// kinematic body's speed (which nothing else limits) at most the world's
-/// maximum speed, as [`try_set_velocity`](World::try_set_velocity) asks.
-pub(crate) fn check_body_in(def: &BodyDef, settings: &WorldSettings) -> Result<(), PhysicsError> {
-    check_restored_body(def, settings)?;
-    let max = settings.max_speed;
-    let speed_sq = def.velocity.length_squared();
-    if def.kind == BodyKind::Kinematic && speed_sq > max * max {
-        return Err(PhysicsError::OutOfRange {
-            what: "BodyDef::velocity",
-            value: speed_sq.sqrt(),
-            allowed: "at most WorldSettings::max_speed for a kinematic body",
-        });
-    }
-    Ok(())
-}
-
-/// What a body restored from a snapshot must be in a world of `settings`,
-/// beyond its own checks: its velocity has a finite square, and a dynamic
-/// body's speed limits ([`check_speed_limits`]) leave it room to move. (A
-/// kinematic body may be faster than `max_speed`: the limit was lowered
-/// after it was set going, which `set_settings` allows.)
-pub(crate) fn check_restored_body(
-    def: &BodyDef,
-    settings: &WorldSettings,
-) -> Result<(), PhysicsError> {
-    if !def.velocity.length_squared().is_finite() {
-        return Err(PhysicsError::NonFinite {
-            what: "BodyDef::velocity (its square)",
-        });
-    }
-    if def.kind == BodyKind::Dynamic {
-        check_speed_limits(def.min_speed, def.max_speed, settings)?;
-    }
-    Ok(())
-}
-
-/// A dynamic body's minimum speed (its own or the world's) must not exceed
-/// its maximum (its own or the world's): the snap to zero tests the speed
-/// before the clamp, so speeds between the two would stop dead and faster
-/// ones drop to the maximum.
-pub(crate) fn check_speed_limits(
-    min: Option<f32>,
-    max: Option<f32>,
-    settings: &WorldSettings,
-) -> Result<(), PhysicsError> {
-    let (min, max) = (
-        min.unwrap_or(settings.min_speed),
-        max.unwrap_or(settings.max_speed),
-    );
-    if min > max {
-        return Err(PhysicsError::OutOfRange {
-            what: "minimum speed (the body's min_speed, or the world's)",
-            value: min,
-            allowed: "at most the maximum speed (the body's max_speed, or the world's)",
-        });
-    }
-    Ok(())
 }
 
 #[cfg(test)]
