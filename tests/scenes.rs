@@ -286,3 +286,22 @@ fn a_bullet_in_a_scene_file_is_a_bullet_in_the_world_and_is_saved_again() {
     let saved = scene_from_world(&built.world, &scene.file, &built.bodies);
     assert!(saved.bodies[0].bullet && !saved.bodies[1].bullet);
 }
+
+#[test]
+fn a_file_that_validates_builds_its_generated_bodies_too() {
+    // A generator placing bodies beyond the world's coordinates, a body
+    // whose minimum speed exceeds the world's maximum: refused when the
+    // file is read, naming the field, not when the world is built.
+    let far = r#"(name: "far", collisions: (), generators: [Grid(origin: (-8e7, 2), columns: 2, rows: 1, spacing: (1, 1), body: (shape: Circle(radius: 0.2)))])"#;
+    let err = Scene::parse(far, "far.ron").unwrap_err().to_string();
+    assert!(
+        err.contains("generators[0]") && err.contains("position"),
+        "{err}"
+    );
+    let slow = r#"(name: "slow", collisions: (), max_speed: 5, bodies: [(shape: Circle(radius: 0.2), position: (0, 0), min_speed: 10)])"#;
+    let err = Scene::parse(slow, "slow.ron").unwrap_err().to_string();
+    assert!(
+        err.contains("bodies[0]") && err.contains("minimum speed"),
+        "{err}"
+    );
+}

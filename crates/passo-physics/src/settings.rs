@@ -70,11 +70,23 @@ impl WorldSettings {
         Ok(())
     }
 
-    /// What a new body must be in a world of these settings, beyond its own
-    /// checks: what a restored one must be
-    /// ([`check_restored_body`](Self::check_restored_body)), and a kinematic
-    /// body's speed (which nothing else limits) at most `max_speed`, as
-    /// [`World::try_set_velocity`](crate::World::try_set_velocity) asks.
+    /// Whether a world of these settings takes `def` in
+    /// [`World::add_body`](crate::World::add_body): the body's own checks
+    /// ([`BodyDef::validate`]), a velocity with a finite square, a dynamic
+    /// body's minimum speed (its own or the world's) at most its maximum,
+    /// and a kinematic body's speed (which nothing else limits) at most
+    /// `max_speed`, as [`World::try_set_velocity`](crate::World::try_set_velocity)
+    /// asks. For checking bodies before a world exists (a scene file).
+    ///
+    /// # Errors
+    /// What `add_body` would return.
+    pub fn check_body(&self, def: &BodyDef) -> Result<(), PhysicsError> {
+        def.validate()?;
+        self.check_new_body(def)
+    }
+
+    /// [`check_body`](Self::check_body) but the body's own checks (made
+    /// already).
     pub(crate) fn check_new_body(&self, def: &BodyDef) -> Result<(), PhysicsError> {
         self.check_restored_body(def)?;
         let max = self.max_speed;

@@ -144,7 +144,7 @@ pub(crate) fn settings(file: &SceneFile) -> WorldSettings {
 }
 
 /// The physics definition of a body spec placed at `position`.
-fn body_def(spec: &BodySpec, position: Vec2) -> BodyDef {
+pub(crate) fn body_def(spec: &BodySpec, position: Vec2) -> BodyDef {
     let mass = match (spec.mass, spec.density, &spec.shape) {
         (Some(mass), _, _) => mass,
         (None, Some(density), Some(shape)) => density * shape.area(),

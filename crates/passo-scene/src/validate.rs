@@ -122,6 +122,42 @@ impl SceneFile {
                 format!("make {total} bodies; at most {} are allowed", MAX_BODIES),
             ));
         }
+        self.validate_in_world(&c)
+    }
+
+    /// Checks each body the file lists and its generators make as the
+    /// world it builds will (its place within the world's coordinates, its
+    /// speeds against the world's limits, a platform's path against the
+    /// world's `max_speed`): a file that validates builds.
+    fn validate_in_world(&self, c: &Check<'_>) -> Result<(), SceneError> {
+        let settings = crate::build::settings(self);
+        let check = |spec: &BodySpec, position: Vec2, path: &dyn Fn() -> String| {
+            let def = crate::build::body_def(spec, position);
+            settings
+                .check_body(&def)
+                .map_err(|e| c.fail(&path(), physics_message(&e)))?;
+            if let Some(p) = &spec.path {
+                p.check_speed(self.max_speed)
+                    .map_err(|m| c.fail(&format!("{}.path", path()), m))?;
+            }
+            Ok(())
+        };
+        for (i, body) in self.bodies.iter().enumerate() {
+            check(body, body.position, &|| format!("bodies[{i}]"))?;
+        }
+        for (i, g) in self.generators.iter().enumerate() {
+            let mut first = Ok(());
+            crate::generate::generate(g, |spec, position| {
+                if first.is_ok() {
+                    first = check(spec, position, &|| format!("generators[{i}]"));
+                }
+            });
+            first?;
+        }
+        if let Some(path) = self.tilemap.as_ref().and_then(|t| t.path) {
+            path.check_speed(self.max_speed)
+                .map_err(|m| c.fail("tilemap.path", m))?;
+        }
         Ok(())
     }
 
