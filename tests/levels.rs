@@ -354,32 +354,27 @@ fn a_level_counts_against_the_scenes_body_limit() {
 
 #[test]
 fn odd_tile_sizes_and_far_spawn_points_are_errors() {
+    // The map `text` saved as `name`, read with its `ground` layer solid.
+    let load = |name: &str, text: &str| {
+        let mut r = level_ref(name);
+        r.layer = "ground".into();
+        r.load(&map_file(name, text))
+    };
     let zero_wide = tmx_with("").replace(r#"tilewidth="16""#, r#"tilewidth="0""#);
-    let mut r = level_ref("zero.tmx");
-    r.layer = "ground".into();
-    let err = r
-        .load(&map_file("zero.tmx", &zero_wide))
-        .unwrap_err()
-        .to_string();
+    let err = load("zero.tmx", &zero_wide).unwrap_err().to_string();
     assert!(
         err.contains("zero.tmx") && err.contains("at least 1 px"),
         "{err}"
     );
     let far = r#"<object id="7" name="p1" x="1e39" y="0"><point/></object>"#;
-    let mut r = level_ref("far.tmx");
-    r.layer = "ground".into();
-    let err = r
-        .load(&map_file("far.tmx", &tmx_with(far)))
-        .unwrap_err()
-        .to_string();
+    let err = load("far.tmx", &tmx_with(far)).unwrap_err().to_string();
     assert!(
         err.contains("object 7 `p1`") && err.contains("beyond the world's coordinates"),
         "{err}"
     );
     // A spawn point where the world reaches is kept.
     let near = r#"<object id="7" name="p1" x="16" y="0"><point/></object>"#;
-    r.file = Some("near.tmx".into());
-    let level = r.load(&map_file("near.tmx", &tmx_with(near))).unwrap();
+    let level = load("near.tmx", &tmx_with(near)).unwrap();
     assert_eq!(level.spawns, vec![("p1".to_owned(), Vec2::new(0.5, 0.5))]);
 }
 
