@@ -304,4 +304,7 @@ fn a_file_that_validates_builds_its_generated_bodies_too() {
         err.contains("bodies[0]") && err.contains("minimum speed"),
         "{err}"
     );
+    let world = r#"(name: "world", collisions: (), min_speed: 10, max_speed: 5)"#;
+    let err = Scene::parse(world, "world.ron").unwrap_err().to_string();
+    assert!(err.contains("min_speed"), "{err}");
 }

@@ -131,6 +131,11 @@ impl SceneFile {
     /// world's `max_speed`): a file that validates builds.
     fn validate_in_world(&self, c: &Check<'_>) -> Result<(), SceneError> {
         let settings = crate::build::settings(self);
+        // What `World::new` checks of them together (a minimum speed above
+        // the maximum).
+        settings
+            .validate()
+            .map_err(|e| c.fail("min_speed", physics_message(&e)))?;
         let check = |spec: &BodySpec, position: Vec2, path: &dyn Fn() -> String| {
             let def = crate::build::body_def(spec, position);
             settings
