@@ -153,18 +153,12 @@ impl Faces {
         let mut covered = 0;
         for (bit, against, axis) in faces {
             spans.clear();
-            // Only neighbours along the face (overlapping it by more than
-            // the tolerance, or half a face shorter than that): a floor
-            // under a box lies against its sides' lines too, but covers
-            // nothing of them.
-            let (from, to) = (a.min[axis], a.max[axis]);
-            let along = t.min(0.5 * (to - from));
             spans.extend(
                 neighbours
                     .iter()
                     .filter(|b| against(a, b, t))
                     .map(|b| (b.min[axis], b.max[axis]))
-                    .filter(|&(lo, hi)| hi.min(to) - lo.max(from) > along),
+                    .filter(|&span| Self::lies_along(a, span, axis, t)),
             );
             spans.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
             // Walk the spans in order: how far along the face is covered
@@ -185,12 +179,25 @@ impl Faces {
         covered
     }
 
+    /// Whether a neighbour spanning `lo..hi` along `axis` lies along a face
+    /// of box `a` on that axis: it overlaps the face by more than the
+    /// tolerance `t` (or by half a face shorter than that). A floor under
+    /// a box lies against its sides' lines too, but covers nothing of them.
+    fn lies_along(a: &crate::Aabb, (lo, hi): (f32, f32), axis: usize, t: f32) -> bool {
+        let (from, to) = (a.min[axis], a.max[axis]);
+        hi.min(to) - lo.max(from) > t.min(0.5 * (to - from))
+    }
+
     /// The faces of box `a` that box `b` covers: `b` lies flush against (or
     /// across) the face, within `tolerance` metres, along all of it.
     pub(crate) fn covered_by(a: &crate::Aabb, b: &crate::Aabb, tolerance: f32) -> u8 {
         let t = tolerance;
-        let spans_y = b.min.y <= a.min.y + t && b.max.y >= a.max.y - t;
-        let spans_x = b.min.x <= a.min.x + t && b.max.x >= a.max.x - t;
+        let spans_y = b.min.y <= a.min.y + t
+            && b.max.y >= a.max.y - t
+            && Self::lies_along(a, (b.min.y, b.max.y), 1, t);
+        let spans_x = b.min.x <= a.min.x + t
+            && b.max.x >= a.max.x - t
+            && Self::lies_along(a, (b.min.x, b.max.x), 0, t);
         let mut faces = 0;
         if spans_y && b.min.x <= a.max.x + t && b.max.x >= a.max.x + 2.0 * t {
             faces |= Self::RIGHT;
@@ -745,6 +752,7 @@ mod tests {
                 Faces::BOTTOM,
                 "{side}"
             );
+            assert_eq!(Faces::covered_by(&tiny, &floor, t), Faces::BOTTOM, "{side}");
             // A neighbour as tall, flush on its right (and at least the
             // 1 cm deep a cover needs), covers that face.
             let right = Aabb::from_centre(Vec2::new(h + 0.5, 0.0), Vec2::new(0.5, h));
