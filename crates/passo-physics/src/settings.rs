@@ -82,12 +82,6 @@ impl WorldSettings {
     /// What `add_body` would return.
     pub fn check_body(&self, def: &BodyDef) -> Result<(), PhysicsError> {
         def.validate()?;
-        self.check_new_body(def)
-    }
-
-    /// [`check_body`](Self::check_body) but the body's own checks (made
-    /// already).
-    pub(crate) fn check_new_body(&self, def: &BodyDef) -> Result<(), PhysicsError> {
         self.check_restored_body(def)?;
         let max = self.max_speed;
         let speed_sq = def.velocity.length_squared();

@@ -323,8 +323,7 @@ impl World {
 
     /// Adds a body; its definition is checked first.
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyId, PhysicsError> {
-        def.validate()?;
-        self.settings.check_new_body(&def)?;
+        self.settings.check_body(&def)?;
         let index = match self.free.pop() {
             Some(index) => index,
             None => {
