@@ -7,7 +7,8 @@
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, Shape, World};
 use passo_tests::{
-    add_ground, assert_falls_freely_along_a_wall, assert_slides_as_on_one_box, push_along_x,
+    add_box, add_ground, assert_falls_freely_along_a_wall, assert_slides_as_on_one_box,
+    push_along_x,
 };
 
 const DT: f32 = 1.0 / 60.0;
@@ -210,5 +211,134 @@ fn a_sensor_or_a_one_way_ledge_flush_on_the_ground_does_not_make_it_seamless() {
         }
         let p = world.body(body).unwrap().position;
         assert!(p.x.abs() < 1e-3 && (p.y - 0.5).abs() < 0.006, "{kind}: {p}");
+    }
+}
+
+/// A world with static ground and, on it, dynamic 1 m crates of 5 kg from
+/// x = 0 to x = `n`: `n` of them side by side, or one crate `n` m long.
+/// Returns it with the crates.
+fn crates(n: usize, side_by_side: bool) -> (World, Vec<BodyId>) {
+    let mut world = World::default();
+    add_ground(&mut world, 4.0 * n as f32);
+    let sizes = if side_by_side {
+        vec![1.0; n]
+    } else {
+        vec![n as f32]
+    };
+    let mut x = 0.0;
+    let ids = sizes
+        .iter()
+        .map(|&w| {
+            let id = add_box(
+                &mut world,
+                Vec2::new(x + 0.5 * w, 0.5),
+                Vec2::new(w, 1.0),
+                5.0,
+            );
+            x += w;
+            id
+        })
+        .collect();
+    (world, ids)
+}
+
+/// A frictionless body of `shape` resting on the crates at `x`.
+fn slider(world: &mut World, shape: Shape, x: f32) -> BodyId {
+    let def = BodyDef {
+        position: Vec2::new(x, 1.0 + shape.half_extents().y),
+        shape: Some(shape),
+        friction: 0.0,
+        ..Default::default()
+    };
+    world.add_body(def).unwrap()
+}
+
+#[test]
+fn a_box_and_a_circle_slide_across_flush_crates_as_across_one_long_crate() {
+    // Contacts let a resting body sink into the crate under it by up to the
+    // slop, so the next crate's side stood a few micrometres to millimetres
+    // above its bottom: a frictionless box sliding at 3 m/s stopped dead at
+    // the second seam, and a circle was thrown up at every seam (up to
+    // 0.57 m/s), losing a third of its speed over five seams.
+    for shape in [Shape::rect(0.4, 0.4), Shape::circle(0.2)] {
+        let run = |side_by_side: bool| {
+            let (mut world, _) = crates(12, side_by_side);
+            let body = slider(&mut world, shape, 0.3);
+            world.set_velocity(body, Vec2::new(3.0, 0.0));
+            // 3 m/s for 3 s: 9 m, across eight seams.
+            (0..180)
+                .map(|_| {
+                    world.step(DT);
+                    world.body(body).unwrap()
+                })
+                .collect::<Vec<_>>()
+        };
+        let (seamed, reference) = (run(true), run(false));
+        let end = seamed.last().unwrap().position.x;
+        assert!(end > 9.0, "{shape:?}: crossed the seams, at {end}");
+        for (tick, (s, r)) in seamed.iter().zip(&reference).enumerate() {
+            assert!(
+                s.velocity.y.abs() < 1e-3 && (s.position.y - r.position.y).abs() < 1e-4,
+                "{shape:?}, tick {tick}: at {} moving {}, on one crate at {} moving {}",
+                s.position,
+                s.velocity,
+                r.position,
+                r.velocity
+            );
+            // (Leaving each crate, gravity presses it on the crate's corner
+            // for a substep or two: 1e-4 m/s forward at most.)
+            assert!(
+                (s.velocity.x - r.velocity.x).abs() < 1e-3,
+                "{shape:?}, tick {tick}: {} m/s over the seams, {} on one crate",
+                s.velocity.x,
+                r.velocity.x
+            );
+        }
+    }
+}
+
+#[test]
+fn a_step_higher_than_the_slop_still_stops_a_box_and_a_body_leaving_a_crate_falls() {
+    // A crate 2 cm taller than the one the box slides on: a wall (the box
+    // pushes it along). (A circle meets that corner's normal and may hop
+    // onto it, as a ball hits a kerb.)
+    let mut world = World::default();
+    add_ground(&mut world, 20.0);
+    add_box(&mut world, Vec2::new(0.5, 0.5), Vec2::ONE, 5.0);
+    let wall = add_box(&mut world, Vec2::new(1.5, 0.51), Vec2::new(1.0, 1.02), 5.0);
+    let body = slider(&mut world, Shape::rect(0.4, 0.4), 0.3);
+    world.set_velocity(body, Vec2::new(3.0, 0.0));
+    for _ in 0..60 {
+        world.step(DT);
+        let (b, w) = (world.body(body).unwrap(), world.body(wall).unwrap());
+        assert!(
+            b.position.x + 0.2 < w.position.x - 0.5 + 0.005 && b.position.y < 1.2 + 0.005,
+            "the box climbed a 2 cm step: at {}, the taller crate at {}",
+            b.position,
+            w.position
+        );
+    }
+
+    for shape in [Shape::rect(0.4, 0.4), Shape::circle(0.2)] {
+        // Off the end of a lone crate: it falls in the first step it starts
+        // wholly past the crate, not held up by the crate's top beyond its
+        // edge (the crate closes on it along y only: gravity).
+        let (mut world, _) = crates(1, true);
+        let body = slider(&mut world, shape, 0.5);
+        world.set_velocity(body, Vec2::new(3.0, 0.0));
+        let mut airborne = 0;
+        for _ in 0..30 {
+            let past = world.body(body).unwrap().position.x - shape.half_extents().x > 1.0;
+            world.step(DT);
+            let b = world.body(body).unwrap();
+            if past {
+                airborne += 1;
+                assert!(
+                    b.velocity.y < -0.1,
+                    "{shape:?} held up past the edge: {b:?}"
+                );
+            }
+        }
+        assert!(airborne > 5, "{shape:?} left the crate");
     }
 }

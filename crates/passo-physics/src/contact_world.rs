@@ -103,6 +103,7 @@ impl ContactWorld {
             bodies: Colliders { dynamic, statics },
             gravity: step.gravity,
             h: step.h,
+            slop: settings.slop,
         };
         self.narrow.run(&narrow, step.parallel, &mut self.solved);
         if settings.sleeping && any_asleep {
@@ -247,6 +248,7 @@ impl ContactWorld {
             bodies,
             gravity: step.gravity,
             h: step.h,
+            slop,
         };
         // Merge the contacts found again into the solved list, in key order.
         let mut merge = Merge::new(&mut self.solved, &mut self.scratch);

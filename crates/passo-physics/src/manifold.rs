@@ -335,6 +335,79 @@ pub(crate) fn beyond_corner(
     Some(Manifold::one(normal, gap[axis], point))
 }
 
+/// A body closing on B along one axis while level with B's face along the
+/// other to within `tolerance` (overlapping it, or apart, by no more): B's
+/// face along that other axis, as if the step between them were not there.
+///
+/// Contacts let bodies sink into each other by up to the slop, so a box or
+/// circle sliding across boxes laid side by side meets the next box's side
+/// a few millimetres below its top: a box stopped dead at the seam, and a
+/// circle was thrown up by the corner at every seam. A step no higher than
+/// the tolerance is climbed instead: the contact takes the face the body
+/// rests against, and the push lifts it by what lies beyond the slop. A
+/// body held a hair above its floor meets the next top the same way, not
+/// the side below it.
+///
+/// Only for two boxes whose contact would take the other axis (the smaller
+/// overlap), or a circle whose centre lies beyond a box's corner (whose
+/// contact would take the corner's normal); only while B closes on A along
+/// the other axis (`closing` gives B's velocity relative to A's; a body
+/// moving off a ledge still falls); and only where B's face is open (see
+/// [`Faces`]). `None` otherwise, and for two circles.
+#[inline(always)]
+pub(crate) fn over_a_step(
+    sa: &Shape,
+    pa: Vec2,
+    sb: &Shape,
+    pb: Vec2,
+    closing: impl FnOnce() -> Vec2,
+    tolerance: f32,
+    faces_b: Faces,
+) -> Option<Manifold> {
+    let d = pb - pa;
+    // The box's half extents when the other shape is a circle.
+    let circle_and_box = match (*sa, *sb) {
+        (Shape::Box { .. }, Shape::Box { .. }) => None,
+        (Shape::Circle { .. }, Shape::Box { half_extents: h })
+        | (Shape::Box { half_extents: h }, Shape::Circle { .. }) => Some(h),
+        (Shape::Circle { .. }, Shape::Circle { .. }) => return None,
+    };
+    // The bounding boxes' overlap along each axis (negative: apart).
+    let (ha, hb) = (sa.half_extents(), sb.half_extents());
+    let overlap = ha + hb - d.abs();
+    let sign = |axis: usize| if d[axis] < 0.0 { -1.0 } else { 1.0 };
+    // A step along axis `k`: level with B's face to within the tolerance
+    // either way, where the plain contact would not take that face, and
+    // the face open.
+    let step = |k: usize| {
+        let stands = match circle_and_box {
+            None => overlap[1 - k] < overlap[k],
+            Some(h) => d.x.abs() > h.x && d.y.abs() > h.y,
+        };
+        overlap[k].abs() <= tolerance && stands && !faces_b.covered(k, -sign(k))
+    };
+    let (x, y) = (step(0), step(1));
+    if !x && !y {
+        return None;
+    }
+    // Met while B closes on A along the other axis.
+    let closing = closing();
+    let closes = |k: usize| -closing[1 - k] * sign(1 - k) > 0.0;
+    // On both: the smaller overlap (y on a tie, as in `box_box`).
+    let k = match (x && closes(0), y && closes(1)) {
+        (false, false) => return None,
+        (true, true) => usize::from(overlap.x >= overlap.y),
+        (x, _) => usize::from(!x),
+    };
+    let mut normal = Vec2::ZERO;
+    normal[k] = sign(k);
+    // Midway between the two along the step's axis, and between their
+    // centres along the other.
+    let mut point = (pa + pb) * 0.5;
+    point[k] = pa[k] + sign(k) * (ha[k] - 0.5 * overlap[k]);
+    Some(Manifold::one(normal, -overlap[k], point))
+}
+
 /// Whether a circle's centre, `d` from the centre of a box of half extents
 /// `h` (either way), lies beyond both of the box's faces at a corner, with
 /// their bounding boxes `gap` apart along some axis.
@@ -785,6 +858,63 @@ mod tests {
         assert_eq!(
             box_box_faces(pa, ha, pb, hb, Faces::default()),
             box_box(pa, ha, pb, hb)
+        );
+    }
+
+    #[test]
+    fn a_step_no_higher_than_the_tolerance_is_met_on_its_top_while_closing() {
+        let (tol, none) = (0.005, Faces::default());
+        // A 0.4 m box sliding right, 3 mm below the top of box B (1 m),
+        // 2 cm short of B's left face.
+        let (sa, pa) = (Shape::rect(0.4, 0.4), Vec2::new(-0.72, 0.697));
+        let (sb, pb) = (Shape::rect(1.0, 1.0), Vec2::ZERO);
+        let right = || Vec2::new(-3.0, 0.0); // B closes on A
+        let left = || Vec2::new(3.0, 0.0);
+        // The plain contact is B's side, 2 cm away.
+        let plain = box_box(pa, Vec2::splat(0.2), pb, Vec2::splat(0.5));
+        assert_eq!(plain.normal, Vec2::X);
+        let m = over_a_step(&sa, pa, &sb, pb, right, tol, none).unwrap();
+        assert_eq!(m.normal, Vec2::NEG_Y);
+        assert!((m.separation + 0.003).abs() < 1e-6, "{m:?}");
+        // Moving away, standing still, a step above the tolerance, or B's
+        // top covered: the plain contact stands.
+        assert_eq!(over_a_step(&sa, pa, &sb, pb, left, tol, none), None);
+        assert_eq!(
+            over_a_step(&sa, pa, &sb, pb, || Vec2::ZERO, tol, none),
+            None
+        );
+        let low = pa - Vec2::new(0.0, 0.01);
+        assert_eq!(over_a_step(&sa, low, &sb, pb, right, tol, none), None);
+        // Hovering 3 mm above the top (a body the speculative contact holds
+        // a hair above its floor): the top too, 3 mm away, not the side.
+        let above = pa + Vec2::new(0.0, 0.006);
+        let m = over_a_step(&sa, above, &sb, pb, right, tol, none).unwrap();
+        assert_eq!(m.normal, Vec2::NEG_Y);
+        assert!((m.separation - 0.003).abs() < 1e-6, "{m:?}");
+        let top = Faces(Faces::TOP);
+        assert_eq!(over_a_step(&sa, pa, &sb, pb, right, tol, top), None);
+        // B as A, and A as B: the same face, the normal reversed.
+        let swapped = over_a_step(&sb, pb, &sa, pa, left, tol, none).unwrap();
+        assert_eq!(swapped.normal, Vec2::Y);
+        // Side by side and flush (a row of a pyramid): the contact already
+        // takes the shallow axis, x; nothing changes.
+        let beside = Vec2::new(-1.0, 0.0);
+        assert_eq!(over_a_step(&sb, beside, &sb, pb, right, tol, none), None);
+
+        // A circle of 0.2 m sunk 3 mm, its centre beyond B's top-left
+        // corner: the corner's normal would throw it up and back.
+        let (sc, pc) = (Shape::circle(0.2), Vec2::new(-0.52, 0.697));
+        let corner = box_circle(pb, Vec2::splat(0.5), pc, 0.2).flipped();
+        assert!(corner.normal.x > 0.09, "{corner:?}");
+        let m = over_a_step(&sc, pc, &sb, pb, right, tol, none).unwrap();
+        assert_eq!(m.normal, Vec2::NEG_Y);
+        assert!((m.separation + 0.003).abs() < 1e-6, "{m:?}");
+        assert_eq!(over_a_step(&sc, pc, &sb, pb, left, tol, none), None);
+        // Two circles: never.
+        let pd = Vec2::new(0.39, 0.0);
+        assert_eq!(
+            over_a_step(&sc, pd, &sc, Vec2::ZERO, right, 0.02, none),
+            None
         );
     }
 }

@@ -7,7 +7,7 @@ use crate::collider::ColliderRef;
 use crate::constants::{ONE_WAY_DEPTH, SPECULATIVE_DISTANCE};
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::filter::CollisionFilter;
-use crate::manifold::{Faces, Manifold, beyond_corner, collide_seamless};
+use crate::manifold::{Faces, Manifold, beyond_corner, collide_seamless, over_a_step};
 use crate::parallel::for_chunks_max;
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::{BodyId, SensorPair, Shape};
@@ -61,6 +61,9 @@ pub(crate) struct Narrow<'a> {
     pub gravity: Vec2,
     /// The substep, seconds.
     pub h: f32,
+    /// How deep contacts let bodies sink, metres: steps no higher are
+    /// climbed (see [`over_a_step`]).
+    pub slop: f32,
 }
 
 impl Narrow<'_> {
@@ -150,11 +153,15 @@ impl Narrow<'_> {
         };
         let (pa, pb) = (position(&ca), position(&cb));
         let found = collide_seamless(&ca.shape, pa, &cb.shape, pb, margin_a + margin_b, faces);
-        // Beyond each other's corner: the face the motion meets first.
+        // A step no higher than the slop: the face the body climbs onto;
+        // beyond each other's corner: the face the motion meets first.
         let found = found.map(|m| {
             let closing = || self.step_velocity(&cb) - self.step_velocity(&ca);
             let dt = self.proxies.margin.dt;
-            beyond_corner(&ca.shape, pa, &cb.shape, pb, closing, dt, faces).unwrap_or(m)
+            let (sa, sb) = (&ca.shape, &cb.shape);
+            over_a_step(sa, pa, sb, pb, closing, self.slop, faces)
+                .or_else(|| beyond_corner(sa, pa, sb, pb, closing, dt, faces))
+                .unwrap_or(m)
         });
         match found {
             Some(m) if !self.may_close(&ca, margin_a, &cb, margin_b, &m) => Outcome::Skip,
