@@ -62,3 +62,45 @@ fn a_body_reusing_a_removed_bodys_slot_has_none_of_its_contacts() {
     assert_eq!(world.contacts_of(c).count(), 0);
     assert!(!world.is_standing(c, 0.8));
 }
+
+#[test]
+fn contacts_of_after_restoring_a_snapshot_from_before_the_first_step() {
+    // Box A in the air, box B on the ground. A snapshot from before the
+    // first step (the first save of a rollback session) has no contacts;
+    // restoring it and stepping a different timeline gave the same step
+    // count and contact revision as the abandoned one, so `contacts_of`
+    // kept that timeline's index: empty lists, `is_standing` false, and a
+    // game reading them desynchronised from a run that never rolled back.
+    let mut world = World::default();
+    add_ground(&mut world, 20.0);
+    let a = world
+        .add_body(BodyDef::new_dynamic(
+            Vec2::new(-3.0, 3.0),
+            Shape::rect(1.0, 1.0),
+        ))
+        .unwrap();
+    let b = world
+        .add_body(BodyDef::new_dynamic(
+            Vec2::new(3.0, 0.5),
+            Shape::rect(1.0, 1.0),
+        ))
+        .unwrap();
+    let saved = world.snapshot();
+    let mut straight = world.clone();
+    world.step(1.0 / 60.0);
+    assert_eq!(world.contacts_of(a).count(), 0, "A is in the air");
+    world.restore_from(&saved).unwrap();
+    for w in [&mut world, &mut straight] {
+        w.set_position(a, Vec2::new(-3.0, 0.5));
+        w.step(1.0 / 60.0);
+    }
+    for id in [a, b] {
+        assert_eq!(world.contacts_of(id).collect::<Vec<_>>(), scan(&world, id));
+        assert_eq!(world.contacts_of(id).count(), 1, "{id:?} on the ground");
+        assert!(world.is_standing(id, 0.8));
+        assert_eq!(
+            world.contacts_of(id).collect::<Vec<_>>(),
+            straight.contacts_of(id).collect::<Vec<_>>()
+        );
+    }
+}

@@ -140,8 +140,8 @@ impl World {
             let pairs = cw
                 .all_contacts()
                 .map(|(_, info)| (info.id_a.index(), info.id_b.index()));
-            // The lists change with steps, wakes and removals.
-            let version = (self.stats.steps, cw.revision());
+            // The lists change with steps, wakes, removals and restores.
+            let version = (self.stats.steps, self.edits, cw.revision());
             index.update_contacts(version, self.slots.len(), pairs);
             for &k in index.contacts_of(id.index()) {
                 let Some((c, info)) = cw.contact_at(k as usize) else {

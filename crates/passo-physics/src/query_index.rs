@@ -14,6 +14,13 @@ use std::sync::{Mutex, MutexGuard};
 /// When an index was built: the step count and the world's edit counter.
 pub(crate) type Version = (u64, u64);
 
+/// When the per-body contact lists were built: the step count, the
+/// world's edit counter and the contact world's revision. The edit counter
+/// counts restores: a snapshot from before the first contact step leaves
+/// no contact world, whose revision then counts again from zero, so step
+/// count and revision alone can repeat those of an abandoned timeline.
+pub(crate) type ContactsVersion = (u64, u64, u64);
+
 /// The trees and the contact lists of one version of the world.
 #[derive(Debug, Default)]
 pub(crate) struct QueryIndex {
@@ -29,7 +36,7 @@ pub(crate) struct QueryIndex {
     /// are positions in the world's contact order.
     offsets: Vec<u32>,
     contact_list: Vec<u32>,
-    contacts_built: Option<Version>,
+    contacts_built: Option<ContactsVersion>,
 }
 
 impl QueryIndex {
@@ -82,7 +89,7 @@ impl QueryIndex {
     /// contact order; `slots` is the number of slots.
     pub(crate) fn update_contacts(
         &mut self,
-        version: Version,
+        version: ContactsVersion,
         slots: usize,
         pairs: impl Iterator<Item = (u32, u32)> + Clone,
     ) {
