@@ -142,6 +142,40 @@ fn damaged_snapshots_are_refused_with_the_reason() {
         "{err}"
     );
 
+    // Carried touching pairs and sensor overlaps naming bodies that do not
+    // exist, or one body twice: the first step after the load reported
+    // `end` events for them (and, the list out of order, a false end and
+    // begin for a pair still touching).
+    assert!(
+        text.contains("touching:[("),
+        "the busy world has touching pairs"
+    );
+    let id = |i: u32, g: u32| format!("(index:{i},generation:{g})");
+    for (field, entry) in [
+        ("touching:[", format!("({},{}),", id(7, 3), id(9, 5))),
+        ("touching:[", format!("({},{}),", id(1, 0), id(1, 0))),
+        (
+            "sensors:[",
+            format!("(sensor:{},visitor:{}),", id(99_999, 0), id(43, 0)),
+        ),
+        // Two bodies that exist, the first no sensor.
+        (
+            "sensors:[",
+            format!("(sensor:{},visitor:{}),", id(42, 0), id(43, 0)),
+        ),
+    ] {
+        let damaged = text.replacen(field, &format!("{field}{entry}"), 1);
+        assert_ne!(damaged, text);
+        let Err(err) = World::from_snapshot(ron::from_str::<WorldSnapshot>(&damaged).unwrap())
+        else {
+            panic!("accepted {field}{entry}");
+        };
+        assert!(
+            matches!(err, PhysicsError::InvalidSnapshot(_)),
+            "{entry}: {err}"
+        );
+    }
+
     // A loop with a zero step.
     let mut game = GameSnapshot::capture(&world, &FixedTimestep::default());
     let ron_game = game.to_ron().replace("16666667", "0");

@@ -115,8 +115,16 @@ impl WorldSnapshot {
         self.check_slots(seen)?;
         self.check_counters()?;
         if let Some(contacts) = &self.contacts {
+            let meta_of = |id: BodyId| {
+                let slot = self.slots.get(id.index as usize)?;
+                match slot.location? {
+                    _ if slot.generation != id.generation => None,
+                    Location::Dynamic(i) => self.dynamic.meta.get(i as usize),
+                    Location::Static(i) => self.statics.meta.get(i as usize),
+                }
+            };
             contacts
-                .validate(&self.dynamic, &self.statics)
+                .validate(&self.dynamic, &self.statics, meta_of)
                 .map_err(PhysicsError::InvalidSnapshot)?;
         }
         Ok(())
