@@ -58,7 +58,9 @@ impl Camera2D {
     /// Zooms by `factor` (> 1 zooms in) keeping the world point `anchor`
     /// where it is on screen (the point under the mouse cursor). A factor
     /// not finite and > 0 changes nothing; an anchor not finite zooms about
-    /// the centre.
+    /// the centre. Zooming stops at a view 1 mm or 10 000 km high, and
+    /// never turns round: a view already beyond either (from `fit`) stays
+    /// as it is rather than jump to the limit the other way.
     pub fn zoom_about(&mut self, factor: f32, anchor: Vec2) {
         if !(factor.is_finite() && factor > 0.0) {
             return;
@@ -68,7 +70,8 @@ impl Camera2D {
         } else {
             self.centre
         };
-        let height = (self.height / factor).clamp(1e-3, 1e7);
+        let (lowest, highest) = (self.height.min(1e-3), self.height.max(1e7));
+        let height = (self.height / factor).clamp(lowest, highest);
         let applied = self.height / height;
         self.centre = anchor + (self.centre - anchor) / applied;
         self.height = height;
@@ -158,5 +161,34 @@ mod tests {
         assert_eq!(cam.height, 10.0, "bad factors are ignored");
         cam.pan(Vec2::new(1.0, 0.0));
         assert!((cam.centre.x - (1.5 + 1.0)).abs() < 1e-5);
+    }
+
+    #[test]
+    fn zoom_stops_at_its_limits_and_never_turns_round() {
+        let vp = (800, 600);
+        for factor in [0.5, 2.0] {
+            let mut cam = Camera2D::default();
+            for _ in 0..200 {
+                cam.zoom_about(factor, Vec2::ZERO);
+            }
+            assert_eq!(cam.height, if factor > 1.0 { 1e-3 } else { 1e7 });
+        }
+        // A view fitted beyond the limits: zooming out of a 1.5e8 m view
+        // used to zoom in 15x (to 1e7), zooming into a 1 µm one out 1000x.
+        let mut huge = Camera2D::fit(Vec2::new(-1e8, -1.0), Vec2::new(1e8, 1.0), vp);
+        let before = huge.height;
+        assert!(before > 1e8);
+        huge.zoom_about(0.5, Vec2::ZERO);
+        assert_eq!(huge.height, before, "out: no further");
+        huge.zoom_about(2.0, Vec2::ZERO);
+        assert_eq!(huge.height, before / 2.0, "in: as asked");
+        let p = Vec2::new(1.0, 1.0);
+        let mut tiny = Camera2D::fit(p, p, vp);
+        let before = tiny.height;
+        assert!(before < 1e-3);
+        tiny.zoom_about(1.1, p);
+        assert_eq!(tiny.height, before, "in: no further");
+        tiny.zoom_about(0.5, p);
+        assert_eq!(tiny.height, before * 2.0, "out: as asked");
     }
 }

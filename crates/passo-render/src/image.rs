@@ -15,13 +15,14 @@ pub struct RgbaImage {
 }
 
 impl RgbaImage {
-    /// The pixel at `(x, y)` (origin top left), or `None` outside.
+    /// The pixel at `(x, y)` (origin top left), or `None` outside (or
+    /// beyond `pixels`, should it be shorter than `width * height * 4`).
     pub fn get(&self, x: u32, y: u32) -> Option<[u8; 4]> {
         if x >= self.width || y >= self.height {
             return None;
         }
-        let i = ((y * self.width + x) * 4) as usize;
-        self.pixels[i..i + 4].try_into().ok()
+        let i = (y as usize * self.width as usize + x as usize) * 4;
+        self.pixels.get(i..i + 4)?.try_into().ok()
     }
 
     /// Writes the image as a PNG file.
@@ -89,5 +90,29 @@ impl RgbaImage {
                 .map(|(a, b)| (0..4).map(|i| a[i].abs_diff(b[i])).max().unwrap_or(0))
                 .collect(),
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn get_reads_pixels_and_answers_none_outside_or_past_a_short_buffer() {
+        let image = RgbaImage {
+            width: 4,
+            height: 4,
+            pixels: (0..64).collect(),
+        };
+        assert_eq!(image.get(1, 2), Some([36, 37, 38, 39]));
+        assert_eq!(image.get(4, 0), None);
+        assert_eq!(image.get(0, 4), None);
+        // The fields are public: a buffer shorter than the size says.
+        let short = RgbaImage {
+            pixels: vec![0; 8],
+            ..image
+        };
+        assert_eq!(short.get(1, 0), Some([0; 4]));
+        assert_eq!(short.get(3, 3), None, "it panicked");
     }
 }

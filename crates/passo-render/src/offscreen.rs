@@ -82,6 +82,8 @@ impl OffscreenTarget {
 /// Copies an RGBA8 or BGRA8 texture (with `COPY_SRC` usage) to memory,
 /// waiting for the GPU: strips the 256-byte row padding the copy needs and
 /// swaps BGRA to RGBA. Used for off-screen targets and window screenshots.
+/// A texture larger than the device's largest buffer (`max_buffer_size`,
+/// 256 MiB on lavapipe: an 8 193 × 8 193 target) is read in bands of rows.
 pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Result<RgbaImage, RenderError> {
     use wgpu::TextureFormat as F;
     let bgra = match texture.format() {
@@ -95,6 +97,49 @@ pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Result<RgbaImage, Ren
     };
     let (width, height) = (texture.width(), texture.height());
     let padded_row = (width * 4).div_ceil(ROW_ALIGN) * ROW_ALIGN;
+    let band = rows_per_band(padded_row, height, gpu.device.limits().max_buffer_size);
+    let mut pixels = Vec::with_capacity((width * 4) as usize * height as usize);
+    for first in (0..height).step_by(band as usize) {
+        read_rows(
+            gpu,
+            texture,
+            first..(first + band).min(height),
+            padded_row,
+            &mut pixels,
+        )?;
+    }
+    if bgra {
+        for p in pixels.chunks_exact_mut(4) {
+            p.swap(0, 2);
+        }
+    }
+    Ok(RgbaImage {
+        width,
+        height,
+        pixels,
+    })
+}
+
+/// How many rows of `padded_row` bytes one read-back buffer holds: all
+/// `height` if they fit in `max_buffer_size` bytes, else as many as fit
+/// (at least one).
+fn rows_per_band(padded_row: u32, height: u32, max_buffer_size: u64) -> u32 {
+    let fit = max_buffer_size / u64::from(padded_row.max(1));
+    u32::try_from(fit)
+        .unwrap_or(u32::MAX)
+        .clamp(1, height.max(1))
+}
+
+/// Copies the texture's `rows` to memory through one buffer, appending
+/// them without their padding to `pixels`.
+fn read_rows(
+    gpu: &Gpu,
+    texture: &wgpu::Texture,
+    rows: std::ops::Range<u32>,
+    padded_row: u32,
+    pixels: &mut Vec<u8>,
+) -> Result<(), RenderError> {
+    let (width, height) = (texture.width(), rows.end - rows.start);
     let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("passo readback"),
         size: u64::from(padded_row) * u64::from(height),
@@ -107,7 +152,14 @@ pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Result<RgbaImage, Ren
             label: Some("passo readback"),
         });
     encoder.copy_texture_to_buffer(
-        texture.as_image_copy(),
+        wgpu::TexelCopyTextureInfo {
+            origin: wgpu::Origin3d {
+                x: 0,
+                y: rows.start,
+                z: 0,
+            },
+            ..texture.as_image_copy()
+        },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
             layout: wgpu::TexelCopyBufferLayout {
@@ -135,7 +187,6 @@ pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Result<RgbaImage, Ren
         .map_err(|e| RenderError::Readback(e.to_string()))?
         .map_err(|e| RenderError::Readback(e.to_string()))?;
     let row = (width * 4) as usize;
-    let mut pixels = Vec::with_capacity(row * height as usize);
     {
         let data = slice
             .get_mapped_range()
@@ -145,14 +196,20 @@ pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Result<RgbaImage, Ren
         }
     }
     buffer.unmap();
-    if bgra {
-        for p in pixels.chunks_exact_mut(4) {
-            p.swap(0, 2);
-        }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rows_per_band;
+
+    #[test]
+    fn bands_hold_as_many_rows_as_the_largest_buffer_does() {
+        // 16 384 pixels a row (64 KiB), 256 MiB buffers: 4 096 rows a band.
+        assert_eq!(rows_per_band(65_536, 4_200, 256 << 20), 4_096);
+        assert_eq!(rows_per_band(65_536, 100, 256 << 20), 100, "all in one");
+        assert_eq!(rows_per_band(65_536, 4_200, 1_000), 1, "at least a row");
+        assert_eq!(rows_per_band(256, 0, 256 << 20), 1);
+        assert_eq!(rows_per_band(256, 10, u64::MAX), 10);
     }
-    Ok(RgbaImage {
-        width,
-        height,
-        pixels,
-    })
 }

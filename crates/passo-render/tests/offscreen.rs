@@ -314,3 +314,48 @@ fn a_camera_that_shows_nothing_and_an_oversized_target_are_safe() {
     let image = draw(&gpu, &wide, &Camera2D::default(), &list);
     assert_eq!((image.width, image.height), (max, 2));
 }
+
+#[test]
+fn a_target_larger_than_the_largest_buffer_is_read_in_bands() {
+    // `OffscreenTarget::new` takes sides up to the largest texture (16 384
+    // on lavapipe), but one read-back buffer of 16 384 × 4 200 pixels
+    // (275 MB) is past the largest buffer (256 MiB there): `read` panicked
+    // in wgpu. It now reads bands of rows, each in its own buffer.
+    let gpu = gpu();
+    let limits = gpu.device.limits();
+    let width = limits.max_texture_dimension_2d;
+    let row = u64::from(width) * 4;
+    let height = u32::try_from(limits.max_buffer_size / row + 104)
+        .unwrap_or(u32::MAX)
+        .min(limits.max_texture_dimension_2d);
+    let target = OffscreenTarget::new(&gpu, width, height);
+    assert_eq!(target.size(), (width, height));
+    let needs_bands = row * u64::from(height) > limits.max_buffer_size;
+    // One pixel a metre: a red band along the top, one along the bottom.
+    let (w, h) = (width as f32, height as f32);
+    let camera = Camera2D::fit(Vec2::ZERO, Vec2::new(w, h), (width, height));
+    let mut list = DrawList::new(BACKGROUND);
+    // (Past the target's sides and bottom: no anti-aliased edge there.)
+    list.rect(Vec2::new(0.5 * w, h - 25.0), Vec2::new(w, 25.0), RED);
+    list.rect(Vec2::new(0.5 * w, 50.0), Vec2::new(w, 100.0), RED);
+    let image = draw(&gpu, &target, &camera, &list);
+    assert_eq!((image.width, image.height), (width, height));
+    assert_eq!(image.pixels.len(), (row * u64::from(height)) as usize);
+    for (y, colour) in [
+        (10, RED),
+        (40, RED),
+        (60, BACKGROUND),
+        (height / 2, BACKGROUND),
+        (height - 170, BACKGROUND),
+        (height - 130, RED),
+        (height - 1, RED),
+    ] {
+        for x in [0, width / 2, width - 1] {
+            let p = image.get(x, y).unwrap();
+            assert!(
+                close(p, colour, 1),
+                "({x}, {y}) of {width} x {height} (bands: {needs_bands}): {p:?}"
+            );
+        }
+    }
+}
