@@ -26,16 +26,21 @@ pub const MAX_TILE_DATA_BYTES: u64 = 4 * MAX_FILE_BYTES;
 
 /// Reads `path` whole, if it is at most [`MAX_FILE_BYTES`] long.
 pub(crate) fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
+    read_at_most(path, MAX_FILE_BYTES)
+}
+
+/// Reads `path` whole, if it is at most `limit` bytes long: never more
+/// than `limit + 1` bytes are read, so a device or a pipe that never ends
+/// (`/dev/zero`) is an error, not all the memory there is. (The size a
+/// file's metadata gives is no bound: it is 0 for those.)
+pub fn read_at_most(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     let file = std::fs::File::open(path)?;
     let mut bytes = Vec::new();
-    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
+    file.take(limit.saturating_add(1)).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
         return Err(std::io::Error::new(
             std::io::ErrorKind::InvalidData,
-            format!(
-                "is larger than a file may be ({} MiB)",
-                MAX_FILE_BYTES >> 20
-            ),
+            format!("is larger than a file may be ({} MiB)", limit >> 20),
         ));
     }
     Ok(bytes)

@@ -23,3 +23,24 @@ pub(crate) fn count_in(min: u64, max: u64) -> impl clap::builder::TypedValuePars
         .range(min..=max)
         .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
 }
+
+/// Reads `path` whole if it is at most `limit` bytes long (a `what` file:
+/// "replay", "snapshot"), reading no more than that: a device or a pipe
+/// that never ends is an error, not all the memory there is.
+pub(crate) fn read_file_at_most(
+    path: &std::path::Path,
+    limit: u64,
+    what: &str,
+) -> anyhow::Result<Vec<u8>> {
+    passo_scene::read_at_most(path, limit).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::InvalidData {
+            anyhow::anyhow!(
+                "{} is larger than a {what} file may be ({} MiB)",
+                path.display(),
+                limit >> 20
+            )
+        } else {
+            anyhow::Error::new(e).context(format!("reading {}", path.display()))
+        }
+    })
+}

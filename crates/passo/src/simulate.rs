@@ -47,11 +47,16 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     }
     let dt = timestep.dt();
     let world = &mut built.world;
+    // A resumed run is the snapshot's world at the snapshot's rate.
+    let resumed = args.resume.as_ref().map_or(String::new(), |p| {
+        format!(" (resumed from {})", p.display())
+    });
+    let hz = format!("{:.6}", timestep.hz());
     eprintln!(
-        "{}: {} bodies, {} Hz, stages: {:?}",
+        "{}{resumed}: {} bodies, {} Hz, stages: {:?}",
         scene.file.name,
         world.len(),
-        scene.file.rate_hz,
+        hz.trim_end_matches('0').trim_end_matches('.'),
         world.active_stages()
     );
 

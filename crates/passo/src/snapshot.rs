@@ -3,6 +3,7 @@
 
 use anyhow::{Context, Result, bail};
 use passo_loop::FixedTimestep;
+use passo_physics::constants::MAX_STEP;
 use passo_physics::{World, WorldSnapshot};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -19,6 +20,10 @@ pub struct GameSnapshot {
 }
 
 impl GameSnapshot {
+    /// The largest snapshot file [`load`](Self::load) reads: 1 GiB (a RON
+    /// snapshot takes a few hundred bytes a body, binary about a hundred).
+    pub const MAX_FILE_BYTES: u64 = 1 << 30;
+
     /// Captures a world and its loop.
     pub fn capture(world: &World, timestep: &FixedTimestep) -> Self {
         Self {
@@ -27,9 +32,14 @@ impl GameSnapshot {
         }
     }
 
-    /// Rebuilds the world and the loop, after checking both.
+    /// Rebuilds the world and the loop, after checking both (a step longer
+    /// than the world takes, [`MAX_STEP`], is refused too).
     pub fn restore(self) -> Result<(World, FixedTimestep)> {
         self.timestep.validate().context("snapshot loop")?;
+        let dt = self.timestep.step().as_secs_f64();
+        if dt > f64::from(MAX_STEP) {
+            bail!("snapshot loop: a step of {dt} s is longer than a world steps ({MAX_STEP} s)");
+        }
         let world = World::from_snapshot(self.world).context("snapshot world")?;
         Ok((world, self.timestep))
     }
@@ -67,7 +77,7 @@ impl GameSnapshot {
 
     /// Reads a file written by [`save`](Self::save).
     pub fn load(path: &Path) -> Result<Self> {
-        let data = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
+        let data = crate::read_file_at_most(path, Self::MAX_FILE_BYTES, "snapshot")?;
         let parsed = if is_ron(path) {
             match std::str::from_utf8(&data) {
                 Ok(text) => Self::from_ron(text),

@@ -1,5 +1,6 @@
 //! The command line, run as a user runs it.
 
+use passo::snapshot::GameSnapshot;
 use std::process::{Command, Output};
 
 fn passo(args: &[&str]) -> Output {
@@ -136,6 +137,70 @@ fn a_saved_snapshot_resumes_to_the_same_hash_as_an_uninterrupted_run() {
         assert!(rest.status.success(), "{}", stderr(&rest));
         assert_eq!(stdout(&rest), stdout(&whole), "{name}");
     }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn snapshots_and_replays_no_run_could_make_are_refused_and_a_resume_says_so() {
+    let dir = std::env::temp_dir().join(format!("passo-cli-bad-snap-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A loop whose step is longer than a world steps (two hours): the
+    // resumed run panicked in `World::step`.
+    let world = passo_physics::World::default();
+    let slow = passo_loop::FixedTimestep::from_hz(1.0 / 7200.0).unwrap();
+    let snapshot = GameSnapshot::capture(&world, &slow);
+    let err = snapshot.clone().restore().unwrap_err().to_string();
+    assert!(err.contains("longer than a world steps (3600 s)"), "{err}");
+    let file = dir.join("slow.ron");
+    snapshot.save(&file).unwrap();
+    let out = passo(&[
+        "simulate",
+        "projectile",
+        "--ticks",
+        "1",
+        "--resume",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    // Files that never end are refused at the limit, not read into all
+    // the memory there is.
+    for (args, want) in [
+        (
+            vec!["simulate", "projectile", "--resume", "/dev/zero"],
+            "larger than a snapshot file may be (1024 MiB)",
+        ),
+        (
+            vec!["replay", "/dev/zero"],
+            "larger than a replay file may be (64 MiB)",
+        ),
+    ] {
+        let out = passo(&args);
+        assert_eq!(out.status.code(), Some(1), "{args:?}");
+        assert!(stderr(&out).contains(want), "{args:?}: {}", stderr(&out));
+    }
+    // A resumed run names its snapshot and runs at its rate (100 Hz), not
+    // the scene's (60 Hz).
+    let world = passo_physics::World::default();
+    let fast = passo_loop::FixedTimestep::from_hz(100.0).unwrap();
+    let file = dir.join("fast.ron");
+    GameSnapshot::capture(&world, &fast).save(&file).unwrap();
+    let out = passo(&[
+        "simulate",
+        "projectile",
+        "--ticks",
+        "100",
+        "--resume",
+        file.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains(&format!(
+            "(resumed from {}): 0 bodies, 100 Hz",
+            file.display()
+        )),
+        "{err}"
+    );
     std::fs::remove_dir_all(dir).unwrap();
 }
 

@@ -563,3 +563,51 @@ fn a_big_scene_keeps_fewer_ticks_within_the_rewind_budget() {
         sim.scene.rewind_bytes()
     );
 }
+
+#[test]
+fn changing_the_rate_moves_platforms_and_the_plot_on_from_where_they_were() {
+    // The platforms' clock and the plot's time were ticks × the current
+    // step: at 60 Hz → 120 Hz after 6 s, the lift jumped 2.4 m in a tick
+    // (290 m/s) and the plot's time went back to 3 s.
+    let mut sim = playground();
+    let lifts: Vec<_> = sim.scene.lanes[0]
+        .world
+        .bodies()
+        .filter(|b| b.kind == passo_physics::BodyKind::Kinematic)
+        .map(|b| b.id)
+        .collect();
+    assert!(!lifts.is_empty(), "the playground has moving platforms");
+    let place = |sim: &Sim| -> Vec<Vec2> {
+        let world = &sim.scene.lanes[0].world;
+        lifts
+            .iter()
+            .map(|&id| world.body(id).unwrap().position)
+            .collect()
+    };
+    let tick = |sim: &mut Sim| {
+        sim.session.timestep.advance_ticks(1);
+        sim.tick();
+    };
+    for _ in 0..360 {
+        tick(&mut sim);
+    }
+    let t_before = *sim.scene.history.time.back().unwrap();
+    let before = place(&sim);
+    sim.command(Command::Rate(120.0)).unwrap();
+    for _ in 0..3 {
+        tick(&mut sim);
+    }
+    for (a, b) in before.iter().zip(place(&sim)) {
+        // Three ticks of 1/120 s at the paths' few m/s: centimetres.
+        assert!((b - *a).length() < 0.1, "a platform jumped from {a} to {b}");
+    }
+    let t_after = *sim.scene.history.time.back().unwrap();
+    assert!(
+        (t_after - (t_before + 3.0 / 120.0)).abs() < 1e-4,
+        "plot time {t_before} -> {t_after}"
+    );
+    for id in &lifts {
+        let v = sim.scene.lanes[0].world.body(*id).unwrap().velocity;
+        assert!(v.length() < 10.0, "a platform moves at {v}");
+    }
+}

@@ -116,6 +116,35 @@ fn a_recorded_run_replays_to_the_same_final_state() {
 }
 
 #[test]
+fn a_recording_that_ends_with_a_command_replays_to_its_final_state() {
+    // Paused after the last tick, a ball spawned, the recording stopped:
+    // the recorded hash counts the ball, and playback applies commands
+    // recorded after the last tick before it ends (it skipped them, so the
+    // file failed `passo replay`). Also a replay of no tick at all.
+    for ticks in [30, 0] {
+        let mut sim = load(&Entry::File("playground".into())).unwrap();
+        sim.start_recording().unwrap();
+        for _ in 0..ticks {
+            sim.session.timestep.advance_ticks(1);
+            sim.tick();
+        }
+        sim.command(Command::Spawn {
+            at: [2.0, 6.0],
+            round: true,
+        })
+        .unwrap();
+        let replay = sim.stop_recording().unwrap();
+        assert_eq!(replay.ticks, ticks);
+        assert_eq!(replay.commands.len(), 1);
+        assert_eq!(
+            run_replay(&replay).unwrap(),
+            replay.final_hash,
+            "{ticks} ticks"
+        );
+    }
+}
+
+#[test]
 fn a_different_input_gives_a_different_state() {
     let mut replay = record(Duration::from_micros(16_667));
     let (_, input) = replay.inputs.iter_mut().find(|(_, i)| i.right).unwrap();
@@ -215,7 +244,31 @@ fn replays_out_of_order_past_the_end_absurd_or_endless_are_refused() {
         ticks: u64::MAX,
         ..replay.clone()
     };
+    let mut nan_knobs = replay.clone();
+    let mut knobs = load(&Entry::File("playground".into()))
+        .unwrap()
+        .session
+        .knobs;
+    knobs.gravity = f32::NAN;
+    nan_knobs.commands.push((
+        replay.ticks,
+        Command::Knobs {
+            knobs,
+            friction: false,
+            restitution: false,
+            drag: false,
+        },
+    ));
     let cases = [
+        (
+            "nan_knobs",
+            nan_knobs,
+            // (`passo replay` panicked on it in the walk's force clamp.)
+            format!(
+                "the slider values set at tick {} must be finite, got {knobs:?}",
+                replay.ticks
+            ),
+        ),
         (
             "late",
             late,

@@ -174,8 +174,9 @@ pub(super) fn integration(args: &IntegrationBenchArgs) -> Result<()> {
     Ok(())
 }
 
-/// The exponent `k` of the least-squares fit `cost = c n^k`.
-pub fn fitted_exponent(points: &[(f64, f64)]) -> f64 {
+/// The exponent `k` of the least-squares fit `cost = c n^k`, or `None`
+/// when the points do not span two sizes (no line fits one point).
+pub fn fitted_exponent(points: &[(f64, f64)]) -> Option<f64> {
     let n = points.len() as f64;
     let logs: Vec<(f64, f64)> = points.iter().map(|(x, y)| (x.ln(), y.ln())).collect();
     let (mx, my) = logs
@@ -184,7 +185,7 @@ pub fn fitted_exponent(points: &[(f64, f64)]) -> f64 {
     let (sxy, sxx) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
         (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
     });
-    sxy / sxx
+    (sxx > 0.0).then(|| sxy / sxx)
 }
 
 pub(super) fn scaling(args: &ScalingBenchArgs) -> Result<()> {
@@ -205,9 +206,26 @@ pub(super) fn scaling(args: &ScalingBenchArgs) -> Result<()> {
         );
         points.push((n as f64, t.mean_ms));
     }
-    println!(
-        "\nfitted exponent of ms per step against bodies: {:.3}",
-        fitted_exponent(&points)
-    );
+    match fitted_exponent(&points) {
+        Some(k) => println!("\nfitted exponent of ms per step against bodies: {k:.3}"),
+        None => println!("\nno exponent fitted: give two sizes or more (--sizes)"),
+    }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fitted_exponent;
+
+    #[test]
+    fn the_exponent_fits_a_power_law_and_needs_two_sizes() {
+        let linear = [(1e3, 2.0), (1e4, 20.0), (1e5, 200.0)];
+        assert!((fitted_exponent(&linear).unwrap() - 1.0).abs() < 1e-12);
+        let square = [(10.0, 1.0), (20.0, 4.0)];
+        assert!((fitted_exponent(&square).unwrap() - 2.0).abs() < 1e-12);
+        // One size (or one twice): `passo bench scaling` printed NaN.
+        assert_eq!(fitted_exponent(&[(1e3, 2.0)]), None);
+        assert_eq!(fitted_exponent(&[(1e3, 2.0), (1e3, 2.1)]), None);
+        assert_eq!(fitted_exponent(&[]), None);
+    }
 }

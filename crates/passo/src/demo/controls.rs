@@ -95,6 +95,23 @@ impl Knobs {
         }
     }
 
+    /// Whether every slider value is finite (as the panel's sliders always
+    /// are; a replay file could say otherwise).
+    pub fn is_finite(&self) -> bool {
+        [
+            self.gravity,
+            self.friction,
+            self.density,
+            self.drag_scale,
+            self.restitution,
+            self.min_speed,
+            self.max_speed,
+            self.wind_speed,
+        ]
+        .iter()
+        .all(|v| v.is_finite())
+    }
+
     /// `settings` with the sliders' force models, speed limits and contact
     /// switches.
     pub fn applied_to(&self, settings: WorldSettings) -> WorldSettings {

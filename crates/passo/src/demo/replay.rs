@@ -95,7 +95,7 @@ impl Replay {
 
     /// Checks what a recording could have produced: inputs and commands in
     /// tick order, none after the last tick, fixed rates a scene file may
-    /// have (1 to 10 000 Hz), and at most [`MAX_TICKS`](Self::MAX_TICKS)
+    /// have (1 to 10 000 Hz), finite slider values, and at most [`MAX_TICKS`](Self::MAX_TICKS)
     /// ticks, [`MAX_COMMANDS`](Self::MAX_COMMANDS) commands,
     /// [`MAX_REBUILDS`](Self::MAX_REBUILDS) of them rebuilding the scene,
     /// and rain counts up to [`MAX_RAIN_COUNT`](Self::MAX_RAIN_COUNT). A
@@ -148,6 +148,9 @@ impl Replay {
                         Self::MAX_RAIN_COUNT
                     );
                 }
+                Command::Knobs { knobs, .. } if !knobs.is_finite() => {
+                    bail!("the slider values set at tick {tick} must be finite, got {knobs:?}");
+                }
                 Command::Reset | Command::RainCount(_) => rebuilds += 1,
                 _ => {}
             }
@@ -166,18 +169,9 @@ impl Replay {
     /// (a recording of hours is a few megabytes).
     pub fn load(path: &std::path::Path) -> anyhow::Result<Self> {
         use anyhow::Context;
-        let bytes = std::fs::metadata(path)
-            .with_context(|| format!("reading {}", path.display()))?
-            .len();
-        if bytes > passo_scene::MAX_FILE_BYTES {
-            anyhow::bail!(
-                "{} is {bytes} bytes, larger than a replay file may be ({} MiB)",
-                path.display(),
-                passo_scene::MAX_FILE_BYTES >> 20
-            );
-        }
-        let text =
-            std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+        let bytes = crate::read_file_at_most(path, passo_scene::MAX_FILE_BYTES, "replay")?;
+        let text = String::from_utf8(bytes)
+            .with_context(|| format!("{} is not UTF-8 text", path.display()))?;
         Self::from_ron(&text).with_context(|| format!("{} is not a Passo replay", path.display()))
     }
 

@@ -6,7 +6,7 @@
 use super::catalogue::Entry;
 use super::controls::Knobs;
 use super::replay::{Command, Replay};
-use super::scene_state::SceneState;
+use super::scene_state::{Clock, SceneState};
 use super::session::{Session, Stats};
 use anyhow::Result;
 use glam::Vec2;
@@ -27,6 +27,8 @@ pub struct Sim {
     pub rewinding: bool,
     /// Whether the loop was paused when the timeline was first dragged.
     paused_before_scrub: bool,
+    /// The plot's time: the loop's ticks, run on from a change of rate.
+    plot_clock: Clock,
 }
 
 /// Loads a scene of the list.
@@ -69,6 +71,7 @@ impl Sim {
             scene,
             rewinding: false,
             paused_before_scrub: false,
+            plot_clock: Clock::default(),
         }
     }
 
@@ -125,10 +128,20 @@ impl Sim {
         self.session.record_input(self.scene.input());
         let timestep = &self.session.timestep;
         let dt = timestep.dt();
-        let t = (timestep.tick() as f64 * timestep.step().as_secs_f64()) as f32;
+        let t = self
+            .plot_clock
+            .time(timestep.tick(), timestep.step().as_secs_f64()) as f32;
         self.scene.step(dt, t, &self.session.knobs);
         self.session.count_tick();
+        self.end_playback_if_due();
+    }
+
+    /// Ends a playback that has played its last tick. Commands recorded
+    /// after that tick (made while paused, before the recording stopped)
+    /// apply first: the recorded hash was taken after them.
+    fn end_playback_if_due(&mut self) {
         if self.session.playback_due_to_end() {
+            self.replay_commands();
             let hash = self.scene.state_hash();
             self.session.end_playback(hash);
         }
@@ -200,13 +213,18 @@ impl Sim {
 
     /// In playback, applies the commands due and takes the recorded input.
     fn replay_commands_and_input(&mut self) {
+        self.replay_commands();
+        if let Some(input) = self.session.replayed_input() {
+            self.scene.replace_input(input);
+        }
+    }
+
+    /// In playback, applies the commands due.
+    fn replay_commands(&mut self) {
         while let Some(command) = self.session.next_replayed_command() {
             if let Err(e) = self.apply(&command) {
                 log::warn!("replayed command failed: {e:#}");
             }
-        }
-        if let Some(input) = self.session.replayed_input() {
-            self.scene.replace_input(input);
         }
     }
 
@@ -291,6 +309,8 @@ impl Sim {
         self.session.stop_replays();
         self.reset()?;
         self.session.start_playback(replay);
+        // A replay of no tick ends at once (after its commands).
+        self.end_playback_if_due();
         Ok(())
     }
 
