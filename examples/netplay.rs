@@ -92,7 +92,11 @@ impl Game {
         self.tick += 1;
     }
 
-    /// A checksum of the whole game state, without allocating.
+    /// A checksum of what the players see, without allocating: every
+    /// body's position and velocity bits ([`World::state_hash`]) and the
+    /// tick. State that does not show (warm-start impulses, sleep timers,
+    /// a force model's own counters) is not in it; it shows as soon as it
+    /// moves a body, which is when GGRS's comparison catches it.
     pub fn checksum(&self) -> u128 {
         let mut h = StateHasher::new();
         h.write_u64(self.world.state_hash());
@@ -165,7 +169,9 @@ impl passo_physics::ForceModel for Nondeterministic {
 /// back `check_distance` frames and simulates them again, comparing
 /// checksums. Returns the final checksum, or GGRS's error (a checksum
 /// mismatch when the game is not deterministic). With `broken`, the game
-/// gets a [`Nondeterministic`] force model.
+/// gets a [`Nondeterministic`] force model. Use a check distance of 2 or
+/// more: with 1, the broken model passed GGRS 0.13's sync test (2 and 7
+/// catch it, `tests/netplay.rs`).
 pub fn sync_test(frames: u64, check_distance: usize, broken: bool) -> Result<u128, GgrsError> {
     let mut game = Game::new();
     if broken {

@@ -20,9 +20,12 @@ fn the_sync_test_passes_and_ends_where_a_straight_run_ends() {
 
 #[test]
 fn a_force_model_that_is_not_deterministic_is_caught() {
-    match sync_test(60, 7, true) {
-        Err(GgrsError::MismatchedChecksum { .. }) => {}
-        other => panic!("expected a checksum mismatch, got {other:?}"),
+    // At the check distances the docs advise, the shortest and a longer.
+    for distance in [2, 7] {
+        match sync_test(60, distance, true) {
+            Err(GgrsError::MismatchedChecksum { .. }) => {}
+            other => panic!("distance {distance}: expected a checksum mismatch, got {other:?}"),
+        }
     }
 }
 
