@@ -364,37 +364,59 @@ pub(crate) fn over_a_step(
     tolerance: f32,
     faces_b: Faces,
 ) -> Option<Manifold> {
+    // Two boxes take a step only when even the larger overlap of their
+    // bounding boxes is within it: one test, inlined into the narrow
+    // phase, sends back most pairs of a pile (a resting box overlaps its
+    // support by half its width or more along the other axis); the rest
+    // is out of line.
+    match (*sa, *sb) {
+        (Shape::Circle { .. }, Shape::Circle { .. }) => None,
+        (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb })
+            if (ha + hb - (pb - pa).abs()).max_element() > tolerance =>
+        {
+            None
+        }
+        _ => step_face(sa, pa, sb, pb, closing(), tolerance, faces_b),
+    }
+}
+
+/// [`over_a_step`] past its first test, with B's velocity relative to A's.
+#[inline(never)]
+fn step_face(
+    sa: &Shape,
+    pa: Vec2,
+    sb: &Shape,
+    pb: Vec2,
+    closing: Vec2,
+    tolerance: f32,
+    faces_b: Faces,
+) -> Option<Manifold> {
     let d = pb - pa;
     // The box's half extents when the other shape is a circle.
     let circle_and_box = match (*sa, *sb) {
-        (Shape::Box { .. }, Shape::Box { .. }) => None,
         (Shape::Circle { .. }, Shape::Box { half_extents: h })
         | (Shape::Box { half_extents: h }, Shape::Circle { .. }) => Some(h),
-        (Shape::Circle { .. }, Shape::Circle { .. }) => return None,
+        _ => None,
     };
     // The bounding boxes' overlap along each axis (negative: apart).
     let (ha, hb) = (sa.half_extents(), sb.half_extents());
     let overlap = ha + hb - d.abs();
     let sign = |axis: usize| if d[axis] < 0.0 { -1.0 } else { 1.0 };
     // A step along axis `k`: level with B's face to within the tolerance
-    // either way, where the plain contact would not take that face, and
-    // the face open.
+    // either way, where the plain contact would not take that face, the
+    // face open, and B closing on A along the other axis.
     let step = |k: usize| {
         let stands = match circle_and_box {
             None => overlap[1 - k] < overlap[k],
             Some(h) => d.x.abs() > h.x && d.y.abs() > h.y,
         };
-        overlap[k].abs() <= tolerance && stands && !faces_b.covered(k, -sign(k))
+        overlap[k].abs() <= tolerance
+            && stands
+            && !faces_b.covered(k, -sign(k))
+            && -closing[1 - k] * sign(1 - k) > 0.0
     };
-    let (x, y) = (step(0), step(1));
-    if !x && !y {
-        return None;
-    }
-    // Met while B closes on A along the other axis.
-    let closing = closing();
-    let closes = |k: usize| -closing[1 - k] * sign(1 - k) > 0.0;
     // On both: the smaller overlap (y on a tie, as in `box_box`).
-    let k = match (x && closes(0), y && closes(1)) {
+    let k = match (step(0), step(1)) {
         (false, false) => return None,
         (true, true) => usize::from(overlap.x >= overlap.y),
         (x, _) => usize::from(!x),
