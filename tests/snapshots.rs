@@ -153,7 +153,10 @@ fn damaged_snapshots_are_refused_with_the_reason() {
     assert!(text.contains("sensors:[("), "and sensor overlaps");
     let id = |i: u32, g: u32| format!("(index:{i},generation:{g})");
     for (field, entry) in [
-        ("touching:[", format!("({},{}),", id(99_998, 0), id(99_999, 0))),
+        (
+            "touching:[",
+            format!("({},{}),", id(99_998, 0), id(99_999, 0)),
+        ),
         ("touching:[", format!("({},{}),", id(9, 5), id(7, 3))),
         ("touching:[", format!("({},{}),", id(1, 0), id(1, 0))),
         (
