@@ -342,3 +342,31 @@ fn a_step_higher_than_the_slop_still_stops_a_box_and_a_body_leaving_a_crate_fall
         assert!(airborne > 5, "{shape:?} left the crate");
     }
 }
+
+#[test]
+fn a_box_falling_past_a_crate_it_overlaps_by_less_than_the_slop_slides_down_its_side() {
+    // A 0.4 m box dropped so that it overlaps a 1 m crate's top by 3 mm
+    // sideways, and one that overlaps it by 2 cm: the first lands on the
+    // ground beside the crate, the second on the crate's edge.
+    for (overlap, on_crate) in [(0.003, false), (0.02, true)] {
+        let mut world = World::default();
+        add_ground(&mut world, 20.0);
+        add_box(&mut world, Vec2::new(0.5, 0.5), Vec2::ONE, 5.0);
+        let def = BodyDef {
+            position: Vec2::new(-0.2 + overlap, 3.0),
+            shape: Some(Shape::rect(0.4, 0.4)),
+            friction: 0.0,
+            ..Default::default()
+        };
+        let body = world.add_body(def).unwrap();
+        for _ in 0..120 {
+            world.step(DT);
+        }
+        let y = world.body(body).unwrap().position.y;
+        let want = if on_crate { 1.2 } else { 0.2 };
+        assert!(
+            (y - want).abs() < 0.01,
+            "overlap {overlap}: rests at y = {y}"
+        );
+    }
+}
