@@ -50,6 +50,14 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 
 /// Runs `passo render`.
 pub fn run(args: &RenderArgs) -> Result<()> {
+    // Before the simulation, which may take long.
+    if args
+        .out
+        .extension()
+        .is_none_or(|e| !e.eq_ignore_ascii_case("png"))
+    {
+        bail!("--out must name a .png file, got {}", args.out.display());
+    }
     let scene = crate::scenes::load(&args.scene)?;
     let mut built = scene.build()?;
     let dt = FixedTimestep::from_hz(scene.file.rate_hz)?.dt();
@@ -79,13 +87,6 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     draw_world(&mut list, &built.world, &built.bodies, &options);
     renderer.render(target.view(), target.size(), &camera, &list);
     let image = target.read(&gpu)?;
-    if args
-        .out
-        .extension()
-        .is_none_or(|e| !e.eq_ignore_ascii_case("png"))
-    {
-        bail!("--out must name a .png file, got {}", args.out.display());
-    }
     image
         .save_png(&args.out)
         .with_context(|| format!("writing {}", args.out.display()))?;

@@ -204,6 +204,38 @@ fn snapshots_and_replays_no_run_could_make_are_refused_and_a_resume_says_so() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
+#[test]
+fn render_refuses_an_output_that_is_not_png_before_simulating() {
+    // The rain for 10^8 ticks would take hours; the name was checked only
+    // after them.
+    let out = passo(&[
+        "render",
+        "rain",
+        "--ticks",
+        "100000000",
+        "--out",
+        "rain.jpg",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("--out must name a .png file, got rain.jpg"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn report_refuses_an_output_directory_it_cannot_make_before_measuring() {
+    // An existing file where the directory should go: before, the error
+    // came after minutes of measuring.
+    let file = std::env::temp_dir().join(format!("passo-report-file-{}", std::process::id()));
+    std::fs::write(&file, "not a directory").unwrap();
+    let out = passo(&["report", "--out", file.to_str().unwrap()]);
+    std::fs::remove_file(&file).unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("creating"), "{}", stderr(&out));
+}
+
 /// The cells of the table rows (lines starting with `| ` and not a header).
 fn table_rows(text: &str) -> Vec<Vec<String>> {
     text.lines()

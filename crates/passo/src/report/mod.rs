@@ -449,6 +449,10 @@ pub fn write(report: &Report, dir: &Path) -> Result<()> {
 
 /// Runs `passo report`.
 pub fn run(args: &ReportArgs) -> Result<()> {
+    // Before the measuring, which takes minutes: a directory that cannot
+    // be made is an error at once.
+    let dir = &args.out;
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let report = measure(args);
     write(&report, &args.out)?;
     eprintln!(
