@@ -66,6 +66,8 @@ mod kernel;
 
 // Geometry and pairs.
 mod manifold;
+// Which face moving bodies meet at corners and steps.
+mod corners;
 mod static_tree;
 
 mod cast;
