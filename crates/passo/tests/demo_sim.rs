@@ -611,3 +611,28 @@ fn changing_the_rate_moves_platforms_and_the_plot_on_from_where_they_were() {
         assert!(v.length() < 10.0, "a platform moves at {v}");
     }
 }
+
+#[test]
+fn slider_values_that_are_not_finite_are_refused() {
+    // A NaN gravity reached the walk's force clamp and panicked.
+    let mut sim = playground();
+    let before = sim.session.knobs;
+    let mut knobs = before;
+    knobs.gravity = f32::NAN;
+    let command = Command::Knobs {
+        knobs,
+        friction: false,
+        restitution: false,
+        drag: false,
+    };
+    assert!(sim.command(command).is_err());
+    assert_eq!(sim.session.knobs, before, "the sliders are as they were");
+    run(
+        &mut sim,
+        30,
+        Input {
+            right: true,
+            ..Default::default()
+        },
+    );
+}

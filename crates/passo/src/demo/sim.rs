@@ -258,6 +258,11 @@ impl Sim {
                 restitution,
                 drag,
             } => {
+                // The panel's sliders are always finite; a value from
+                // elsewhere that is not would reach the player's forces.
+                if !knobs.is_finite() {
+                    anyhow::bail!("slider values must be finite, got {knobs:?}");
+                }
                 self.session.knobs = *knobs;
                 self.apply_knobs();
                 if *friction {
