@@ -370,3 +370,36 @@ fn a_box_falling_past_a_crate_it_overlaps_by_less_than_the_slop_slides_down_its_
         );
     }
 }
+
+#[test]
+fn a_box_and_a_circle_slide_from_a_one_way_run_onto_solid_ground_level_with_it() {
+    // A one-way platform does not cover a solid neighbour's face, and the
+    // body, pulled down by gravity as it slid, took the solid run's side at
+    // the joint: it stopped dead there.
+    for shape in [Shape::rect(0.6, 1.0), Shape::circle(0.4)] {
+        let mut world = World::default();
+        let one_way = BodyDef::new_static(Vec2::new(-5.0, -0.5), Shape::rect(10.0, 1.0));
+        world.add_body(one_way.with_one_way(Vec2::Y)).unwrap();
+        let solid = BodyDef::new_static(Vec2::new(5.0, -0.5), Shape::rect(10.0, 1.0));
+        world.add_body(solid).unwrap();
+        let def = BodyDef {
+            position: Vec2::new(-3.0, shape.half_extents().y),
+            shape: Some(shape),
+            friction: 0.0,
+            ..Default::default()
+        };
+        let body = world.add_body(def).unwrap();
+        world.set_velocity(body, Vec2::new(3.0, 0.0));
+        for _ in 0..120 {
+            world.step(DT);
+            let b = world.body(body).unwrap();
+            assert!(
+                (b.velocity - Vec2::new(3.0, 0.0)).length() < 1e-3,
+                "{shape:?} at {}: {}",
+                b.position,
+                b.velocity
+            );
+        }
+        assert!(world.body(body).unwrap().position.x > 2.9);
+    }
+}

@@ -121,12 +121,14 @@ pub(crate) fn beyond_corner(
 /// body held a hair above its floor meets the next top the same way, not
 /// the side below it.
 ///
-/// Only for two boxes whose contact would take the other axis (the smaller
-/// overlap), or a circle whose centre lies beyond a box's corner (whose
-/// contact would take the corner's normal); only while B closes on A along
-/// the other axis (`closing` gives B's velocity relative to A's; a body
-/// moving off a ledge still falls); and only where B's face is open (see
-/// [`Faces`]). `None` otherwise, and for two circles.
+/// Only while B closes on A along the other axis (`closing` gives B's
+/// velocity relative to A's; a body moving off a ledge still falls); where
+/// both axes qualify, the face the body closes on more slowly (it slides
+/// along it: gravity alone does not turn a slide into a fall past a
+/// ledge); only where B's face is open (see [`Faces`]); and only where the
+/// plain contact would take another face (for two boxes the other axis,
+/// the smaller overlap; for a circle beyond a box's corner the corner's
+/// normal). `None` otherwise, and for two circles.
 #[inline(always)]
 pub(crate) fn over_a_step(
     sa: &Shape,
@@ -175,25 +177,32 @@ fn step_face(
     let (ha, hb) = (sa.half_extents(), sb.half_extents());
     let overlap = ha + hb - d.abs();
     let sign = |axis: usize| if d[axis] < 0.0 { -1.0 } else { 1.0 };
+    // How fast B closes on A along an axis.
+    let closes = |axis: usize| -closing[axis] * sign(axis);
     // A step along axis `k`: level with B's face to within the tolerance
-    // either way, where the plain contact would not take that face, the
-    // face open, and B closing on A along the other axis.
+    // either way, the face open, and B closing on A along the other axis.
     let step = |k: usize| {
-        let stands = match circle_and_box {
-            None => overlap[1 - k] < overlap[k],
-            Some(h) => d.x.abs() > h.x && d.y.abs() > h.y,
-        };
-        overlap[k].abs() <= tolerance
-            && stands
-            && !faces_b.covered(k, -sign(k))
-            && -closing[1 - k] * sign(1 - k) > 0.0
+        overlap[k].abs() <= tolerance && !faces_b.covered(k, -sign(k)) && closes(1 - k) > 0.0
     };
-    // On both: the smaller overlap (y on a tie, as in `box_box`).
+    // On both: the face the body moves along rather than into, the one it
+    // closes on more slowly (y on a tie): a body sliding onto the next box
+    // with gravity pulling it down meets the top, one falling past a ledge
+    // the side.
     let k = match (step(0), step(1)) {
         (false, false) => return None,
-        (true, true) => usize::from(overlap.x >= overlap.y),
+        (true, true) => usize::from(closes(1) <= closes(0)),
         (x, _) => usize::from(!x),
     };
+    // Only where the plain contact would take another face: for two
+    // boxes, the other axis (the smaller overlap, y on a tie); for a
+    // circle, the corner's normal.
+    let plain_takes_k = match circle_and_box {
+        None => (k == 0) == (overlap.x < overlap.y),
+        Some(h) => !(d.x.abs() > h.x && d.y.abs() > h.y),
+    };
+    if plain_takes_k {
+        return None;
+    }
     let mut normal = Vec2::ZERO;
     normal[k] = sign(k);
     // Midway between the two along the step's axis, and between their
@@ -251,6 +260,22 @@ mod tests {
         // B as A, and A as B: the same face, the normal reversed.
         let swapped = over_a_step(&sb, pb, &sa, pa, left, tol, none).unwrap();
         assert_eq!(swapped.normal, Vec2::Y);
+        // Sliding (3 m/s) onto a box whose top is level with its bottom,
+        // just past B's side (7 µm), gravity closing at 0.16 m/s: the plain
+        // contact, B's top, stands (it took B's side, and a body sliding
+        // from a one-way platform onto solid ground stopped dead there).
+        // Falling past B's side with 3 mm to spare: the side.
+        let (sd, pd) = (Shape::rect(0.6, 1.0), Vec2::new(-0.8 + 7e-6, 1.0));
+        let slide = || Vec2::new(-3.0, 0.16);
+        assert_eq!(
+            box_box(pd, Vec2::new(0.3, 0.5), pb, Vec2::splat(0.5)).normal,
+            Vec2::NEG_Y
+        );
+        assert_eq!(over_a_step(&sd, pd, &sb, pb, slide, tol, none), None);
+        let past = Vec2::new(-0.8 + 0.003, 1.2);
+        let fall = || Vec2::new(0.0, 10.0);
+        let m = over_a_step(&sd, past, &sb, pb, fall, tol, none).unwrap();
+        assert_eq!(m.normal, Vec2::X);
         // Side by side and flush (a row of a pyramid): the contact already
         // takes the shallow axis, x; nothing changes.
         let beside = Vec2::new(-1.0, 0.0);
