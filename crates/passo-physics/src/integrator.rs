@@ -97,21 +97,28 @@ impl<'a> Forces<'a> {
     /// Total acceleration with every force in its plain form.
     #[inline(always)]
     fn accel(&self, p: Vec2, v: Vec2, b: &BodyParams) -> Vec2 {
-        let a = self.drive.accel(p, v, b);
-        if self.dissipation.is_active() {
-            a + self.dissipation.accel(v, b)
-        } else {
-            a
-        }
+        self.accel_with(p, v, b, Dissipation::accel)
     }
 
     /// Total acceleration but dry friction, every force in its plain form
     /// (the stages of Verlet and RK4).
     #[inline(always)]
     fn smooth_accel(&self, p: Vec2, v: Vec2, b: &BodyParams) -> Vec2 {
+        self.accel_with(p, v, b, Dissipation::drag_accel)
+    }
+
+    /// The drive's acceleration plus `dissipation`'s, when there is any.
+    #[inline(always)]
+    fn accel_with(
+        &self,
+        p: Vec2,
+        v: Vec2,
+        b: &BodyParams,
+        dissipation: fn(&Dissipation, Vec2, &BodyParams) -> Vec2,
+    ) -> Vec2 {
         let a = self.drive.accel(p, v, b);
         if self.dissipation.is_active() {
-            a + self.dissipation.drag_accel(v, b)
+            a + dissipation(&self.dissipation, v, b)
         } else {
             a
         }
