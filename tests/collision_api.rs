@@ -1,11 +1,8 @@
 //! What a game reads from collisions: events, sensors, filters, queries.
 
 use passo_physics::glam::Vec2;
-use passo_physics::{
-    Aabb, BodyDef, CollisionFilter, ContactPair, ForceModels, SensorPair, Shape, Stage, World,
-    WorldSettings,
-};
-use passo_tests::{add_box, add_circle, add_static_box};
+use passo_physics::{Aabb, BodyDef, CollisionFilter, ContactPair, SensorPair, Shape, Stage, World};
+use passo_tests::{add_box, add_circle, add_static_box, weightless_world};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -102,11 +99,7 @@ fn filters_let_layers_pass_through_each_other() {
 
 #[test]
 fn sensors_report_visitors_and_never_push() {
-    let mut w = World::new(WorldSettings {
-        forces: ForceModels::none(),
-        ..Default::default()
-    })
-    .unwrap();
+    let mut w = weightless_world();
     let zone = w
         .add_body(BodyDef {
             sensor: true,
@@ -147,11 +140,7 @@ fn sensors_report_visitors_and_never_push() {
 
 #[test]
 fn point_box_and_ray_queries() {
-    let mut w = World::new(WorldSettings {
-        forces: ForceModels::none(),
-        ..Default::default()
-    })
-    .unwrap();
+    let mut w = weightless_world();
     let wall = add_static_box(&mut w, Vec2::new(4.0, -2.0), Vec2::new(5.0, 2.0));
     let ball = add_circle(&mut w, Vec2::new(2.0, 0.0), 0.5, 1.0);
     let other = add_circle(&mut w, Vec2::new(-3.0, 0.0), 1.0, 1.0);

@@ -3,7 +3,9 @@
 use passo_physics::constants::LINEAR_SLOP;
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, ForceModels, Shape, World, WorldSettings};
-use passo_tests::{add_box, add_circle, add_static_box, assert_finite, max_penetration};
+use passo_tests::{
+    add_box, add_circle, add_static_box, assert_finite, max_penetration, weightless_world,
+};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -145,11 +147,7 @@ fn overlapping_bodies_separate_calmly() {
 
 #[test]
 fn confined_circles_spread_out_and_stay_inside() {
-    let mut w = World::new(WorldSettings {
-        forces: ForceModels::none(),
-        ..Default::default()
-    })
-    .unwrap();
+    let mut w = weightless_world();
     let half = 10.0;
     let t = 1.0;
     add_static_box(
@@ -192,11 +190,7 @@ fn confined_circles_spread_out_and_stay_inside() {
 #[test]
 fn a_bullet_never_passes_a_thin_wall() {
     for hz in [30.0, 60.0] {
-        let mut w = World::new(WorldSettings {
-            forces: ForceModels::none(),
-            ..Default::default()
-        })
-        .unwrap();
+        let mut w = weightless_world();
         add_static_box(&mut w, Vec2::new(5.0, -2.0), Vec2::new(5.1, 2.0));
         let bullet = w
             .add_body(BodyDef {
@@ -230,11 +224,7 @@ fn a_bullet_stops_at_a_lone_peg_a_centimetre_wide() {
         (0.005, 1000.0, true),
     ];
     for (side, speed, floor) in cases {
-        let mut w = World::new(WorldSettings {
-            forces: ForceModels::none(),
-            ..Default::default()
-        })
-        .unwrap();
+        let mut w = weightless_world();
         let h = side / 2.0;
         add_static_box(&mut w, Vec2::new(5.0 - h, -h), Vec2::new(5.0 + h, h));
         if floor {
@@ -431,11 +421,7 @@ fn a_ball_rolling_at_a_low_step_reaches_its_corner() {
     // plane of the step's face. Started so that a step ends with the box
     // half a millimetre from that plane, the ball was held there for a step
     // when that plane stood for the corner.
-    let mut w = World::new(WorldSettings {
-        forces: ForceModels::none(),
-        ..Default::default()
-    })
-    .unwrap();
+    let mut w = weightless_world();
     add_static_box(&mut w, Vec2::new(-10.0, -1.0), Vec2::new(10.0, 0.0));
     add_static_box(&mut w, Vec2::new(2.0, 0.0), Vec2::new(4.0, 0.25));
     let ball = w
@@ -470,11 +456,7 @@ fn bouncy_boxes_crossing_diagonally_keep_their_energy() {
     // Three boxes with restitution 1 passing each other diagonally got
     // contacts along the wrong axis and bounced off each other's planes:
     // the kinetic energy rose 34 % in one step.
-    let mut w = World::new(WorldSettings {
-        forces: ForceModels::none(),
-        ..Default::default()
-    })
-    .unwrap();
+    let mut w = weightless_world();
     let boxes = [
         (Vec2::new(0.062, 0.861), Vec2::new(16.618, -7.713)),
         (Vec2::new(0.805, 1.269), Vec2::new(-14.251, 3.017)),

@@ -88,6 +88,16 @@ pub fn add_ground(world: &mut World, width: f32) -> BodyId {
     world.add_body(def).expect("valid ground")
 }
 
+/// A world with no force model at all (no gravity), contacts as by
+/// default.
+pub fn weightless_world() -> World {
+    World::new(passo_physics::WorldSettings {
+        forces: passo_physics::ForceModels::none(),
+        ..Default::default()
+    })
+    .expect("valid settings")
+}
+
 /// A static box from `min` to `max`.
 pub fn add_static_box(world: &mut World, min: Vec2, max: Vec2) -> BodyId {
     let def = BodyDef::new_static((min + max) * 0.5, Shape::rect(max.x - min.x, max.y - min.y));

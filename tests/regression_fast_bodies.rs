@@ -9,16 +9,8 @@
 
 use passo_physics::constants::{DEEP_OVERLAP, LINEAR_SLOP, SPECULATIVE_REACH};
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, BodyKind, ForceModels, Shape, World, WorldSettings};
-use passo_tests::{Rng, max_penetration};
-
-fn weightless() -> World {
-    World::new(WorldSettings {
-        forces: ForceModels::none(),
-        ..Default::default()
-    })
-    .unwrap()
-}
+use passo_physics::{BodyDef, BodyKind, Shape, World};
+use passo_tests::{Rng, max_penetration, weightless_world};
 
 fn wall(world: &mut World, centre: Vec2, size: Vec2) {
     world
@@ -29,7 +21,7 @@ fn wall(world: &mut World, centre: Vec2, size: Vec2) {
 #[test]
 fn fast_circles_in_a_closed_box_stay_inside_with_bounded_contacts() {
     let n = 1_000;
-    let mut world = weightless();
+    let mut world = weightless_world();
     // A 20 m × 10 m box with walls 1 m thick.
     wall(&mut world, Vec2::new(0.0, -5.5), Vec2::new(22.0, 1.0));
     wall(&mut world, Vec2::new(0.0, 5.5), Vec2::new(22.0, 1.0));
@@ -102,7 +94,7 @@ fn a_rain_at_one_hertz_keeps_bounded_contacts_and_stays_above_the_floor() {
 /// A circle of radius 0.05 m fired at `speed` along x at a wall 2 cm thick
 /// at x = 5 m; returns the largest x it reached.
 fn fire_at_thin_wall(speed: f32, hz: f32, kinematic_wall_speed: f32) -> f32 {
-    let mut world = weightless();
+    let mut world = weightless_world();
     let wall_def = if kinematic_wall_speed == 0.0 {
         BodyDef::new_static(Vec2::new(5.01, 0.0), Shape::rect(0.02, 4.0))
     } else {
@@ -156,7 +148,7 @@ fn a_fast_body_meets_a_kinematic_wall_coming_the_other_way() {
 /// Fires a circle at 400 m/s at a free dynamic plank 2 cm thick; returns
 /// whether it ended on the far side.
 fn passes_a_dynamic_plank(bullet: bool) -> bool {
-    let mut world = weightless();
+    let mut world = weightless_world();
     let plank = world
         .add_body(BodyDef::new_dynamic(
             Vec2::new(5.0, 0.0),
@@ -189,7 +181,7 @@ fn a_bullet_never_passes_a_thin_dynamic_body() {
 
 #[test]
 fn a_bullet_hits_a_fast_body_crossing_its_path() {
-    let mut world = weightless();
+    let mut world = weightless_world();
     // A fast box crossing the line of fire, timed to be on it when the
     // bullet passes, and a bullet: both move far beyond their reach.
     let crossing = world
@@ -248,7 +240,7 @@ fn a_fast_box_slides_across_flush_tiles_without_catching() {
 
 #[test]
 fn a_fast_body_lands_on_a_one_way_platform_from_above_and_passes_from_below() {
-    let mut world = weightless();
+    let mut world = weightless_world();
     let platform = BodyDef {
         one_way: Some(Vec2::Y),
         ..BodyDef::new_static(Vec2::ZERO, Shape::rect(4.0, 0.1))
@@ -284,7 +276,7 @@ fn a_fast_kinematic_wall_pushes_a_resting_ball_instead_of_passing_it() {
     // A wall 10 cm thick at 50 m/s moves 0.83 m a step, far beyond its
     // own reach (4 × 5 cm): it is never swept, so its proxy covers its
     // whole travel and it meets the ball in its way.
-    let mut world = weightless();
+    let mut world = weightless_world();
     let wall = world
         .add_body(BodyDef::new_kinematic(
             Vec2::new(-5.0, 0.0),
@@ -313,7 +305,7 @@ fn a_bullet_is_not_carried_through_a_wall_by_the_body_it_hits() {
     // A crate moving fast at a wall stops at the wall; a bullet behind it
     // meets the crate before the crate meets the wall. It must end where
     // the crate ended, not where the crate would have gone.
-    let mut world = weightless();
+    let mut world = weightless_world();
     wall(&mut world, Vec2::new(10.0, 0.0), Vec2::new(1.0, 4.0));
     let crate_ = world
         .add_body(
@@ -347,7 +339,7 @@ fn a_bullet_is_not_carried_through_a_wall_by_the_body_it_hits() {
 
 #[test]
 fn a_fast_body_that_ends_inside_a_sensor_beyond_its_reach_is_reported() {
-    let mut world = weightless();
+    let mut world = weightless_world();
     let zone = world
         .add_body(BodyDef {
             sensor: true,

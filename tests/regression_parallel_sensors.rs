@@ -5,16 +5,13 @@
 //! the narrow phase to go to the pool, and not one contact.
 
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, ForceModels, SensorPair, Shape, World, WorldSettings};
+use passo_physics::{BodyDef, SensorPair, Shape};
+use passo_tests::weightless_world;
 
 /// Every body that entered a sensor on the first step, with and without
 /// the pool.
 fn entered(parallel: bool) -> (usize, Vec<SensorPair>) {
-    let mut world = World::new(WorldSettings {
-        forces: ForceModels::none(),
-        ..Default::default()
-    })
-    .unwrap();
+    let mut world = weightless_world();
     world.set_parallel(parallel);
     for i in 0..5_000 {
         let at = Vec2::new((i % 100) as f32, (i / 100) as f32);

@@ -9,17 +9,13 @@
 //! in about 5 s (`passo bench extreme`).
 
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, ForceModels, Shape, World, WorldSettings};
-use passo_tests::max_penetration;
+use passo_physics::{BodyDef, Shape};
+use passo_tests::{max_penetration, weightless_world};
 
 #[test]
 fn a_pile_spawned_on_one_spot_spreads_out_calmly_with_bounded_contacts() {
     let n = 2_000;
-    let mut world = World::new(WorldSettings {
-        forces: ForceModels::none(),
-        ..Default::default()
-    })
-    .unwrap();
+    let mut world = weightless_world();
     for _ in 0..n {
         world
             .add_body(BodyDef::new_dynamic(Vec2::ZERO, Shape::circle(0.1)))

@@ -8,8 +8,8 @@
 
 use passo_physics::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE};
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, BodyId, ForceModels, Shape, World, WorldSettings};
-use passo_tests::{add_ground, max_penetration};
+use passo_physics::{BodyDef, BodyId, Shape, World};
+use passo_tests::{add_ground, max_penetration, weightless_world};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -106,13 +106,7 @@ fn a_body_keeps_its_speculative_contacts_with_walls_whichever_way_it_moves() {
 
 #[test]
 fn a_pair_whose_bodies_do_not_approach_along_its_normal_is_no_contact() {
-    let weightless = || {
-        World::new(WorldSettings {
-            forces: ForceModels::none(),
-            ..Default::default()
-        })
-        .unwrap()
-    };
+    let weightless = || weightless_world();
     // B passes A along the tangent of their 10 cm gap at 10 m/s: the
     // broad phase pairs them (B's box is swept towards A's), but neither
     // closes the gap along the normal.
