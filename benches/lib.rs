@@ -241,11 +241,16 @@ pub struct Sweeper {
     pub by: Vec2,
 }
 
-/// The rain of `n` circles with `platforms` kinematic platforms (4 m by
-/// 0.3 m) sweeping sideways in rows, as a level's moving platforms: through
+/// The rain of `n` circles with `platforms` kinematic platforms (`length`
+/// by 0.3 m) sweeping sideways in rows, as a level's moving platforms: through
 /// the pile, or (with `above`) above where it lands; drive them with
 /// [`drive_sweepers`] before each step.
-pub fn rain_with_platforms(n: usize, platforms: usize, above: bool) -> (World, Vec<Sweeper>) {
+pub fn rain_with_platforms(
+    n: usize,
+    platforms: usize,
+    length: f32,
+    above: bool,
+) -> (World, Vec<Sweeper>) {
     let columns = ((2.0 * (n as f32).sqrt()).ceil() as usize).max(1);
     let mut world = rain_grid(n, columns);
     let width = columns as f32 * 0.25;
@@ -257,7 +262,7 @@ pub fn rain_with_platforms(n: usize, platforms: usize, above: bool) -> (World, V
                 -width * 0.5 + 2.5 + (k % 4) as f32 * width * 0.2,
                 base + (k / 4) as f32 * rows / (platforms.div_ceil(4) as f32).max(1.0),
             );
-            let def = BodyDef::new_kinematic(start, Shape::rect(4.0, 0.3), Vec2::ZERO);
+            let def = BodyDef::new_kinematic(start, Shape::rect(length, 0.3), Vec2::ZERO);
             let id = world.add_body(def).expect("valid platform");
             Sweeper {
                 id,

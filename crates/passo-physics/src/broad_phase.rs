@@ -22,10 +22,14 @@
 //! hashed into a table sized to the number of entries and grouped with a
 //! counting sort, so the whole pass is linear in the number of bodies for
 //! evenly spread bodies and allocates nothing once its buffers have grown.
-//! The cell size follows the bodies: twice their mean proxy size, so a
+//! The cell size follows the bodies: twice their mean proxy size (leaving
+//! out proxies over four times the mean, see [`typical_size`]), so a
 //! typical proxy covers at most four cells. The rare proxy much larger than
-//! that (over [`LARGE_PROXY_CELLS`] cells across) is tested against every
-//! proxy instead of being binned into hundreds of cells. A cell holding
+//! that (over [`LARGE_PROXY_CELLS`] cells across) is not binned: once the
+//! others are, it looks them up in the cells it covers (or, if it covers
+//! more cells than there are proxies, tests every proxy), so a 30 m
+//! platform among 10 000 small bodies meets the few hundred near it, not
+//! all of them, and never crowds a cell. A cell holding
 //! more than [`CROWDED_CELL`] + 1 proxies is swept along x instead, with
 //! its proxies' pairs bounded.
 //!
@@ -38,10 +42,11 @@ use crate::parallel::for_chunks;
 use glam::Vec2;
 
 /// A proxy covering more than this many cells along an axis is handled
-/// apart, against every other proxy. 16: a 4 m platform among 0.2 m
-/// circles (about 9 cells across) is binned like the rest; at 8 it was
-/// tested against all 10 000 circles of a rain, every step (15 % of the
-/// step with 20 such platforms, `passo bench platforms --above`).
+/// apart: it looks up the proxies binned in the cells it covers. 16: a 4 m
+/// platform among 0.2 m circles (about 9 cells across) is binned like the
+/// rest. (When such a proxy was tested against every proxy, a threshold of
+/// 8 cost 15 % of the step with 20 such platforms among 10 000 circles,
+/// `passo bench platforms --above`.)
 pub(crate) const LARGE_PROXY_CELLS: i32 = 16;
 
 /// Pairs a proxy may make with the proxies after it in one crowded grid
@@ -84,6 +89,8 @@ pub(crate) struct BroadPhase {
     sorted: Vec<Entry>,
     starts: Vec<u32>,
     large: Vec<u32>,
+    /// Boxes the large proxies of the last search were tested against.
+    pub(crate) large_tests: usize,
     /// Cells of the last search holding more than `CROWDED_CELL + 1`
     /// proxies, whose pairs were bounded.
     pub(crate) crowded: usize,
@@ -125,6 +132,7 @@ impl BroadPhase {
     ) {
         let both_asleep =
             |a: u32, b: u32| !asleep.is_empty() && asleep[a as usize] && asleep[b as usize];
+        self.large_tests = 0;
         if proxies.len() < 2 {
             return;
         }
@@ -134,7 +142,7 @@ impl BroadPhase {
             self.crowded = 0;
             return;
         }
-        let cell_size = (2.0 * mean_size).max(1e-3);
+        let cell_size = (2.0 * typical_size(proxies, mean_size)).max(1e-3);
         let inv = 1.0 / cell_size;
         let cell_of = |p: Vec2| (floor_i32(p.x * inv), floor_i32(p.y * inv));
 
@@ -297,20 +305,53 @@ impl BroadPhase {
             search(0..table, pairs);
         }
 
-        for &l in &self.large {
+        let mut tests = 0;
+        for (x, &l) in self.large.iter().enumerate() {
             let lb = &proxies[l as usize];
-            for (j, b) in proxies.iter().enumerate() {
-                let j = j as u32;
-                // A pair of two large proxies is reported by the lower one.
-                let j_is_large = self.large.binary_search(&j).is_ok();
-                if j == l || (j_is_large && j < l) || both_asleep(l, j) {
-                    continue;
+            let (lo, hi) = (cell_of(lb.min), cell_of(lb.max));
+            let covered =
+                (i64::from(hi.0) - i64::from(lo.0) + 1) * (i64::from(hi.1) - i64::from(lo.1) + 1);
+            if covered > proxies.len() as i64 {
+                // Larger than the bodies' whole spread in cells: every
+                // proxy once (the large ones below).
+                for (j, b) in proxies.iter().enumerate() {
+                    let j = j as u32;
+                    if self.large.binary_search(&j).is_err() && !both_asleep(l, j) && lb.overlaps(b)
+                    {
+                        pairs.push(ordered(l, j));
+                    }
                 }
-                if lb.overlaps(b) {
-                    pairs.push(ordered(l, j));
+                tests += proxies.len();
+            } else {
+                // The binned proxies of the cells it covers, each pair in
+                // the cell of its overlap's lower-left corner.
+                for cy in lo.1..=hi.1 {
+                    for cx in lo.0..=hi.0 {
+                        let k = bucket((cx, cy), mask);
+                        let run = &sorted[starts[k] as usize..starts[k + 1] as usize];
+                        tests += run.len();
+                        for e in run {
+                            let b = &proxies[e.proxy as usize];
+                            if e.cell == (cx, cy)
+                                && !both_asleep(l, e.proxy)
+                                && lb.overlaps(b)
+                                && cell_of(lb.min.max(b.min)) == e.cell
+                            {
+                                pairs.push(ordered(l, e.proxy));
+                            }
+                        }
+                    }
                 }
             }
+            // Two large proxies: reported by the lower one.
+            for &m in &self.large[x + 1..] {
+                if !both_asleep(l, m) && lb.overlaps(&proxies[m as usize]) {
+                    pairs.push(ordered(l, m));
+                }
+            }
+            tests += self.large.len() - x - 1;
         }
+        self.large_tests = tests;
     }
 
     /// The corner grid (see the module's documentation): appends the pairs
@@ -572,6 +613,21 @@ fn pairs_in_run(
             out.push(ordered(a, b));
         }
     }
+}
+
+/// The mean size of the proxies no larger than four times `mean`, the mean
+/// size of all: what sets the hashed grid's cells. A few long bodies
+/// (platforms, bars) among many small ones then leave the cells as large
+/// as the small ones need, where the mean of all grew with them and
+/// crowded the cells. Without such outliers it is `mean`, bit for bit.
+fn typical_size(proxies: &[Aabb], mean: f32) -> f32 {
+    let cap = 4.0 * mean;
+    let (sum, n) = proxies
+        .iter()
+        .map(|b| b.size().max_element())
+        .filter(|&s| s <= cap)
+        .fold((0.0f32, 0usize), |(sum, n), s| (sum + s, n + 1));
+    if n == 0 { mean } else { sum / n as f32 }
 }
 
 fn ordered(a: u32, b: u32) -> (u32, u32) {
@@ -876,6 +932,111 @@ mod tests {
             -2.5f32, -2.0, -1.0000001, -0.5, -0.0, 0.0, 0.3, 1.0, 1.9999, 7e8, -7e8, 3e10, -3e10,
         ] {
             assert_eq!(floor_i32(x), x.floor() as i32, "{x}");
+        }
+    }
+
+    /// `n` small boxes (0.2–0.4 m) over a 40 m square and `bars` long ones
+    /// (`length` m by 0.3 m) across it; some marked asleep when `sleepy`.
+    fn bars_among_small_boxes(
+        n: usize,
+        bars: usize,
+        length: f32,
+        seed: u64,
+        sleepy: bool,
+    ) -> (Vec<Aabb>, Vec<bool>) {
+        let mut next = uniform(seed);
+        let mut boxes = Vec::new();
+        let mut asleep = Vec::new();
+        for i in 0..n + bars {
+            let min = Vec2::new(next(), next()) * 40.0;
+            let size = if i % (n / bars.max(1) + 1) == 0 && boxes.len() < n + bars {
+                Vec2::new(length, 0.3)
+            } else {
+                Vec2::splat(0.2 + 0.2 * next())
+            };
+            boxes.push(Aabb {
+                min,
+                max: min + size,
+            });
+            asleep.push(sleepy && next() < 0.5);
+        }
+        (boxes, asleep)
+    }
+
+    #[test]
+    fn long_proxies_meet_their_neighbours_not_every_proxy() {
+        // 3 000 small boxes and 30 bars 30 m long: each bar covers about a
+        // hundred cells and looks only in those, and the bars leave the
+        // cells as small as the small boxes need.
+        for sleepy in [false, true] {
+            let (boxes, asleep) = bars_among_small_boxes(3_000, 30, 30.0, 11, sleepy);
+            let mut grid = BroadPhase::default();
+            let mut pairs = Vec::new();
+            grid.find_pairs(&boxes, &asleep, false, &mut pairs);
+            let count = pairs.len();
+            pairs.sort_unstable();
+            pairs.dedup();
+            assert_eq!(pairs.len(), count, "a pair was reported twice");
+            let expected: Vec<_> = brute_force(&boxes)
+                .into_iter()
+                .filter(|&(a, b)| !(asleep[a as usize] && asleep[b as usize]))
+                .collect();
+            assert_eq!(pairs, expected);
+            let large = boxes.iter().filter(|b| b.size().x > 10.0).count();
+            assert_eq!(
+                grid.large.len(),
+                large,
+                "the bars, and only they, are large"
+            );
+            assert!(
+                grid.large_tests < large * boxes.len() / 10,
+                "{} tests, against {} for every bar with every proxy",
+                grid.large_tests,
+                large * boxes.len()
+            );
+            assert_eq!(grid.crowded, 0);
+        }
+    }
+
+    #[test]
+    fn a_proxy_wider_than_all_the_others_spread_tests_each_once() {
+        // Ten small boxes and a 10 km floor under them: the floor covers
+        // far more cells than there are proxies, so it tests each proxy.
+        let mut boxes: Vec<Aabb> = (0..10)
+            .map(|i| Aabb::from_centre(Vec2::new(i as f32 * 0.3, 0.1), Vec2::splat(0.2)))
+            .collect();
+        boxes.push(Aabb {
+            min: Vec2::new(-5_000.0, -0.5),
+            max: Vec2::new(5_000.0, 0.0),
+        });
+        let mut grid = BroadPhase::default();
+        let mut pairs = Vec::new();
+        grid.find_pairs(&boxes, &[], false, &mut pairs);
+        pairs.sort_unstable();
+        assert_eq!(pairs, brute_force(&boxes));
+        assert_eq!(pairs.iter().filter(|p| p.1 == 10).count(), 10);
+        assert_eq!(grid.large_tests, boxes.len());
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(100))]
+        #[test]
+        fn long_proxies_find_exactly_the_pairs_brute_force_finds(
+            n in 1usize..300,
+            bars in 0usize..12,
+            length in 2.0f32..200.0,
+            seed in any::<u64>(),
+            sleepy in any::<bool>(),
+        ) {
+            let (boxes, asleep) = bars_among_small_boxes(n, bars, length, seed, sleepy);
+            let mut pairs = Vec::new();
+            BroadPhase::default().find_pairs(&boxes, &asleep, false, &mut pairs);
+            pairs.sort_unstable();
+            let expected: Vec<_> = brute_force(&boxes)
+                .into_iter()
+                .filter(|&(a, b)| !(asleep[a as usize] && asleep[b as usize]))
+                .collect();
+            prop_assert_eq!(pairs, expected);
         }
     }
 

@@ -299,6 +299,29 @@ fn bench_physics_reports_every_scene_with_its_penetration() {
 }
 
 #[test]
+fn bench_platforms_runs_platforms_of_the_length_asked_for() {
+    let out = passo(&[
+        "bench",
+        "platforms",
+        "--bodies",
+        "300",
+        "--platforms",
+        "4",
+        "--length",
+        "30",
+        "--above",
+        "--ticks",
+        "10",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows = table_rows(&stdout(&out));
+    assert_eq!(rows.len(), 2, "a header and one row: {rows:?}");
+    assert_eq!(rows[1][..4], ["300", "4", "30", "10"]);
+    let penetration: f64 = rows[1][6].parse().unwrap();
+    assert!((0.0..50.0).contains(&penetration), "{rows:?}");
+}
+
+#[test]
 fn numeric_arguments_out_of_range_are_refused_before_any_work() {
     // `report --cost-bodies 0` used to grow memory until the machine
     // killed it.
@@ -309,6 +332,8 @@ fn numeric_arguments_out_of_range_are_refused_before_any_work() {
         &["simulate", "rain", "--ticks", "99999999999999"],
         &["bench", "physics", "--rain", "0"],
         &["bench", "platforms", "--ticks", "0"],
+        &["bench", "platforms", "--length", "nan"],
+        &["bench", "platforms", "--length", "0"],
     ] {
         let out = passo(args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");

@@ -117,6 +117,9 @@ pub struct PlatformsBenchArgs {
     /// Kinematic platforms.
     #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(0..=10_000))]
     pub platforms: u32,
+    /// Each platform's length, metres (0.3 m thick).
+    #[arg(long, default_value_t = 4.0, value_parser = platform_length)]
+    pub length: f32,
     /// Ticks to run at 60 Hz.
     #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub ticks: u32,
@@ -201,4 +204,17 @@ pub struct RenderBenchArgs {
     /// Use the software adapter (Mesa lavapipe).
     #[arg(long)]
     pub software: bool,
+}
+
+/// A platform length in metres for `passo bench platforms`: a finite
+/// number from 0.1 to 1 000 (a platform is a body; the scene spans a few
+/// dozen metres).
+fn platform_length(text: &str) -> Result<f32, String> {
+    let length: f32 = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number of metres"))?;
+    if !(0.1..=1000.0).contains(&length) {
+        return Err(format!("{text} is not in 0.1..=1000 (metres)"));
+    }
+    Ok(length)
 }

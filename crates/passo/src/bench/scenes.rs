@@ -151,8 +151,12 @@ pub(super) fn queries(args: &QueriesBenchArgs) -> Result<()> {
 }
 
 pub(super) fn platforms(args: &PlatformsBenchArgs) -> Result<()> {
-    let (mut world, sweepers) =
-        rain_with_platforms(args.bodies as usize, args.platforms as usize, args.above);
+    let (mut world, sweepers) = rain_with_platforms(
+        args.bodies as usize,
+        args.platforms as usize,
+        args.length,
+        args.above,
+    );
     let mut tick = 0;
     let t = time_steps(args.ticks, || {
         drive_sweepers(&mut world, &sweepers, tick);
@@ -160,13 +164,14 @@ pub(super) fn platforms(args: &PlatformsBenchArgs) -> Result<()> {
         tick += 1;
     });
     println!(
-        "| bodies | kinematic platforms | ticks | ms per step (mean) | ms per step (last fifth) | max penetration at the end (mm) |"
+        "| bodies | kinematic platforms | platform length (m) | ticks | ms per step (mean) | ms per step (last fifth) | max penetration at the end (mm) |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|");
     println!(
-        "| {} | {} | {} | {:.2} | {:.2} | {:.1} |",
+        "| {} | {} | {} | {} | {:.2} | {:.2} | {:.1} |",
         world.dynamic_len() - sweepers.len(),
         sweepers.len(),
+        args.length,
         args.ticks,
         t.mean_ms,
         t.last_ms,

@@ -89,7 +89,7 @@ pub(super) fn soak(args: &SoakBenchArgs) -> Result<()> {
     // A rain with two sweeping platforms; every 600 ticks one circle is
     // removed and another thrown in fast, and the world is snapshotted and
     // restored, so every path of the step keeps running.
-    let (mut world, sweepers) = rain_with_platforms(args.bodies as usize, 2, false);
+    let (mut world, sweepers) = rain_with_platforms(args.bodies as usize, 2, 4.0, false);
     let started = Instant::now();
     let mut memory_at_10k = None;
     let mut thrown = 0u64;
