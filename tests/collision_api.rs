@@ -138,6 +138,135 @@ fn sensors_report_visitors_and_never_push() {
     );
 }
 
+/// Steps `w` until `ticks` have passed and returns, for the pair, the
+/// steps it began and ended in, and whether it was in the sensor's
+/// overlaps after a step that began it.
+fn sensor_events(w: &mut World, pair: SensorPair, ticks: u32) -> (Vec<u32>, Vec<u32>, bool) {
+    let (mut began, mut ended, mut listed) = (Vec::new(), Vec::new(), false);
+    for n in 0..ticks {
+        w.step(DT);
+        if w.events().sensor_begin.contains(&pair) {
+            began.push(n);
+            listed |= w.sensor_overlaps().contains(&pair);
+        }
+        if w.events().sensor_end.contains(&pair) {
+            ended.push(n);
+        }
+    }
+    (began, ended, listed)
+}
+
+#[test]
+fn a_body_crossing_a_sensor_within_one_step_begins_and_ends_in_that_step() {
+    // A 0.2 m gate and a 0.05 m ball from fifty starting points: at 20 m/s
+    // (0.33 m a step) the ball is inside at the end of some steps and not
+    // others; at 59 and 400 m/s it crosses the gate within one step. Every
+    // time, one begin and one end.
+    for speed in [20.0, 59.0, 400.0] {
+        for k in 0..50 {
+            let mut w = weightless_world();
+            let gate = w
+                .add_body(
+                    BodyDef::new_static(Vec2::new(5.0, 0.0), Shape::rect(0.2, 2.0)).as_sensor(),
+                )
+                .unwrap();
+            let start = Vec2::new(k as f32 * 0.0137, 0.3);
+            let ball = w
+                .add_body(BodyDef {
+                    velocity: Vec2::new(speed, 0.0),
+                    ..BodyDef::new_dynamic(start, Shape::circle(0.05))
+                })
+                .unwrap();
+            let pair = SensorPair {
+                sensor: gate,
+                visitor: ball,
+            };
+            let (began, ended, listed) = sensor_events(&mut w, pair, 40);
+            assert_eq!(began.len(), 1, "{speed} m/s from {start}: begins {began:?}");
+            assert_eq!(ended.len(), 1, "{speed} m/s from {start}: ends {ended:?}");
+            assert!(began[0] <= ended[0]);
+            if began[0] == ended[0] {
+                assert!(!listed, "crossed within the step: not inside after it");
+            }
+            assert_eq!(w.body(ball).unwrap().velocity.x, speed, "never pushed");
+        }
+    }
+}
+
+#[test]
+fn a_fast_sensor_sweeping_over_a_body_sees_it_and_one_passing_by_does_not() {
+    // A kinematic sensor 0.1 m wide sweeping at 120 m/s (2 m a step) over
+    // a ball at rest, and a ball 0.1 m beside its path.
+    let mut w = weightless_world();
+    let sensor = w
+        .add_body(
+            BodyDef::new_kinematic(
+                Vec2::new(-3.5, 0.0),
+                Shape::rect(0.1, 1.0),
+                Vec2::new(120.0, 0.0),
+            )
+            .as_sensor(),
+        )
+        .unwrap();
+    let inside = w
+        .add_body(BodyDef::new_dynamic(
+            Vec2::new(1.0, 0.0),
+            Shape::circle(0.1),
+        ))
+        .unwrap();
+    let beside = w
+        .add_body(BodyDef::new_dynamic(
+            Vec2::new(3.0, 0.65),
+            Shape::circle(0.1),
+        ))
+        .unwrap();
+    let crossing = SensorPair {
+        sensor,
+        visitor: inside,
+    };
+    let passing = SensorPair {
+        sensor,
+        visitor: beside,
+    };
+    let mut events = Vec::new();
+    for n in 0..6 {
+        w.step(DT);
+        let e = w.events();
+        for (pair, name) in [(crossing, "crossing"), (passing, "passing")] {
+            if e.sensor_begin.contains(&pair) {
+                events.push((n, name, "begin"));
+            }
+            if e.sensor_end.contains(&pair) {
+                events.push((n, name, "end"));
+            }
+        }
+    }
+    // From x = -3.5 the sensor ends its steps at -1.5, 0.5 and 2.5: it
+    // passes over the ball (0.9 to 1.1) within the third step. The other
+    // ball's bottom (0.55) stays 0.05 m above the sensor's top.
+    assert_eq!(events, [(2, "crossing", "begin"), (2, "crossing", "end")]);
+}
+
+#[test]
+fn a_body_leaving_a_sensor_fast_only_ends() {
+    let mut w = weightless_world();
+    let zone = w
+        .add_body(BodyDef::new_static(Vec2::ZERO, Shape::rect(1.0, 1.0)).as_sensor())
+        .unwrap();
+    let ball = w
+        .add_body(BodyDef::new_dynamic(Vec2::ZERO, Shape::circle(0.1)))
+        .unwrap();
+    let pair = SensorPair {
+        sensor: zone,
+        visitor: ball,
+    };
+    w.step(DT);
+    assert_eq!(w.events().sensor_begin, [pair]);
+    w.set_velocity(ball, Vec2::new(300.0, 0.0));
+    let (began, ended, _) = sensor_events(&mut w, pair, 5);
+    assert_eq!((began, ended), (vec![], vec![0]));
+}
+
 #[test]
 fn point_box_and_ray_queries() {
     let mut w = weightless_world();

@@ -128,8 +128,13 @@ impl ContactWorld {
             .sweeps
             .run(dynamic, statics, &self.proxies, &mut self.motion, parallel);
         let candidates = &mut self.narrow.sensor_candidates;
-        self.sweeps
-            .far_sensor_candidates(dynamic, statics, &self.proxies, candidates);
+        self.sweeps.far_sensor_candidates(
+            dynamic,
+            statics,
+            &self.proxies,
+            &self.motion.start,
+            candidates,
+        );
         stops
     }
 
@@ -274,8 +279,12 @@ impl ContactWorld {
         step: u64,
         parallel: bool,
     ) {
-        self.events
-            .find_sensor_overlaps(&self.narrow.sensor_candidates, dynamic, statics);
+        self.events.find_sensor_overlaps(
+            &self.narrow.sensor_candidates,
+            dynamic,
+            statics,
+            &self.motion.start,
+        );
         if let Some((dt, slop)) = sleep {
             self.sleeping
                 .after_step(&mut self.solved, dynamic, &self.motion.delta, dt, slop);

@@ -177,12 +177,15 @@ impl Sweeps {
 
     /// Sensor candidates for the bodies that moved farther than their
     /// contacts reached (the narrow phase did not pair them with what lies
-    /// beyond): every sensor their boxes overlap where they ended.
+    /// beyond): every sensor that the box around their path this step
+    /// overlaps, from where they were at its start (`start`) to where they
+    /// ended.
     pub(crate) fn far_sensor_candidates(
         &mut self,
         dynamic: &DynamicBodies,
         statics: &StaticBodies,
         proxies: &Proxies,
+        start: &[Vec2],
         out: &mut Vec<SensorCandidate>,
     ) {
         if self.far.is_empty() {
@@ -196,7 +199,10 @@ impl Sweeps {
             let i = i as usize;
             let visitor = &dynamic.meta[i];
             let Some(shape) = visitor.shape else { continue };
-            let area = box_of(&shape, dynamic.pos[i]);
+            let mut area = box_of(&shape, dynamic.pos[i]);
+            if let Some(&from) = start.get(i) {
+                area = area.union(&box_of(&shape, from));
+            }
             let mut meet = |sensor: &BodyMeta, at: ColliderRef| {
                 if sensor.filter.allows(&visitor.filter) {
                     out.push(SensorCandidate {

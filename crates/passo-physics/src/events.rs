@@ -3,11 +3,14 @@
 //! events) and who is inside which sensor.
 
 use crate::bodies::{Colliders, DynamicBodies, StaticBodies, pair_order};
+use crate::cast::cast_shape;
+use crate::collider::ColliderRef;
 use crate::constraint::{Constraint, ContactInfo, ContactList};
 use crate::manifold::collide;
 use crate::narrow_phase::SensorCandidate;
 use crate::parallel::{for_chunks, goes_parallel};
 use crate::{BodyId, ContactEvents, ContactPair, SensorPair};
+use glam::Vec2;
 
 /// Impulses a contact carries to the next step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,6 +59,8 @@ pub(crate) struct EventTracker {
     sensors: Vec<SensorPair>,
     /// Sensor overlaps after the last step, sorted.
     pub sensors_prev: Vec<SensorPair>,
+    /// Bodies that went into a sensor and out again within this step.
+    crossed: Vec<SensorPair>,
     /// Events of the last step.
     pub events: ContactEvents,
 }
@@ -83,15 +88,20 @@ impl EventTracker {
         });
     }
 
-    /// Finds which candidates end the step inside their sensor. Bodies in
-    /// a sensor stay awake, so it keeps seeing them.
+    /// Finds which candidates end the step inside their sensor, and which
+    /// went in and out again within the step: the visitor's path from
+    /// where it was at the start of the step (`start`, per dynamic body) to
+    /// where it ended, relative to the sensor's, overlapped the sensor.
+    /// Bodies in a sensor stay awake, so it keeps seeing them.
     pub(crate) fn find_sensor_overlaps(
         &mut self,
         candidates: &[SensorCandidate],
         dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
+        start: &[Vec2],
     ) {
         self.sensors.clear();
+        self.crossed.clear();
         for c in candidates {
             let view = Colliders { dynamic, statics };
             let (shape_s, pos_s) = view.shape_at(c.sensor);
@@ -103,6 +113,21 @@ impl EventTracker {
                         dynamic.sleep[i].rest_time = 0.0;
                     }
                 }
+                continue;
+            }
+            if self.sensors_prev.binary_search(&c.pair).is_ok() {
+                continue; // it was inside: leaving is an end event
+            }
+            let was = |body: ColliderRef, now: Vec2| {
+                body.dynamic_index()
+                    .and_then(|i| start.get(i).copied())
+                    .unwrap_or(now)
+            };
+            // The sensor held where it ended, the visitor moved by the
+            // difference of their displacements.
+            let from = was(c.visitor, pos_v) + (pos_s - was(c.sensor, pos_s));
+            if cast_shape(&shape_v, from, pos_v - from, &shape_s, pos_s).is_some() {
+                self.crossed.push(c.pair);
             }
         }
     }
@@ -145,6 +170,16 @@ impl EventTracker {
                 events.sensor_end.push(pair);
             }
         });
+        if !self.crossed.is_empty() {
+            // In and out within the step: both events, in pair order with
+            // the others.
+            self.crossed.sort_unstable();
+            self.crossed.dedup();
+            for list in [&mut events.sensor_begin, &mut events.sensor_end] {
+                list.extend_from_slice(&self.crossed);
+                list.sort_unstable();
+            }
+        }
         std::mem::swap(&mut self.sensors, &mut self.sensors_prev);
     }
 
