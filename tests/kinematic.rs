@@ -449,3 +449,82 @@ fn a_platform_held_still_by_its_path_sleeps_with_its_rider() {
     world.set_kinematic_target(k, Vec2::new(0.1, 0.0), DT);
     assert_eq!(world.is_asleep(r), Some(false));
 }
+
+/// A 1 m crate resting on static ground is pressed `depth` into it by a
+/// kinematic press (in one step, from 2 cm above), held there for `held`
+/// steps, then the press leaves at `leave` m/s the way it came. Returns
+/// the crate's largest speed away from the ground once the press leaves,
+/// and where it ends, 2 s later.
+fn crushed_then_released(sideways: bool, depth: f32, held: u32, leave: f32) -> (f32, Vec2) {
+    // The ground's outward direction: up, or (sideways) +x from a wall.
+    let out = if sideways { Vec2::X } else { Vec2::Y };
+    // A `w` by `h` box along the ground (turned a quarter for a wall).
+    let rect = |w: f32, h: f32| {
+        if sideways {
+            Shape::rect(h, w)
+        } else {
+            Shape::rect(w, h)
+        }
+    };
+    let mut w = World::default();
+    if sideways {
+        // No gravity along the press: a wall at x < 0, the crate against it.
+        let mut settings = *w.settings();
+        settings.forces.gravity = None;
+        w.set_settings(settings).unwrap();
+    }
+    w.add_body(BodyDef::new_static(-out * 0.5, rect(20.0, 1.0)))
+        .unwrap();
+    let crate_ = w
+        .add_body(BodyDef {
+            position: out * 0.5,
+            shape: Some(Shape::rect(1.0, 1.0)),
+            ..Default::default()
+        })
+        .unwrap();
+    let press = w
+        .add_body(BodyDef::new_kinematic(
+            out * (1.02 + 0.25),
+            rect(2.0, 0.5),
+            Vec2::ZERO,
+        ))
+        .unwrap();
+    w.set_velocity(press, -out * (0.02 + depth) / DT);
+    w.step(DT);
+    w.set_velocity(press, Vec2::ZERO);
+    for _ in 0..held {
+        w.step(DT);
+    }
+    assert!(
+        (pos(&w, crate_).dot(out) - (0.5 - depth)).abs() < 0.01,
+        "pressed {depth} m in"
+    );
+    w.set_velocity(press, out * leave);
+    let mut fastest = 0.0f32;
+    for _ in 0..120 {
+        w.step(DT);
+        fastest = fastest.max(w.body(crate_).unwrap().velocity.dot(out));
+        if pos(&w, press).dot(out) > 3.0 {
+            w.set_velocity(press, Vec2::ZERO);
+        }
+    }
+    (fastest, pos(&w, crate_))
+}
+
+#[test]
+fn a_crate_crushed_by_a_press_stays_put_when_the_press_leaves() {
+    // Pressed 0.1 or 0.26 m into the ground (down, or sideways into a
+    // wall), held, then left at 5 m/s: the crate used to leave with the
+    // press at its speed (5 m/s, 15 m/s for a press that left at 15),
+    // carried by the impulses the crush had piled up. Now the ground pushes
+    // it out at no more than the push-out speed and it stays.
+    for sideways in [false, true] {
+        for (depth, held) in [(0.1, 4), (0.26, 4), (0.1, 0)] {
+            let (fastest, end) = crushed_then_released(sideways, depth, held, 5.0);
+            let case = format!("sideways {sideways}, {depth} m, held {held} steps");
+            assert!(fastest < 0.5, "{case}: left at {fastest} m/s");
+            let out = if sideways { end.x } else { end.y };
+            assert!((out - 0.5).abs() < 0.01, "{case}: ended at {end}");
+        }
+    }
+}
