@@ -531,3 +531,49 @@ fn walking_off_a_crate_does_not_launch_it() {
         assert!((0.5..=0.511).contains(&feet), "down on the floor: {feet}");
     }
 }
+
+#[test]
+fn a_fast_kinematic_wall_pushes_it_instead_of_passing_through() {
+    // A wall 0.2 m thick and 1 m tall sweeping along the ground at 30, 60
+    // and 120 m/s (0.5 to 2 m a tick) into a character 0.4 m wide, from
+    // several starting places: the character always ends in front of it,
+    // a skin from its face, never behind it or inside it. At 60 and 120
+    // m/s the wall used to pass through.
+    let mover = CharacterMover::default();
+    for speed in [30.0f32, 60.0, 120.0] {
+        for k in 0..8 {
+            let mut world = level("..........................\n##########################");
+            let player = character(&mut world, 6.0, 0.0);
+            let start = Vec2::new(6.0 - 2.5 - k as f32 * 0.13, 0.55);
+            let wall = world
+                .add_body(BodyDef::new_kinematic(
+                    start,
+                    Shape::rect(0.2, 1.0),
+                    Vec2::new(speed, 0.0),
+                ))
+                .unwrap();
+            for _ in 0..3 {
+                // Each tick: the platforms are steered first (the wall
+                // keeps its velocity), then the character moves.
+                world
+                    .move_character(player, Vec2::ZERO, &mover, DT)
+                    .unwrap();
+                world.step(DT);
+                let (p, w) = (at(&world, player).x, at(&world, wall).x);
+                let case = format!("{speed} m/s from {start}: wall at {w}, character at {p}");
+                assert!(
+                    p - HALF.x >= w + 0.1 - 1e-4,
+                    "{case}: behind or inside the wall"
+                );
+                if w + 0.1 >= 6.0 - HALF.x - mover.skin {
+                    // The wall reached where the character stood: carried
+                    // in front of its face, a skin away.
+                    assert!(
+                        p - HALF.x - (w + 0.1) <= mover.skin + 1e-3,
+                        "{case}: left behind"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -6,8 +6,8 @@
 //! wants this tick and:
 //! 1. finds what it stands on now;
 //! 2. adds the travel of the kinematic body it stands on (riding);
-//! 3. pushes the character out of anything it overlaps (a platform that
-//!    moves into it);
+//! 3. is pushed along by a kinematic body that sweeps into it this step
+//!    (however fast), then out of anything it overlaps;
 //! 4. moves and slides: casts the shape along what is left of the
 //!    translation, stops a skin width short of the first hit, and keeps
 //!    the part of the motion along the surface; up to four times;
@@ -289,6 +289,44 @@ impl Walker<'_> {
         at
     }
 
+    /// How far the kinematic bodies that sweep into the character's place
+    /// `at` this step push it: the first one met (the earliest along its
+    /// travel, then the lowest id) pushes it along the face that meets it
+    /// for the rest of that travel, to a skin in front of where the body
+    /// ends. A wall moving farther than the character is wide in one step
+    /// would otherwise pass through it, and one ending inside it push it
+    /// out on whichever side is nearer. Returns the body and the push, or
+    /// `None` if none meets it; one that overlaps it already (and one-way
+    /// platforms) are left to the push out.
+    fn swept_by_kinematic(&self, at: Vec2) -> Option<(BodyId, Vec2)> {
+        let dt = self.ahead?;
+        let area = crate::Aabb::from_centre(at, self.shape.half_extents());
+        let mut first: Option<(f32, BodyId, Vec2)> = None;
+        self.near(&area, |f: Found<'_>| {
+            let Some(i) = f
+                .dynamic
+                .filter(|_| f.meta.kinematic && f.meta.one_way.is_none())
+            else {
+                return;
+            };
+            let travel = self.world.dynamic.vel[i] * dt;
+            let Some(hit) = crate::cast::cast_shape(&f.shape, f.position, travel, &self.shape, at)
+            else {
+                return;
+            };
+            if hit.fraction == 0.0 {
+                return;
+            }
+            // `hit.normal` points out of the character towards the body.
+            let away = -hit.normal;
+            let push = away * ((1.0 - hit.fraction) * travel.dot(away) + self.mover.skin);
+            if first.is_none_or(|(t, id, _)| (hit.fraction, f.id) < (t, id)) {
+                first = Some((hit.fraction, f.id, push));
+            }
+        });
+        first.map(|(_, body, push)| (body, push))
+    }
+
     /// The ground within `reach` below `at`: the hit, if its normal is
     /// ground enough.
     fn ground(&self, at: Vec2, reach: f32) -> Option<Hit> {
@@ -310,8 +348,11 @@ impl World {
     /// platform, sinks into a lift going up, or is thrown off one that
     /// turns back).
     ///
-    /// Limits: a kinematic wall that moves farther than the character is
-    /// wide in one step passes through it; a circle character rolls up a
+    /// A kinematic body that sweeps into the character this step (steered
+    /// before the call) pushes it along to a skin in front of where the
+    /// body ends, however fast it goes.
+    ///
+    /// Limits: a circle character rolls up a
     /// block's rounded corner once the corner is under it within
     /// `ground_normal`, so at speed it may top blocks higher than
     /// `max_step` (use a box for exact step heights); walking off a
@@ -398,6 +439,13 @@ impl World {
         {
             walker.ignored = Some(ground.body);
             at = walker.advance(at, b.velocity * dt).0;
+            walker.ignored = None;
+        }
+        if let Some((pusher, push)) = walker.swept_by_kinematic(at) {
+            // Through anything in the way but the pusher, which ends
+            // behind it.
+            walker.ignored = Some(pusher);
+            at = walker.advance(at, push).0;
             walker.ignored = None;
         }
         at = walker.push_out(at);
