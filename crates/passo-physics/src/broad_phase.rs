@@ -22,8 +22,7 @@
 //! hashed into a table sized to the number of entries and grouped with a
 //! counting sort, so the whole pass is linear in the number of bodies for
 //! evenly spread bodies and allocates nothing once its buffers have grown.
-//! The cell size follows the bodies: twice their mean proxy size (leaving
-//! out proxies over four times the mean, see [`typical_size`]), so a
+//! The cell size follows the bodies: twice their mean proxy size, so a
 //! typical proxy covers at most four cells. The rare proxy much larger than
 //! that (over [`LARGE_PROXY_CELLS`] cells across) is not binned: once the
 //! others are, it looks them up in the cells it covers (or, if it covers
@@ -142,7 +141,7 @@ impl BroadPhase {
             self.crowded = 0;
             return;
         }
-        let cell_size = (2.0 * typical_size(proxies, mean_size)).max(1e-3);
+        let cell_size = (2.0 * mean_size).max(1e-3);
         let inv = 1.0 / cell_size;
         let cell_of = |p: Vec2| (floor_i32(p.x * inv), floor_i32(p.y * inv));
 
@@ -309,9 +308,14 @@ impl BroadPhase {
         for (x, &l) in self.large.iter().enumerate() {
             let lb = &proxies[l as usize];
             let (lo, hi) = (cell_of(lb.min), cell_of(lb.max));
-            let covered =
-                (i64::from(hi.0) - i64::from(lo.0) + 1) * (i64::from(hi.1) - i64::from(lo.1) + 1);
-            if covered > proxies.len() as i64 {
+            // In i64, each span at most 2^32: their product is formed only
+            // when both are at most the number of proxies.
+            let n = proxies.len() as i64;
+            let (w, h) = (
+                i64::from(hi.0) - i64::from(lo.0) + 1,
+                i64::from(hi.1) - i64::from(lo.1) + 1,
+            );
+            if w > n || h > n || w * h > n {
                 // Larger than the bodies' whole spread in cells: every
                 // proxy once (the large ones below).
                 for (j, b) in proxies.iter().enumerate() {
@@ -613,21 +617,6 @@ fn pairs_in_run(
             out.push(ordered(a, b));
         }
     }
-}
-
-/// The mean size of the proxies no larger than four times `mean`, the mean
-/// size of all: what sets the hashed grid's cells. A few long bodies
-/// (platforms, bars) among many small ones then leave the cells as large
-/// as the small ones need, where the mean of all grew with them and
-/// crowded the cells. Without such outliers it is `mean`, bit for bit.
-fn typical_size(proxies: &[Aabb], mean: f32) -> f32 {
-    let cap = 4.0 * mean;
-    let (sum, n) = proxies
-        .iter()
-        .map(|b| b.size().max_element())
-        .filter(|&s| s <= cap)
-        .fold((0.0f32, 0usize), |(sum, n), s| (sum + s, n + 1));
-    if n == 0 { mean } else { sum / n as f32 }
 }
 
 fn ordered(a: u32, b: u32) -> (u32, u32) {
@@ -965,9 +954,8 @@ mod tests {
 
     #[test]
     fn long_proxies_meet_their_neighbours_not_every_proxy() {
-        // 3 000 small boxes and 30 bars 30 m long: each bar covers about a
-        // hundred cells and looks only in those, and the bars leave the
-        // cells as small as the small boxes need.
+        // 3 000 small boxes and 30 bars 30 m long: each bar covers a few
+        // dozen cells and looks only in those.
         for sleepy in [false, true] {
             let (boxes, asleep) = bars_among_small_boxes(3_000, 30, 30.0, 11, sleepy);
             let mut grid = BroadPhase::default();
@@ -999,22 +987,24 @@ mod tests {
     }
 
     #[test]
-    fn a_proxy_wider_than_all_the_others_spread_tests_each_once() {
-        // Ten small boxes and a 10 km floor under them: the floor covers
-        // far more cells than there are proxies, so it tests each proxy.
-        let mut boxes: Vec<Aabb> = (0..10)
+    fn a_proxy_covering_more_cells_than_there_are_proxies_tests_each_once() {
+        // Forty small boxes on a 10 km square: the square sets the cells
+        // (about 490 m) and covers some 21 x 21 of them, more than the 41
+        // proxies, so it tests each proxy instead of looking in each cell.
+        let mut boxes: Vec<Aabb> = (0..40)
             .map(|i| Aabb::from_centre(Vec2::new(i as f32 * 0.3, 0.1), Vec2::splat(0.2)))
             .collect();
         boxes.push(Aabb {
-            min: Vec2::new(-5_000.0, -0.5),
-            max: Vec2::new(5_000.0, 0.0),
+            min: Vec2::splat(-5_000.0),
+            max: Vec2::splat(5_000.0),
         });
         let mut grid = BroadPhase::default();
         let mut pairs = Vec::new();
         grid.find_pairs(&boxes, &[], false, &mut pairs);
         pairs.sort_unstable();
         assert_eq!(pairs, brute_force(&boxes));
-        assert_eq!(pairs.iter().filter(|p| p.1 == 10).count(), 10);
+        assert_eq!(pairs.iter().filter(|p| p.1 == 40).count(), 40);
+        assert_eq!(grid.large, [40]);
         assert_eq!(grid.large_tests, boxes.len());
     }
 
