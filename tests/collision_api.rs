@@ -435,3 +435,34 @@ fn positions_beyond_the_usable_extent_and_giant_shapes_are_refused() {
     w.step(1.0 / 60.0);
     assert!(w.bodies().all(|b| b.position.is_finite()));
 }
+
+#[test]
+fn a_fast_body_crossing_the_path_of_a_moving_sensor_is_seen() {
+    // A 0.5 m kinematic sensor at 60 m/s along x and a 0.05 m ball at
+    // 300 m/s along y: relative to the sensor the ball passes through its
+    // middle within one step, where neither ends near the other. It used
+    // to be seen only against a static sensor.
+    let mut w = weightless_world();
+    let sensor = w
+        .add_body(
+            BodyDef::new_kinematic(
+                Vec2::new(-0.5, 0.0),
+                Shape::rect(0.5, 0.5),
+                Vec2::new(60.0, 0.0),
+            )
+            .as_sensor(),
+        )
+        .unwrap();
+    let ball = w
+        .add_body(BodyDef {
+            velocity: Vec2::new(0.0, 300.0),
+            ..BodyDef::new_dynamic(Vec2::new(0.0, -2.5), Shape::circle(0.05))
+        })
+        .unwrap();
+    let pair = SensorPair {
+        sensor,
+        visitor: ball,
+    };
+    let (began, ended, listed) = sensor_events(&mut w, pair, 3);
+    assert_eq!((began, ended, listed), (vec![0], vec![0], false));
+}

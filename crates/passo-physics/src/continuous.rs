@@ -177,9 +177,9 @@ impl Sweeps {
 
     /// Sensor candidates for the bodies that moved farther than their
     /// contacts reached (the narrow phase did not pair them with what lies
-    /// beyond): every sensor that the box around their path this step
-    /// overlaps, from where they were at its start (`start`) to where they
-    /// ended.
+    /// beyond): every sensor whose box around its path this step overlaps
+    /// the box around theirs, each from where it was at the step's start
+    /// (`start`; a static sensor stays put) to where it ended.
     pub(crate) fn far_sensor_candidates(
         &mut self,
         dynamic: &DynamicBodies,
@@ -227,7 +227,12 @@ impl Sweeps {
                 let Some(sensor_shape) = meta.shape else {
                     continue;
                 };
-                if box_of(&sensor_shape, dynamic.pos[k]).overlaps(&area) {
+                // The box around the sensor's own path too.
+                let mut path = box_of(&sensor_shape, dynamic.pos[k]);
+                if let Some(&from) = start.get(k) {
+                    path = path.union(&box_of(&sensor_shape, from));
+                }
+                if path.overlaps(&area) {
                     meet(meta, ColliderRef::dynamic(k as u32));
                 }
             }
