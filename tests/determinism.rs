@@ -233,7 +233,7 @@ fn a_large_world_with_a_point_mass_and_a_kinematic_body_the_same_bits_on_the_poo
 /// The state hashes after 100 ticks of two worlds whose steps split their
 /// contacts in two regions (see `the_same_bits_whatever_the_number_of_threads`):
 /// the large world with a sweeper, and the wide pile with platforms.
-const EXPECTED_SPLIT: [u64; 2] = [0xda79_034f_9ca4_f4ae, 0x2571_e6db_4bb7_2836];
+const EXPECTED_SPLIT: [u64; 2] = [0xda79_034f_9ca4_f4ae, 0xe1c9_7baa_11ee_7746];
 
 /// A pile of 4 500 circles 45 m wide and 9 m high on the ground (so its
 /// steps split it at the middle of its width), with a kinematic platform

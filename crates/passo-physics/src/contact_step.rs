@@ -5,7 +5,6 @@
 //! each is skipped when the plan does not need it.
 
 use crate::bodies::SpeedLimits;
-use crate::collider::ColliderRef;
 use crate::colouring::Pass;
 use crate::constants::DEEP_OVERLAP;
 use crate::contact_world::{ContactWorld, StepParams};
@@ -411,12 +410,6 @@ impl World {
                 &mut b.vel,
                 plan.solver.restitution_threshold,
             );
-        }
-        if plan.hold_kinematic {
-            let meta = &b.meta;
-            let kinematic =
-                |body: ColliderRef| body.dynamic_index().is_some_and(|k| meta[k].kinematic);
-            solver::release_crushes(&mut solved.rows, kinematic, &mut motion.crushes);
         }
         let parallel = self.parallel;
         solver::store_separations(&solved.rows, &mut solved.infos, &motion.delta, parallel);

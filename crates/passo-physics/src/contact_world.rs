@@ -111,6 +111,17 @@ impl ContactWorld {
         }
         if settings.warm_starting {
             self.events.warm_start(&mut self.solved, step.parallel);
+            if !dynamic.kinematic.is_empty() {
+                // A press moving off a body it crushed: see `crush`.
+                let (vel, meta) = (&dynamic.vel, &dynamic.meta);
+                let leaves = |c: &Constraint| {
+                    c.b.dynamic_index().is_some_and(|k| {
+                        meta[k].kinematic && vel[k].dot(c.normal) > crate::crush::LEAVING
+                    })
+                };
+                let rows = &mut self.solved.rows;
+                self.motion.crushes.release(rows, dynamic.len(), leaves);
+            }
         }
     }
 

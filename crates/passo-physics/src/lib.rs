@@ -83,6 +83,8 @@ mod constraint;
 
 mod narrow_phase;
 mod solver;
+// Crushed bodies' impulses let go of after the step.
+mod crush;
 // The per-body buffers of the substeps.
 mod motion;
 // The wide (lane by lane) contact passes.

@@ -118,8 +118,8 @@ pub(crate) struct Motion {
     pub replay: Vec<Vec2>,
     /// The deep piles of this step.
     pub piles: DeepPiles,
-    /// Scratch of `solver::release_crushes`: `(body, contact)` pairs.
-    pub crushes: Vec<(u32, u32)>,
+    /// The buffers of the search for crushed bodies.
+    pub crushes: crate::crush::Crushes,
 }
 
 /// The states the passes start from, in `state`, for bodies moving at

@@ -43,7 +43,6 @@
 //! carries on from substep to substep and step to step (see
 //! [`begin_substep`]).
 
-use crate::collider::ColliderRef;
 use crate::constraint::{Constraint, ContactInfo};
 use crate::parallel::{for_chunks, for_chunks_max};
 use glam::Vec2;
@@ -411,52 +410,6 @@ impl DeepPiles {
 /// Records each contact's separation at the end of the step, from the
 /// bodies' displacements `delta` since it began (in chunks on the thread
 /// pool when `parallel` and there are many).
-/// Lets go of the impulses a body crushed by a kinematic body piled up.
-///
-/// A dynamic body pressed between a kinematic body and another immovable
-/// one (static, or kinematic too) has no motion that satisfies both
-/// contacts: each pass of the solver raises both impulses by the press's
-/// speed times the body's mass, and they balance. Warm started, they stayed
-/// balanced while the press stood still, and when it moved off, the
-/// solver resolved them by sending the body after it: a crate pressed
-/// 0.1 m into the ground left with the lift at 5 m/s. Here, after the
-/// step, the warm-start impulses (normal, friction and push) of every
-/// contact such a body has with an immovable body are set to zero, so the
-/// next step starts them cold; what the contacts did this step (their
-/// touching state, their separations) is kept. `kinematic(b)`: whether
-/// body B of a contact is kinematic. `scratch` is reused from step to
-/// step. Returns how many contacts were let go of.
-pub(crate) fn release_crushes(
-    rows: &mut [Constraint],
-    kinematic: impl Fn(ColliderRef) -> bool,
-    scratch: &mut Vec<(u32, u32)>,
-) -> usize {
-    scratch.clear();
-    for (i, c) in rows.iter().enumerate() {
-        if c.inv_mass_b == 0.0 && c.normal_impulse > 0.0 {
-            scratch.push((c.a, i as u32));
-        }
-    }
-    // By body, then by row: the same order whatever the threads did.
-    scratch.sort_unstable();
-    let mut released = 0;
-    for run in scratch.chunk_by(|x, y| x.0 == y.0) {
-        let pressed = |&(_, i): &(u32, u32), &(_, j): &(u32, u32)| {
-            let (ci, cj) = (&rows[i as usize], &rows[j as usize]);
-            ci.normal.dot(cj.normal) < -0.5 && (kinematic(ci.b) || kinematic(cj.b))
-        };
-        if !run.iter().any(|x| run.iter().any(|y| pressed(x, y))) {
-            continue;
-        }
-        for &(_, i) in run {
-            let c = &mut rows[i as usize];
-            (c.normal_impulse, c.tangent_impulse, c.push_impulse) = (0.0, 0.0, 0.0);
-        }
-        released += run.len();
-    }
-    released
-}
-
 pub(crate) fn store_separations(
     constraints: &[Constraint],
     infos: &mut [ContactInfo],

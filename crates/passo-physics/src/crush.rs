@@ -1,0 +1,187 @@
+//! Bodies crushed by a kinematic body: when the press moves off, the
+//! impulses the crush piled up are let go of.
+//!
+//! A dynamic body pressed by a kinematic body against an immovable one
+//! (static, or kinematic too), directly or through other dynamic bodies
+//! (a stack of crates under a press), has no motion that satisfies all of
+//! its contacts: each pass of the solver raises the impulses along the
+//! column by the press's speed times the mass it pushes, and they balance.
+//! Warm started, they stay balanced while the press holds still (and hold
+//! a body gripped between two kinematic jaws by friction). When the press
+//! moved off, the solver resolved them by sending the column after it: a
+//! crate pressed 0.1 m into the ground left with the press at 5 m/s.
+//!
+//! So at the start of a step, after the warm start, each body a kinematic
+//! body pressed (a contact warm started with a positive impulse) and now
+//! moves away from (faster than [`LEAVING`] along the contact's normal) is
+//! followed through its pushing contacts in the
+//! direction of the press; if that reaches an immovable body, the
+//! warm-start impulses (normal, friction and push) of every pushing contact
+//! of the bodies met are set to zero, and the step starts them cold.
+
+use crate::constraint::Constraint;
+use glam::Vec2;
+
+/// Bodies one press is followed through, at most: a column longer than
+/// that is left as it is.
+const COLUMN: usize = 64;
+
+/// Bodies followed in one step, at most, over all presses: the search costs
+/// no more than a few thousand steps of a walk whatever the scene.
+const BUDGET: usize = 4096;
+
+/// A press moving away from a body it pressed faster than this, m/s,
+/// leaves it (slower, or not along the contact's normal, as the jaws of a
+/// gripper lifting a crate, it holds on).
+pub(crate) const LEAVING: f32 = 0.01;
+
+/// How far a contact's normal may turn from the press's direction and still
+/// carry the press on: 60 degrees.
+const ALONG: f32 = 0.5;
+
+/// Buffers of [`Crushes::release`], kept between steps.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Crushes {
+    /// Per body, where its pushing contacts start in `rows` (and, last,
+    /// where they end).
+    starts: Vec<u32>,
+    /// The pushing contacts, body by body (a contact between two dynamic
+    /// bodies under both).
+    rows: Vec<u32>,
+    /// Per body, the mark of the press that last followed it.
+    seen: Vec<u32>,
+    /// The last press's mark: a number for each press followed, never 0
+    /// (`seen`'s fill) and never used twice until it wraps round, when
+    /// `seen` is cleared.
+    mark: u32,
+    /// The bodies met by the press being followed.
+    column: Vec<u32>,
+    /// Bodies still to follow.
+    stack: Vec<u32>,
+}
+
+impl Crushes {
+    /// Lets go of the warm-start impulses of crushed columns among `rows`
+    /// (contacts of `bodies` dynamic bodies, warm started) whose press
+    /// leaves: `leaves(c)`, whether body B of contact `c` is kinematic and
+    /// moves away from body A this step. Returns how many contacts were
+    /// let go of. Deterministic: the presses and each body's contacts are
+    /// taken in the order of `rows`.
+    pub(crate) fn release(
+        &mut self,
+        rows: &mut [Constraint],
+        bodies: usize,
+        leaves: impl Fn(&Constraint) -> bool,
+    ) -> usize {
+        let pushing = |c: &Constraint| c.normal_impulse > 0.0;
+        if !rows.iter().any(|c| pushing(c) && leaves(c)) {
+            return 0;
+        }
+        self.index(rows, bodies, pushing);
+        let (mut released, mut budget) = (0, BUDGET);
+        for press in 0..rows.len() {
+            let c = &rows[press];
+            if !(pushing(c) && leaves(c)) || budget == 0 {
+                continue;
+            }
+            // The normal points from the pressed body to the press, which
+            // pushes it the other way.
+            let (body, towards) = (c.a, -c.normal);
+            if self.reaches_immovable(rows, press, body, towards, &mut budget) {
+                for &b in &self.column {
+                    let (start, end) = (self.starts[b as usize], self.starts[b as usize + 1]);
+                    for &r in &self.rows[start as usize..end as usize] {
+                        let c = &mut rows[r as usize];
+                        released += usize::from(c.normal_impulse != 0.0);
+                        (c.normal_impulse, c.tangent_impulse, c.push_impulse) = (0.0, 0.0, 0.0);
+                    }
+                }
+            }
+        }
+        released
+    }
+
+    /// The pushing contacts of each body, in `starts` and `rows` (a
+    /// counting sort: linear in the contacts).
+    fn index(&mut self, rows: &[Constraint], bodies: usize, pushing: impl Fn(&Constraint) -> bool) {
+        let moved_b = |c: &Constraint| c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0);
+        self.starts.clear();
+        self.starts.resize(bodies + 1, 0);
+        for c in rows.iter().filter(|c| pushing(c)) {
+            self.starts[c.a as usize + 1] += 1;
+            if let Some(b) = moved_b(c) {
+                self.starts[b + 1] += 1;
+            }
+        }
+        for b in 1..=bodies {
+            self.starts[b] += self.starts[b - 1];
+        }
+        self.rows.resize(self.starts[bodies] as usize, 0);
+        // Dealt from the last contact to the first, each body's `start`
+        // ends where its run begins.
+        for (i, c) in rows.iter().enumerate().rev().filter(|(_, c)| pushing(c)) {
+            for body in std::iter::once(c.a as usize).chain(moved_b(c)) {
+                self.starts[body + 1] -= 1;
+                self.rows[self.starts[body + 1] as usize] = i as u32;
+            }
+        }
+        // `starts[b + 1]` now holds body b's start: shift back by one.
+        self.starts.rotate_left(1);
+        self.starts[bodies] = self.rows.len() as u32;
+        self.seen.resize(bodies, 0);
+    }
+
+    /// Follows the press of contact `press` from `body` in direction
+    /// `towards` through the contacts that carry it on; `true` if it meets
+    /// an immovable body. The bodies met are left in `column`.
+    fn reaches_immovable(
+        &mut self,
+        rows: &[Constraint],
+        press: usize,
+        body: u32,
+        towards: Vec2,
+        budget: &mut usize,
+    ) -> bool {
+        self.mark = self.mark.wrapping_add(1);
+        if self.mark == 0 {
+            self.seen.fill(0);
+            self.mark = 1;
+        }
+        let mark = self.mark;
+        self.column.clear();
+        self.stack.clear();
+        self.stack.push(body);
+        self.seen[body as usize] = mark;
+        while let Some(x) = self.stack.pop() {
+            if self.column.len() == COLUMN || *budget == 0 {
+                return false;
+            }
+            *budget -= 1;
+            self.column.push(x);
+            let (start, end) = (self.starts[x as usize], self.starts[x as usize + 1]);
+            for &r in &self.rows[start as usize..end as usize] {
+                let c = &rows[r as usize];
+                if r as usize == press {
+                    continue;
+                }
+                // The normal out of x, and the body on the other side.
+                let (out, other) = if c.a == x {
+                    (c.normal, c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0))
+                } else {
+                    (-c.normal, Some(c.a as usize))
+                };
+                if out.dot(towards) < ALONG {
+                    continue;
+                }
+                let Some(other) = other else {
+                    return true; // static or kinematic: the column is crushed
+                };
+                if self.seen[other] != mark {
+                    self.seen[other] = mark;
+                    self.stack.push(other as u32);
+                }
+            }
+        }
+        false
+    }
+}
