@@ -578,20 +578,21 @@ fn crates_riding_a_lift_keep_riding_it() {
     assert!((pos(&w, lift).y - 2.0).abs() < 1e-4);
 }
 
+/// A world with ground under y = 0 and a 1 m crate resting on it.
+fn crate_on_ground() -> (World, BodyId) {
+    let mut w = World::default();
+    add_ground(&mut w, 20.0);
+    let def = BodyDef::new_dynamic(Vec2::new(0.0, 0.5), Shape::rect(1.0, 1.0));
+    let crate_ = w.add_body(def).unwrap();
+    (w, crate_)
+}
+
 #[test]
 fn kinematic_jaws_gripping_a_crate_lift_it_and_a_held_press_keeps_its_contacts() {
     // Two jaws close 1 cm into the sides of a crate on the ground, then
     // rise at 2 m/s: friction holds the crate between them (it would drop
     // if the impulses the grip piles up were let go of).
-    let mut w = World::default();
-    add_ground(&mut w, 20.0);
-    let crate_ = w
-        .add_body(BodyDef {
-            position: Vec2::new(0.0, 0.5),
-            shape: Some(Shape::rect(1.0, 1.0)),
-            ..Default::default()
-        })
-        .unwrap();
+    let (mut w, crate_) = crate_on_ground();
     let jaw = |w: &mut World, side: f32| {
         let def = BodyDef::new_kinematic(
             Vec2::new(side * 0.75, 0.6),
@@ -618,15 +619,7 @@ fn kinematic_jaws_gripping_a_crate_lift_it_and_a_held_press_keeps_its_contacts()
 
     // A press that drives a crate 0.1 m into the ground and holds still:
     // its contact keeps touching, with an impulse, and ends no contact.
-    let mut w = World::default();
-    add_ground(&mut w, 20.0);
-    let crate_ = w
-        .add_body(BodyDef {
-            position: Vec2::new(0.0, 0.5),
-            shape: Some(Shape::rect(1.0, 1.0)),
-            ..Default::default()
-        })
-        .unwrap();
+    let (mut w, crate_) = crate_on_ground();
     let press = w
         .add_body(BodyDef::new_kinematic(
             Vec2::new(0.0, 1.27),

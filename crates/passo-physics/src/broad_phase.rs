@@ -641,6 +641,14 @@ mod tests {
         pairs
     }
 
+    /// [`brute_force`] without the pairs of two proxies marked asleep.
+    fn brute_force_awake(proxies: &[Aabb], asleep: &[bool]) -> Vec<(u32, u32)> {
+        brute_force(proxies)
+            .into_iter()
+            .filter(|&(a, b)| asleep.is_empty() || !(asleep[a as usize] && asleep[b as usize]))
+            .collect()
+    }
+
     fn grid_pairs(proxies: &[Aabb]) -> Vec<(u32, u32)> {
         let mut pairs = Vec::new();
         BroadPhase::default().find_pairs(proxies, &[], false, &mut pairs);
@@ -785,10 +793,7 @@ mod tests {
             let mut pairs = Vec::new();
             BroadPhase::default().find_pairs(&boxes, &asleep, false, &mut pairs);
             pairs.sort_unstable();
-            let expected: Vec<_> = brute_force(&boxes)
-                .into_iter()
-                .filter(|&(a, b)| !(asleep[a as usize] && asleep[b as usize]))
-                .collect();
+            let expected = brute_force_awake(&boxes, &asleep);
             prop_assert_eq!(pairs, expected);
         }
     }
@@ -828,10 +833,7 @@ mod tests {
                 true => proxies.iter().map(|p| p.1).collect(),
                 false => Vec::new(),
             };
-            let expected: Vec<_> = brute_force(&boxes)
-                .into_iter()
-                .filter(|&(a, b)| asleep.is_empty() || !(asleep[a as usize] && asleep[b as usize]))
-                .collect();
+            let expected = brute_force_awake(&boxes, &asleep);
             // Sizes within a factor two of each other over a small region:
             // the corner grid takes them.
             prop_assert_eq!(corner_pairs(&boxes, &asleep), Some(expected));
@@ -965,10 +967,7 @@ mod tests {
             pairs.sort_unstable();
             pairs.dedup();
             assert_eq!(pairs.len(), count, "a pair was reported twice");
-            let expected: Vec<_> = brute_force(&boxes)
-                .into_iter()
-                .filter(|&(a, b)| !(asleep[a as usize] && asleep[b as usize]))
-                .collect();
+            let expected = brute_force_awake(&boxes, &asleep);
             assert_eq!(pairs, expected);
             let large = boxes.iter().filter(|b| b.size().x > 10.0).count();
             assert_eq!(
@@ -1022,10 +1021,7 @@ mod tests {
             let mut pairs = Vec::new();
             BroadPhase::default().find_pairs(&boxes, &asleep, false, &mut pairs);
             pairs.sort_unstable();
-            let expected: Vec<_> = brute_force(&boxes)
-                .into_iter()
-                .filter(|&(a, b)| !(asleep[a as usize] && asleep[b as usize]))
-                .collect();
+            let expected = brute_force_awake(&boxes, &asleep);
             prop_assert_eq!(pairs, expected);
         }
     }
