@@ -22,7 +22,7 @@ const EXPECTED_AWAKE: u64 = 0x9ac6_1daa_665b_3ca0;
 /// The busy scene with moving, one-way and plain platforms above it (see
 /// `with_platforms`). Added with kinematic bodies and one-way platforms;
 /// the two constants above stay valid for scenes without them.
-const EXPECTED_PLATFORMS: u64 = 0x5d32_b0a7_6aa0_5956;
+const EXPECTED_PLATFORMS: u64 = 0xcd88_2dbd_ed8c_3575;
 const TICKS: usize = 300;
 
 /// Rain (2 000 circles in a box) with a pyramid of boxes beside it and a

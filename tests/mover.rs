@@ -542,9 +542,9 @@ fn a_fast_kinematic_wall_pushes_it_instead_of_passing_through() {
     let mover = CharacterMover::default();
     for speed in [30.0f32, 60.0, 120.0] {
         for k in 0..8 {
-            let mut world = level("..........................\n##########################");
-            let player = character(&mut world, 6.0, 0.0);
-            let start = Vec2::new(6.0 - 2.5 - k as f32 * 0.13, 0.55);
+            let mut world = level("##########################");
+            let player = character(&mut world, 6.0, 0.5);
+            let start = Vec2::new(6.0 - 2.5 - k as f32 * 0.13, 1.05);
             let wall = world
                 .add_body(BodyDef::new_kinematic(
                     start,
@@ -576,4 +576,70 @@ fn a_fast_kinematic_wall_pushes_it_instead_of_passing_through() {
             }
         }
     }
+}
+
+#[test]
+fn a_fast_wall_meeting_a_character_riding_towards_it_pushes_it_back() {
+    // The character rides a platform at 3 or 6 m/s towards a wall coming
+    // at 20 or 30 m/s (0.4 to 0.6 m a tick closer, more than its 0.4 m
+    // width): the wall always ends in front of it, never passed.
+    let mover = CharacterMover::default();
+    for (ride, wall_speed) in [(3.0f32, 30.0f32), (6.0, 20.0)] {
+        for k in 0..8 {
+            let mut world = World::default();
+            let platform = BodyDef::new_kinematic(
+                Vec2::new(0.0, -0.1),
+                Shape::rect(40.0, 0.2),
+                Vec2::new(ride, 0.0),
+            );
+            world.add_body(platform).unwrap();
+            let player = character(&mut world, 0.0, 0.0);
+            let start = 3.0 + k as f32 * 0.13;
+            let wall = world
+                .add_body(BodyDef::new_kinematic(
+                    Vec2::new(start, 0.55),
+                    Shape::rect(0.2, 1.0),
+                    Vec2::new(-wall_speed, 0.0),
+                ))
+                .unwrap();
+            for tick in 0..12 {
+                world
+                    .move_character(player, Vec2::ZERO, &mover, DT)
+                    .unwrap();
+                world.step(DT);
+                let (p, w) = (at(&world, player).x, at(&world, wall).x);
+                assert!(
+                    p + HALF.x <= w - 0.1 + 1e-3,
+                    "riding at {ride} m/s, wall at {wall_speed} m/s from {start}, tick {tick}: \
+                     character at {p}, wall at {w}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_low_lipped_platform_sliding_into_it_scoops_it_up() {
+    // A platform 3 cm high sliding along the floor at 3 m/s into the
+    // standing character lifts it onto its top (the push out's shortest
+    // way), rather than shoving it along the floor.
+    let mover = CharacterMover::default();
+    let mut world = level("##########################");
+    let player = character(&mut world, 6.0, 0.5);
+    let lip = world
+        .add_body(BodyDef::new_kinematic(
+            Vec2::new(4.0, 0.515),
+            Shape::rect(2.0, 0.03),
+            Vec2::new(3.0, 0.0),
+        ))
+        .unwrap();
+    for _ in 0..30 {
+        world
+            .move_character(player, Vec2::ZERO, &mover, DT)
+            .unwrap();
+        world.step(DT);
+    }
+    let (p, l) = (at(&world, player), at(&world, lip));
+    assert!((p.y - (0.53 + HALF.y + mover.skin)).abs() < 2e-3, "{p}");
+    assert!(p.x - HALF.x < l.x + 1.0, "over the platform: {p} and {l}");
 }

@@ -114,13 +114,13 @@ impl ContactWorld {
             if !dynamic.kinematic.is_empty() {
                 // A press moving off a body it crushed: see `crush`.
                 let (vel, meta) = (&dynamic.vel, &dynamic.meta);
-                let leaves = |c: &Constraint| {
-                    c.b.dynamic_index().is_some_and(|k| {
-                        meta[k].kinematic && vel[k].dot(c.normal) > crate::crush::LEAVING
-                    })
+                let kinematic = |b: ColliderRef| {
+                    b.dynamic_index()
+                        .filter(|&k| meta[k].kinematic)
+                        .map(|k| vel[k])
                 };
                 let rows = &mut self.solved.rows;
-                self.motion.crushes.release(rows, dynamic.len(), leaves);
+                self.motion.crushes.release(rows, dynamic.len(), kinematic);
             }
         }
     }

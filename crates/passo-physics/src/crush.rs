@@ -14,25 +14,31 @@
 //! So at the start of a step, after the warm start, each body a kinematic
 //! body pressed (a contact warm started with a positive impulse) and now
 //! moves away from (faster than [`LEAVING`] along the contact's normal) is
-//! followed through its pushing contacts in the
-//! direction of the press; if that reaches an immovable body, the
-//! warm-start impulses (normal, friction and push) of every pushing contact
-//! of the bodies met are set to zero, and the step starts them cold.
+//! followed, breadth first, through the pushing contacts that carry the
+//! press on in its direction, to the whole cone they reach; if that meets
+//! an immovable body that does not follow the press (static, or kinematic
+//! and moving otherwise), the warm-start impulses (normal, friction and
+//! push) of every pushing contact of the bodies met are set to zero, and
+//! the step starts them cold.
 
+use crate::collider::ColliderRef;
 use crate::constraint::Constraint;
 use glam::Vec2;
 
-/// Bodies one press is followed through, at most: a column longer than
-/// that is left as it is.
-const COLUMN: usize = 64;
+/// Bodies one press is followed through, at most: beyond them a pile is
+/// left as it is (what was met is let go of if it reached an immovable
+/// body).
+const COLUMN: usize = 256;
 
 /// Bodies followed in one step, at most, over all presses: the search costs
-/// no more than a few thousand steps of a walk whatever the scene.
-const BUDGET: usize = 4096;
+/// no more than some thousands of steps of a walk whatever the scene (a
+/// lift going down under 500 circles follows each of them once per circle
+/// it carries in its bottom row).
+const BUDGET: usize = 16_384;
 
-/// A press moving away from a body it pressed faster than this, m/s,
-/// leaves it (slower, or not along the contact's normal, as the jaws of a
-/// gripper lifting a crate, it holds on).
+/// A press moving away from a body it pressed faster than this, m/s, along
+/// the contact's normal, and faster than what the body is pressed against
+/// follows, lets go (jaws carrying what they grip, any way, hold on).
 pub(crate) const LEAVING: f32 = 0.01;
 
 /// How far a contact's normal may turn from the press's direction and still
@@ -56,38 +62,43 @@ pub(crate) struct Crushes {
     mark: u32,
     /// The bodies met by the press being followed.
     column: Vec<u32>,
-    /// Bodies still to follow.
-    stack: Vec<u32>,
 }
 
 impl Crushes {
     /// Lets go of the warm-start impulses of crushed columns among `rows`
-    /// (contacts of `bodies` dynamic bodies, warm started) whose press
-    /// leaves: `leaves(c)`, whether body B of contact `c` is kinematic and
-    /// moves away from body A this step. Returns how many contacts were
-    /// let go of. Deterministic: the presses and each body's contacts are
-    /// taken in the order of `rows`.
+    /// (contacts of `bodies` dynamic bodies, warm started) that open this
+    /// step; `kinematic(b)`: body B's velocity if it is kinematic. Returns
+    /// how many contacts were let go of. Deterministic: the presses and
+    /// each body's contacts are taken in the order of `rows`.
     pub(crate) fn release(
         &mut self,
         rows: &mut [Constraint],
         bodies: usize,
-        leaves: impl Fn(&Constraint) -> bool,
+        kinematic: impl Fn(ColliderRef) -> Option<Vec2>,
     ) -> usize {
         let pushing = |c: &Constraint| c.normal_impulse > 0.0;
-        if !rows.iter().any(|c| pushing(c) && leaves(c)) {
+        // A press moving away from the body it pressed (its normal points
+        // from the body to the press).
+        let press_of =
+            |c: &Constraint| kinematic(c.b).filter(|v| pushing(c) && v.dot(c.normal) > LEAVING);
+        if !rows.iter().any(|c| press_of(c).is_some()) {
             return 0;
         }
         self.index(rows, bodies, pushing);
         let (mut released, mut budget) = (0, BUDGET);
         for press in 0..rows.len() {
             let c = &rows[press];
-            if !(pushing(c) && leaves(c)) || budget == 0 {
+            let Some(moving) = press_of(c).filter(|_| budget > 0) else {
                 continue;
-            }
-            // The normal points from the pressed body to the press, which
-            // pushes it the other way.
-            let (body, towards) = (c.a, -c.normal);
-            if self.reaches_immovable(rows, press, body, towards, &mut budget) {
+            };
+            // The column opens where what it is pressed against does not
+            // follow the press (a static body, or jaws moving apart; jaws
+            // carrying what they grip move together).
+            let normal = c.normal;
+            let opens = |far: ColliderRef| {
+                (moving - kinematic(far).unwrap_or(Vec2::ZERO)).dot(normal) > LEAVING
+            };
+            if self.reaches_immovable(rows, press, c.a, -normal, opens, &mut budget) {
                 for &b in &self.column {
                     let (start, end) = (self.starts[b as usize], self.starts[b as usize + 1]);
                     for &r in &self.rows[start as usize..end as usize] {
@@ -132,14 +143,18 @@ impl Crushes {
     }
 
     /// Follows the press of contact `press` from `body` in direction
-    /// `towards` through the contacts that carry it on; `true` if it meets
-    /// an immovable body. The bodies met are left in `column`.
+    /// `towards` through the contacts that carry it on, breadth first, to
+    /// every body they reach (at most [`COLUMN`], within `budget`); `true`
+    /// if that meets an immovable body for which `opens`. The bodies met
+    /// are left in
+    /// `column`, all of them, so that a pile's every branch is let go of.
     fn reaches_immovable(
         &mut self,
         rows: &[Constraint],
         press: usize,
         body: u32,
         towards: Vec2,
+        opens: impl Fn(ColliderRef) -> bool,
         budget: &mut usize,
     ) -> bool {
         self.mark = self.mark.wrapping_add(1);
@@ -149,15 +164,15 @@ impl Crushes {
         }
         let mark = self.mark;
         self.column.clear();
-        self.stack.clear();
-        self.stack.push(body);
+        self.column.push(body);
         self.seen[body as usize] = mark;
-        while let Some(x) = self.stack.pop() {
-            if self.column.len() == COLUMN || *budget == 0 {
-                return false;
-            }
+        let mut crushed = false;
+        // `column` is the queue: bodies before `next` have been followed.
+        let mut next = 0;
+        while next < self.column.len() && *budget > 0 {
+            let x = self.column[next];
+            next += 1;
             *budget -= 1;
-            self.column.push(x);
             let (start, end) = (self.starts[x as usize], self.starts[x as usize + 1]);
             for &r in &self.rows[start as usize..end as usize] {
                 let c = &rows[r as usize];
@@ -173,15 +188,20 @@ impl Crushes {
                 if out.dot(towards) < ALONG {
                     continue;
                 }
-                let Some(other) = other else {
-                    return true; // static or kinematic: the column is crushed
-                };
-                if self.seen[other] != mark {
-                    self.seen[other] = mark;
-                    self.stack.push(other as u32);
+                match other {
+                    // Static or kinematic: the column is crushed, and let
+                    // go of if it opens there.
+                    None => crushed |= opens(c.b),
+                    Some(other) if self.seen[other] != mark && self.column.len() < COLUMN => {
+                        self.seen[other] = mark;
+                        self.column.push(other as u32);
+                    }
+                    Some(_) => {}
                 }
             }
         }
-        false
+        // Bodies queued but not followed (the budget ran out) are let go
+        // of too: their contacts with the bodies followed carried the press.
+        crushed
     }
 }

@@ -289,18 +289,24 @@ impl Walker<'_> {
         at
     }
 
-    /// How far the kinematic bodies that sweep into the character's place
-    /// `at` this step push it: the first one met (the earliest along its
-    /// travel, then the lowest id) pushes it along the face that meets it
-    /// for the rest of that travel, to a skin in front of where the body
-    /// ends. A wall moving farther than the character is wide in one step
-    /// would otherwise pass through it, and one ending inside it push it
-    /// out on whichever side is nearer. Returns the body and the push, or
-    /// `None` if none meets it; one that overlaps it already (and one-way
-    /// platforms) are left to the push out.
-    fn swept_by_kinematic(&self, at: Vec2) -> Option<(BodyId, Vec2)> {
+    /// How far the kinematic bodies that sweep into the character this step
+    /// push it, the character having started at `start` and been carried
+    /// to `at` (riding): each body's travel is taken relative to that
+    /// carry, from the character's start. The first one met (the earliest
+    /// along its travel, then the lowest id) pushes it along the face that
+    /// meets it for the rest of that travel, to a skin in front of where
+    /// the body ends. Only where the push out would not: a body that ends
+    /// the step clear of the character passed through it (faster than it
+    /// is wide), and one ending inside it whose way out is back the way it
+    /// came would push it out behind it; one ending inside it with its way
+    /// out along the push or across it (a low-lipped platform scooping it
+    /// up) is left to the push out, as are bodies it overlaps already and
+    /// one-way platforms. Returns the body and the push, or `None`.
+    fn swept_by_kinematic(&self, start: Vec2, at: Vec2) -> Option<(BodyId, Vec2)> {
         let dt = self.ahead?;
-        let area = crate::Aabb::from_centre(at, self.shape.half_extents());
+        let carried = at - start;
+        let area = crate::Aabb::from_centre(start, self.shape.half_extents())
+            .union(&crate::Aabb::from_centre(at, self.shape.half_extents()));
         let mut first: Option<(f32, BodyId, Vec2)> = None;
         self.near(&area, |f: Found<'_>| {
             let Some(i) = f
@@ -309,8 +315,9 @@ impl Walker<'_> {
             else {
                 return;
             };
-            let travel = self.world.dynamic.vel[i] * dt;
-            let Some(hit) = crate::cast::cast_shape(&f.shape, f.position, travel, &self.shape, at)
+            let travel = self.world.dynamic.vel[i] * dt - carried;
+            let Some(hit) =
+                crate::cast::cast_shape(&f.shape, f.position, travel, &self.shape, start)
             else {
                 return;
             };
@@ -319,6 +326,13 @@ impl Walker<'_> {
             }
             // `hit.normal` points out of the character towards the body.
             let away = -hit.normal;
+            // Where the push out would send it from the body's end place.
+            let way_out = collide(&self.shape, at, &f.shape, self.place(&f), 0.0)
+                .filter(|m| m.separation < 0.0)
+                .map(|m| -m.normal);
+            if way_out.is_some_and(|out| out.dot(away) >= 0.0) {
+                return;
+            }
             let push = away * ((1.0 - hit.fraction) * travel.dot(away) + self.mover.skin);
             if first.is_none_or(|(t, id, _)| (hit.fraction, f.id) < (t, id)) {
                 first = Some((hit.fraction, f.id, push));
@@ -441,7 +455,7 @@ impl World {
             at = walker.advance(at, b.velocity * dt).0;
             walker.ignored = None;
         }
-        if let Some((pusher, push)) = walker.swept_by_kinematic(at) {
+        if let Some((pusher, push)) = walker.swept_by_kinematic(body.position, at) {
             // Through anything in the way but the pusher, which ends
             // behind it.
             walker.ignored = Some(pusher);
