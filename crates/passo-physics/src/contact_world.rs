@@ -359,6 +359,21 @@ impl ContactWorld {
         self.revision += 1;
     }
 
+    /// Kinematic body `k` (a dynamic index, of `bodies`) is being removed:
+    /// what it pressed against an immovable body starts the next step cold,
+    /// as when a press moves off (see `crush`). The last step's contacts
+    /// are reported as they were.
+    pub(crate) fn press_removed(&mut self, k: u32, bodies: usize) {
+        let released = self
+            .motion
+            .crushes
+            .released_by_removal(&self.solved.rows, bodies, k);
+        for &r in released {
+            self.events
+                .forget_impulses(self.solved.infos[r as usize].key());
+        }
+    }
+
     /// Dynamic body `from` now sits at index `to` (a removal moved it).
     pub(crate) fn body_moved(&mut self, from: u32, to: u32) {
         self.sleeping.body_moved(from, to);

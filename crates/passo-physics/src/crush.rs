@@ -62,6 +62,11 @@ pub(crate) struct Crushes {
     mark: u32,
     /// The bodies met by the press being followed.
     column: Vec<u32>,
+    /// The contacts the last search let go of.
+    released: Vec<u32>,
+    /// A copy of the contacts, for a search that must leave them as they
+    /// are.
+    copy: Vec<Constraint>,
 }
 
 impl Crushes {
@@ -76,40 +81,77 @@ impl Crushes {
         bodies: usize,
         kinematic: impl Fn(ColliderRef) -> Option<Vec2>,
     ) -> usize {
-        let pushing = |c: &Constraint| c.normal_impulse > 0.0;
         // A press moving away from the body it pressed (its normal points
         // from the body to the press).
-        let press_of =
-            |c: &Constraint| kinematic(c.b).filter(|v| pushing(c) && v.dot(c.normal) > LEAVING);
+        let press = |c: &Constraint| kinematic(c.b).filter(|v| v.dot(c.normal) > LEAVING);
+        // The column opens where what it is pressed against does not
+        // follow the press (a static body, or jaws moving apart; jaws
+        // carrying what they grip move together).
+        let opens = |c: &Constraint, moving: Vec2, far: ColliderRef| {
+            (moving - kinematic(far).unwrap_or(Vec2::ZERO)).dot(c.normal) > LEAVING
+        };
+        self.release_with(rows, bodies, press, opens)
+    }
+
+    /// The contacts among `rows` (the last step's) whose warm-start
+    /// impulses kinematic body `k`, being removed, leaves piled up: what
+    /// it pressed against an immovable body, as if it moved off at once.
+    /// `rows` is left as it is.
+    pub(crate) fn released_by_removal(
+        &mut self,
+        rows: &[Constraint],
+        bodies: usize,
+        k: u32,
+    ) -> &[u32] {
+        let mut copy = std::mem::take(&mut self.copy);
+        copy.clear();
+        copy.extend_from_slice(rows);
+        let press = |c: &Constraint| (c.b == ColliderRef::dynamic(k)).then_some(Vec2::ZERO);
+        self.release_with(&mut copy, bodies, press, |_, _, _| true);
+        self.copy = copy;
+        &self.released
+    }
+
+    /// Follows each pushing contact whose B is a press (`press(c)`: its
+    /// velocity) from its body A in the press's direction, and lets go of
+    /// the column where it meets an immovable body `far` for which
+    /// `opens(press contact, press velocity, far)`. The contacts let go of
+    /// are listed in `released`; returns how many.
+    fn release_with(
+        &mut self,
+        rows: &mut [Constraint],
+        bodies: usize,
+        press: impl Fn(&Constraint) -> Option<Vec2>,
+        opens: impl Fn(&Constraint, Vec2, ColliderRef) -> bool,
+    ) -> usize {
+        self.released.clear();
+        let pushing = |c: &Constraint| c.normal_impulse > 0.0;
+        let press_of = |c: &Constraint| press(c).filter(|_| pushing(c));
         if !rows.iter().any(|c| press_of(c).is_some()) {
             return 0;
         }
         self.index(rows, bodies, pushing);
-        let (mut released, mut budget) = (0, BUDGET);
-        for press in 0..rows.len() {
-            let c = &rows[press];
-            let Some(moving) = press_of(c).filter(|_| budget > 0) else {
+        let mut budget = BUDGET;
+        for p in 0..rows.len() {
+            let c = rows[p];
+            let Some(moving) = press_of(&c).filter(|_| budget > 0) else {
                 continue;
             };
-            // The column opens where what it is pressed against does not
-            // follow the press (a static body, or jaws moving apart; jaws
-            // carrying what they grip move together).
-            let normal = c.normal;
-            let opens = |far: ColliderRef| {
-                (moving - kinematic(far).unwrap_or(Vec2::ZERO)).dot(normal) > LEAVING
-            };
-            if self.reaches_immovable(rows, press, c.a, -normal, opens, &mut budget) {
+            let opens = |far: ColliderRef| opens(&c, moving, far);
+            if self.reaches_immovable(rows, p, c.a, -c.normal, opens, &mut budget) {
                 for &b in &self.column {
                     let (start, end) = (self.starts[b as usize], self.starts[b as usize + 1]);
                     for &r in &self.rows[start as usize..end as usize] {
                         let c = &mut rows[r as usize];
-                        released += usize::from(c.normal_impulse != 0.0);
+                        if c.normal_impulse != 0.0 {
+                            self.released.push(r);
+                        }
                         (c.normal_impulse, c.tangent_impulse, c.push_impulse) = (0.0, 0.0, 0.0);
                     }
                 }
             }
         }
-        released
+        self.released.len()
     }
 
     /// The pushing contacts of each body, in `starts` and `rows` (a

@@ -88,6 +88,16 @@ impl EventTracker {
         });
     }
 
+    /// Sets to zero the impulses the pair `key` warm starts the next step
+    /// with (none if it has none).
+    pub(crate) fn forget_impulses(&mut self, key: (BodyId, BodyId)) {
+        let order = pair_order(key.0.index, key.1.index);
+        let at = self.cache.partition_point(|c| c.order() < order);
+        if let Some(c) = self.cache.get_mut(at).filter(|c| c.key == key) {
+            (c.normal_impulse, c.tangent_impulse, c.push_impulse) = (0.0, 0.0, 0.0);
+        }
+    }
+
     /// Finds which candidates end the step inside their sensor, and which
     /// went in and out again within the step: the visitor's path from
     /// where it was at the start of the step (`start`, per dynamic body) to

@@ -465,6 +465,11 @@ impl World {
         self.note_edit(body.kind == BodyKind::Static);
         let moved = match location {
             Location::Dynamic(i) => {
+                if self.dynamic.meta[i as usize].kinematic
+                    && let Some(cw) = &mut self.contacts
+                {
+                    cw.press_removed(i, self.dynamic.len());
+                }
                 let meta = &self.dynamic.meta[i as usize];
                 if has_overrides(meta) {
                     self.speed_overrides -= 1;
