@@ -643,3 +643,35 @@ fn a_low_lipped_platform_sliding_into_it_scoops_it_up() {
     assert!((p.y - (0.53 + HALF.y + mover.skin)).abs() < 2e-3, "{p}");
     assert!(p.x - HALF.x < l.x + 1.0, "over the platform: {p} and {l}");
 }
+
+#[test]
+fn a_fast_block_at_head_height_never_ends_inside_the_character() {
+    // A block 2 m wide whose bottom is 0.3 m below the character's head,
+    // sweeping at 20 m/s: too high to scoop it up, so it pushes the
+    // character along; it used to pass through it for want of a way out
+    // (the ground is under the character).
+    let mover = CharacterMover::default();
+    let body = Shape::rect(2.0 * HALF.x, 2.0 * HALF.y);
+    let block = Shape::rect(2.0, 1.0);
+    for k in 0..8 {
+        let mut world = level("##########################");
+        let player = character(&mut world, 6.0, 0.5);
+        let head = at(&world, player).y + HALF.y;
+        let start = Vec2::new(10.0 + k as f32 * 0.13, head - 0.3 + 0.5);
+        let wall = world
+            .add_body(BodyDef::new_kinematic(start, block, Vec2::new(-20.0, 0.0)))
+            .unwrap();
+        for tick in 0..12 {
+            world
+                .move_character(player, Vec2::ZERO, &mover, DT)
+                .unwrap();
+            world.step(DT);
+            let m = collide(&body, at(&world, player), &block, at(&world, wall), 0.0);
+            let depth = m.map_or(0.0, |m| -m.separation);
+            assert!(
+                depth <= LINEAR_SLOP,
+                "from {start}, tick {tick}: {depth} m inside"
+            );
+        }
+    }
+}

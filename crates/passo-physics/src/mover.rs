@@ -295,12 +295,12 @@ impl Walker<'_> {
     /// carry, from the character's start. The first one met (the earliest
     /// along its travel, then the lowest id) pushes it along the face that
     /// meets it for the rest of that travel, to a skin in front of where
-    /// the body ends. Only where the push out would not: a body that ends
-    /// the step clear of the character passed through it (faster than it
-    /// is wide), and one ending inside it whose way out is back the way it
-    /// came would push it out behind it; one ending inside it with its way
-    /// out along the push or across it (a low-lipped platform scooping it
-    /// up) is left to the push out, as are bodies it overlaps already and
+    /// the body ends: one ending clear of the character passed through it
+    /// (faster than it is wide), and one ending inside it would push it out
+    /// on whichever side is nearer, or into what blocks that side. A body
+    /// ending under it no higher than `max_step` above its feet, with the
+    /// push out lifting it on top (a low-lipped platform), is left to the
+    /// push out, which scoops it up, as are bodies it overlaps already and
     /// one-way platforms. Returns the body and the push, or `None`.
     fn swept_by_kinematic(&self, start: Vec2, at: Vec2) -> Option<(BodyId, Vec2)> {
         let dt = self.ahead?;
@@ -326,11 +326,14 @@ impl Walker<'_> {
             }
             // `hit.normal` points out of the character towards the body.
             let away = -hit.normal;
-            // Where the push out would send it from the body's end place.
-            let way_out = collide(&self.shape, at, &f.shape, self.place(&f), 0.0)
-                .filter(|m| m.separation < 0.0)
-                .map(|m| -m.normal);
-            if way_out.is_some_and(|out| out.dot(away) >= 0.0) {
+            // A body no higher than a step ending under the character, whose
+            // push out lifts it on top, scoops it up as a step climbed;
+            // every other is swept.
+            let place = self.place(&f);
+            let lifts = collide(&self.shape, at, &f.shape, place, 0.0)
+                .is_some_and(|m| m.separation < 0.0 && -m.normal.y >= self.mover.ground_normal);
+            let rise = place.y + f.shape.half_extents().y - (at.y - self.shape.half_extents().y);
+            if lifts && rise <= self.mover.max_step {
                 return;
             }
             let push = away * ((1.0 - hit.fraction) * travel.dot(away) + self.mover.skin);
