@@ -726,3 +726,36 @@ fn a_press_removed_while_it_crushes_leaves_the_crates_in_place() {
         assert!((y - (0.5 + k as f32)).abs() < 0.02, "crate {k} at {y}");
     }
 }
+
+#[test]
+fn a_press_shearing_off_sideways_does_not_launch_what_it_crushed() {
+    // Pressed 0.26 m into the ground, held, then the press slides off
+    // sideways at 5 m/s: the crate used to leave at 9-25 m/s when the press
+    // cleared its top.
+    let (mut w, crate_) = crate_on_ground();
+    let press = w
+        .add_body(BodyDef::new_kinematic(
+            Vec2::new(0.0, 1.27),
+            Shape::rect(2.0, 0.5),
+            Vec2::ZERO,
+        ))
+        .unwrap();
+    w.set_velocity(press, Vec2::new(0.0, -0.28 / DT));
+    w.step(DT);
+    w.set_velocity(press, Vec2::ZERO);
+    for _ in 0..4 {
+        w.step(DT);
+    }
+    w.set_velocity(press, Vec2::new(5.0, 0.0));
+    let mut fastest = 0.0f32;
+    for _ in 0..120 {
+        w.step(DT);
+        fastest = fastest.max(w.body(crate_).unwrap().velocity.y);
+    }
+    assert!(fastest < 2.0, "the crate left at {fastest} m/s");
+    assert!(
+        (pos(&w, crate_).y - 0.5).abs() < 0.02,
+        "ended at {}",
+        pos(&w, crate_)
+    );
+}

@@ -11,15 +11,15 @@
 //! moved off, the solver resolved them by sending the column after it: a
 //! crate pressed 0.1 m into the ground left with the press at 5 m/s.
 //!
-//! So at the start of a step, after the warm start, each body a kinematic
-//! body pressed (a contact warm started with a positive impulse) and now
-//! moves away from (faster than [`LEAVING`] along the contact's normal) is
-//! followed, breadth first, through the pushing contacts that carry the
-//! press on in its direction, to the whole cone they reach; if that meets
-//! an immovable body that does not follow the press (static, or kinematic
-//! and moving otherwise), the warm-start impulses (normal, friction and
-//! push) of every pushing contact of the bodies met are set to zero, and
-//! the step starts them cold.
+//! So at the start of a step, after the warm start, the bodies a moving
+//! kinematic body pressed (contacts warm started with a positive impulse)
+//! are followed, breadth first, through the pushing contacts that carry
+//! the press on in its direction, to the whole cone they reach; if that
+//! meets an immovable body that does not move with the press (static, or
+//! kinematic and moving otherwise: the press moves off, shears past or
+//! presses on), the warm-start impulses (normal, friction and push) of
+//! every pushing contact of the bodies met are set to zero, and the step
+//! starts them cold. A press removed from the world lets go the same way.
 
 use crate::collider::ColliderRef;
 use crate::constraint::Constraint;
@@ -36,9 +36,9 @@ const COLUMN: usize = 256;
 /// it carries in its bottom row).
 const BUDGET: usize = 16_384;
 
-/// A press moving away from a body it pressed faster than this, m/s, along
-/// the contact's normal, and faster than what the body is pressed against
-/// follows, lets go (jaws carrying what they grip, any way, hold on).
+/// A press moving faster than this, m/s, relative to what the body it
+/// presses is pressed against, opens or shears the column and lets go
+/// (jaws carrying what they grip, any way, hold on).
 pub(crate) const LEAVING: f32 = 0.01;
 
 /// How far a contact's normal may turn from the press's direction and still
@@ -64,6 +64,8 @@ pub(crate) struct Crushes {
     column: Vec<u32>,
     /// The contacts the last search let go of.
     released: Vec<u32>,
+    /// The presses of the last search: body B, its normal's bits, contact.
+    presses: Vec<(ColliderRef, u32, u32, u32)>,
     /// A copy of the contacts, for a search that must leave them as they
     /// are.
     copy: Vec<Constraint>,
@@ -71,25 +73,25 @@ pub(crate) struct Crushes {
 
 impl Crushes {
     /// Lets go of the warm-start impulses of crushed columns among `rows`
-    /// (contacts of `bodies` dynamic bodies, warm started) that open this
-    /// step; `kinematic(b)`: body B's velocity if it is kinematic. Returns
-    /// how many contacts were let go of. Deterministic: the presses and
-    /// each body's contacts are taken in the order of `rows`.
+    /// (contacts of `bodies` dynamic bodies, warm started) that open or
+    /// shear this step; `kinematic(b)`: body B's velocity if it is
+    /// kinematic. Returns how many contacts were let go of. Deterministic:
+    /// the presses are taken in the order of their bodies, and each body's
+    /// contacts in the order of `rows`.
     pub(crate) fn release(
         &mut self,
         rows: &mut [Constraint],
         bodies: usize,
         kinematic: impl Fn(ColliderRef) -> Option<Vec2>,
     ) -> usize {
-        // A press moving away from the body it pressed (its normal points
-        // from the body to the press).
-        let press = |c: &Constraint| kinematic(c.b).filter(|v| v.dot(c.normal) > LEAVING);
-        // The column opens where what it is pressed against does not
-        // follow the press (a static body, or jaws moving apart; jaws
-        // carrying what they grip move together).
-        let opens = |c: &Constraint, moving: Vec2, far: ColliderRef| {
-            (moving - kinematic(far).unwrap_or(Vec2::ZERO)).dot(c.normal) > LEAVING
-        };
+        let moves = |v: Vec2| v.length_squared() > LEAVING * LEAVING;
+        // A press: a kinematic body that moves.
+        let press = |c: &Constraint| kinematic(c.b).filter(|&v| moves(v));
+        // The column opens, or is sheared, where what it is pressed against
+        // does not move with the press (a static body, or jaws moving apart;
+        // jaws carrying what they grip move together).
+        let opens =
+            |moving: Vec2, far: ColliderRef| moves(moving - kinematic(far).unwrap_or(Vec2::ZERO));
         self.release_with(rows, bodies, press, opens)
     }
 
@@ -107,38 +109,49 @@ impl Crushes {
         copy.clear();
         copy.extend_from_slice(rows);
         let press = |c: &Constraint| (c.b == ColliderRef::dynamic(k)).then_some(Vec2::ZERO);
-        self.release_with(&mut copy, bodies, press, |_, _, _| true);
+        self.release_with(&mut copy, bodies, press, |_, _| true);
         self.copy = copy;
         &self.released
     }
 
-    /// Follows each pushing contact whose B is a press (`press(c)`: its
-    /// velocity) from its body A in the press's direction, and lets go of
-    /// the column where it meets an immovable body `far` for which
-    /// `opens(press contact, press velocity, far)`. The contacts let go of
-    /// are listed in `released`; returns how many.
+    /// Follows each press (`press(c)`: body B's velocity, if B is one) from
+    /// the bodies it pushes, in its direction, all of one press's contacts
+    /// of one normal together, and lets go of the column where it meets
+    /// an immovable body `far` for which `opens(press velocity, far)`. The
+    /// contacts let go of are listed in `released`; returns how many.
     fn release_with(
         &mut self,
         rows: &mut [Constraint],
         bodies: usize,
         press: impl Fn(&Constraint) -> Option<Vec2>,
-        opens: impl Fn(&Constraint, Vec2, ColliderRef) -> bool,
+        opens: impl Fn(Vec2, ColliderRef) -> bool,
     ) -> usize {
         self.released.clear();
         let pushing = |c: &Constraint| c.normal_impulse > 0.0;
-        let press_of = |c: &Constraint| press(c).filter(|_| pushing(c));
-        if !rows.iter().any(|c| press_of(c).is_some()) {
+        self.presses.clear();
+        for (i, c) in rows.iter().enumerate() {
+            if pushing(c) && press(c).is_some() {
+                let [x, y] = c.normal.to_array().map(f32::to_bits);
+                self.presses.push((c.b, x, y, i as u32));
+            }
+        }
+        if self.presses.is_empty() {
             return 0;
         }
+        self.presses.sort_unstable();
         self.index(rows, bodies, pushing);
         let mut budget = BUDGET;
-        for p in 0..rows.len() {
-            let c = rows[p];
-            let Some(moving) = press_of(&c).filter(|_| budget > 0) else {
-                continue;
-            };
-            let opens = |far: ColliderRef| opens(&c, moving, far);
-            if self.reaches_immovable(rows, p, c.a, -c.normal, opens, &mut budget) {
+        let presses = std::mem::take(&mut self.presses);
+        for group in presses.chunk_by(|p, q| p.0 == q.0 && p.1 == q.1 && p.2 == q.2) {
+            if budget == 0 {
+                break;
+            }
+            let (body, x, y, first) = group[0];
+            let towards = -Vec2::new(f32::from_bits(x), f32::from_bits(y));
+            let moving = press(&rows[first as usize]).unwrap_or(Vec2::ZERO);
+            let sources = group.iter().map(|p| rows[p.3 as usize].a);
+            let opens = |far: ColliderRef| opens(moving, far);
+            if self.reaches_immovable(rows, body, sources, towards, opens, &mut budget) {
                 for &b in &self.column {
                     let (start, end) = (self.starts[b as usize], self.starts[b as usize + 1]);
                     for &r in &self.rows[start as usize..end as usize] {
@@ -151,6 +164,7 @@ impl Crushes {
                 }
             }
         }
+        self.presses = presses;
         self.released.len()
     }
 
@@ -184,17 +198,17 @@ impl Crushes {
         self.seen.resize(bodies, 0);
     }
 
-    /// Follows the press of contact `press` from `body` in direction
-    /// `towards` through the contacts that carry it on, breadth first, to
-    /// every body they reach (at most [`COLUMN`], within `budget`); `true`
-    /// if that meets an immovable body for which `opens`. The bodies met
-    /// are left in
-    /// `column`, all of them, so that a pile's every branch is let go of.
+    /// Follows the push of press `press` from the bodies `sources` in
+    /// direction `towards` through the contacts that carry it on, breadth
+    /// first, to every body they reach (at most [`COLUMN`], or four per
+    /// source, within `budget`); `true` if that meets an immovable body for
+    /// which `opens`. The bodies met are left in `column`, all of them, so
+    /// that a pile's every branch is let go of.
     fn reaches_immovable(
         &mut self,
         rows: &[Constraint],
-        press: usize,
-        body: u32,
+        press: ColliderRef,
+        sources: impl Iterator<Item = u32>,
         towards: Vec2,
         opens: impl Fn(ColliderRef) -> bool,
         budget: &mut usize,
@@ -206,8 +220,13 @@ impl Crushes {
         }
         let mark = self.mark;
         self.column.clear();
-        self.column.push(body);
-        self.seen[body as usize] = mark;
+        for body in sources {
+            if self.seen[body as usize] != mark {
+                self.seen[body as usize] = mark;
+                self.column.push(body);
+            }
+        }
+        let most = COLUMN.max(4 * self.column.len());
         let mut crushed = false;
         // `column` is the queue: bodies before `next` have been followed.
         let mut next = 0;
@@ -218,7 +237,7 @@ impl Crushes {
             let (start, end) = (self.starts[x as usize], self.starts[x as usize + 1]);
             for &r in &self.rows[start as usize..end as usize] {
                 let c = &rows[r as usize];
-                if r as usize == press {
+                if c.a == x && c.b == press {
                     continue;
                 }
                 // The normal out of x, and the body on the other side.
@@ -234,7 +253,7 @@ impl Crushes {
                     // Static or kinematic: the column is crushed, and let
                     // go of if it opens there.
                     None => crushed |= opens(c.b),
-                    Some(other) if self.seen[other] != mark && self.column.len() < COLUMN => {
+                    Some(other) if self.seen[other] != mark && self.column.len() < most => {
                         self.seen[other] = mark;
                         self.column.push(other as u32);
                     }
@@ -242,8 +261,6 @@ impl Crushes {
                 }
             }
         }
-        // Bodies queued but not followed (the budget ran out) are let go
-        // of too: their contacts with the bodies followed carried the press.
         crushed
     }
 }
