@@ -578,6 +578,29 @@ fn crates_riding_a_lift_keep_riding_it() {
     assert!((pos(&w, lift).y - 2.0).abs() < 1e-4);
 }
 
+/// Drives `press` down by `depth` in one step (through what it meets),
+/// then holds it still for `held` steps.
+fn press_down(w: &mut World, press: BodyId, depth: f32, held: u32) {
+    w.set_velocity(press, Vec2::new(0.0, -depth / DT));
+    w.step(DT);
+    w.set_velocity(press, Vec2::ZERO);
+    for _ in 0..held {
+        w.step(DT);
+    }
+}
+
+/// Steps `ticks` times; the fastest any of `bodies` rose, m/s.
+fn fastest_rise(w: &mut World, bodies: &[BodyId], ticks: u32) -> f32 {
+    let mut fastest = 0.0f32;
+    for _ in 0..ticks {
+        w.step(DT);
+        for &b in bodies {
+            fastest = fastest.max(w.body(b).unwrap().velocity.y);
+        }
+    }
+    fastest
+}
+
 /// A world with ground under y = 0 and a 1 m crate resting on it.
 fn crate_on_ground() -> (World, BodyId) {
     let mut w = World::default();
@@ -671,20 +694,9 @@ fn a_crushed_pyramid_of_crates_stays_put_when_the_press_leaves() {
             Vec2::ZERO,
         ))
         .unwrap();
-    w.set_velocity(press, Vec2::new(0.0, -0.28 / DT));
-    w.step(DT);
-    w.set_velocity(press, Vec2::ZERO);
-    for _ in 0..4 {
-        w.step(DT);
-    }
+    press_down(&mut w, press, 0.28, 4);
     w.set_velocity(press, Vec2::new(0.0, 5.0));
-    let mut fastest = 0.0f32;
-    for _ in 0..60 {
-        w.step(DT);
-        for &c in &crates {
-            fastest = fastest.max(w.body(c).unwrap().velocity.y);
-        }
-    }
+    let fastest = fastest_rise(&mut w, &crates, 60);
     assert!(fastest < 0.5, "a crate left at {fastest} m/s");
 }
 
@@ -707,19 +719,12 @@ fn a_press_removed_while_it_crushes_leaves_the_crates_in_place() {
             Vec2::ZERO,
         ))
         .unwrap();
-    w.set_velocity(press, Vec2::new(0.0, -0.12 / DT));
-    w.step(DT);
+    press_down(&mut w, press, 0.12, 0);
     let pressed = w.contacts_of(crates[1]).count();
     w.remove_body(press).unwrap();
     // The last step's contacts are still reported as they were.
     assert_eq!(w.contacts_of(crates[1]).count(), pressed);
-    let mut fastest = 0.0f32;
-    for _ in 0..60 {
-        w.step(DT);
-        for &c in &crates {
-            fastest = fastest.max(w.body(c).unwrap().velocity.y);
-        }
-    }
+    let fastest = fastest_rise(&mut w, &crates, 60);
     assert!(fastest < 2.0, "a crate left at {fastest} m/s");
     for (k, &c) in crates.iter().enumerate() {
         let y = pos(&w, c).y;
@@ -740,18 +745,9 @@ fn a_press_shearing_off_sideways_does_not_launch_what_it_crushed() {
             Vec2::ZERO,
         ))
         .unwrap();
-    w.set_velocity(press, Vec2::new(0.0, -0.28 / DT));
-    w.step(DT);
-    w.set_velocity(press, Vec2::ZERO);
-    for _ in 0..4 {
-        w.step(DT);
-    }
+    press_down(&mut w, press, 0.28, 4);
     w.set_velocity(press, Vec2::new(5.0, 0.0));
-    let mut fastest = 0.0f32;
-    for _ in 0..120 {
-        w.step(DT);
-        fastest = fastest.max(w.body(crate_).unwrap().velocity.y);
-    }
+    let fastest = fastest_rise(&mut w, &[crate_], 120);
     assert!(fastest < 2.0, "the crate left at {fastest} m/s");
     assert!(
         (pos(&w, crate_).y - 0.5).abs() < 0.02,

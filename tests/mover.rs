@@ -43,6 +43,14 @@ fn walk(world: &mut World, id: BodyId, velocity: Vec2, ticks: usize) -> MoveOutc
     last
 }
 
+/// One tick of standing still: the character moves by nothing (riding,
+/// pushed or pushed out, as the mover decides), then the world steps.
+fn stand(world: &mut World, id: BodyId) {
+    let mover = CharacterMover::default();
+    world.move_character(id, Vec2::ZERO, &mover, DT).unwrap();
+    world.step(DT);
+}
+
 fn at(world: &World, id: BodyId) -> Vec2 {
     world.body(id).unwrap().position
 }
@@ -555,10 +563,7 @@ fn a_fast_kinematic_wall_pushes_it_instead_of_passing_through() {
             for _ in 0..3 {
                 // Each tick: the platforms are steered first (the wall
                 // keeps its velocity), then the character moves.
-                world
-                    .move_character(player, Vec2::ZERO, &mover, DT)
-                    .unwrap();
-                world.step(DT);
+                stand(&mut world, player);
                 let (p, w) = (at(&world, player).x, at(&world, wall).x);
                 let case = format!("{speed} m/s from {start}: wall at {w}, character at {p}");
                 assert!(
@@ -583,7 +588,6 @@ fn a_fast_wall_meeting_a_character_riding_towards_it_pushes_it_back() {
     // The character rides a platform at 3 or 6 m/s towards a wall coming
     // at 20 or 30 m/s (0.4 to 0.6 m a tick closer, more than its 0.4 m
     // width): the wall always ends in front of it, never passed.
-    let mover = CharacterMover::default();
     for (ride, wall_speed) in [(3.0f32, 30.0f32), (6.0, 20.0)] {
         for k in 0..8 {
             let mut world = World::default();
@@ -603,10 +607,7 @@ fn a_fast_wall_meeting_a_character_riding_towards_it_pushes_it_back() {
                 ))
                 .unwrap();
             for tick in 0..12 {
-                world
-                    .move_character(player, Vec2::ZERO, &mover, DT)
-                    .unwrap();
-                world.step(DT);
+                stand(&mut world, player);
                 let (p, w) = (at(&world, player).x, at(&world, wall).x);
                 assert!(
                     p + HALF.x <= w - 0.1 + 1e-3,
@@ -634,10 +635,7 @@ fn a_low_lipped_platform_sliding_into_it_scoops_it_up() {
         ))
         .unwrap();
     for _ in 0..30 {
-        world
-            .move_character(player, Vec2::ZERO, &mover, DT)
-            .unwrap();
-        world.step(DT);
+        stand(&mut world, player);
     }
     let (p, l) = (at(&world, player), at(&world, lip));
     assert!((p.y - (0.53 + HALF.y + mover.skin)).abs() < 2e-3, "{p}");
@@ -650,7 +648,6 @@ fn a_fast_block_at_head_height_never_ends_inside_the_character() {
     // sweeping at 20 m/s: too high to scoop it up, so it pushes the
     // character along; it used to pass through it for want of a way out
     // (the ground is under the character).
-    let mover = CharacterMover::default();
     let body = Shape::rect(2.0 * HALF.x, 2.0 * HALF.y);
     let block = Shape::rect(2.0, 1.0);
     for k in 0..8 {
@@ -662,10 +659,7 @@ fn a_fast_block_at_head_height_never_ends_inside_the_character() {
             .add_body(BodyDef::new_kinematic(start, block, Vec2::new(-20.0, 0.0)))
             .unwrap();
         for tick in 0..12 {
-            world
-                .move_character(player, Vec2::ZERO, &mover, DT)
-                .unwrap();
-            world.step(DT);
+            stand(&mut world, player);
             let m = collide(&body, at(&world, player), &block, at(&world, wall), 0.0);
             let depth = m.map_or(0.0, |m| -m.separation);
             assert!(
