@@ -1,5 +1,5 @@
-//! Bodies crushed by a kinematic body: when the press moves off, the
-//! impulses the crush piled up are let go of.
+//! Bodies crushed by a kinematic body: while the press moves (off, past
+//! or on), the impulses the crush piled up are let go of.
 //!
 //! A dynamic body pressed by a kinematic body against an immovable one
 //! (static, or kinematic too), directly or through other dynamic bodies
@@ -25,15 +25,15 @@ use crate::collider::ColliderRef;
 use crate::constraint::Constraint;
 use glam::Vec2;
 
-/// Bodies one press is followed through, at most: beyond them a pile is
-/// left as it is (what was met is let go of if it reached an immovable
-/// body).
+/// Bodies one press is followed through, at most (or four for each body
+/// it presses, if more): beyond them a pile is left as it is (what was met
+/// is let go of if it reached an immovable body).
 const COLUMN: usize = 256;
 
 /// Bodies followed in one step, at most, over all presses: the search costs
 /// no more than some thousands of steps of a walk whatever the scene (a
-/// lift going down under 500 circles follows each of them once per circle
-/// it carries in its bottom row).
+/// lift under 500 circles follows each of them once: the contacts of one
+/// press with one normal are followed together).
 const BUDGET: usize = 16_384;
 
 /// A press moving faster than this, m/s, relative to what the body it
