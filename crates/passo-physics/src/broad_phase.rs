@@ -334,14 +334,14 @@ impl BroadPhase {
                         let k = bucket((cx, cy), mask);
                         let run = &sorted[starts[k] as usize..starts[k + 1] as usize];
                         tests += run.len();
+                        let here = Entry {
+                            cell: (cx, cy),
+                            proxy: l,
+                        };
                         for e in run {
                             let b = &proxies[e.proxy as usize];
-                            if e.cell == (cx, cy)
-                                && !both_asleep(l, e.proxy)
-                                && lb.overlaps(b)
-                                && cell_of(lb.min.max(b.min)) == e.cell
-                            {
-                                pairs.push(ordered(l, e.proxy));
+                            if e.cell == here.cell && !both_asleep(l, e.proxy) && lb.overlaps(b) {
+                                pair(&here, e, pairs);
                             }
                         }
                     }

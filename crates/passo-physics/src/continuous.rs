@@ -195,14 +195,18 @@ impl Sweeps {
         let sensors = (0..dynamic.len() as u32).filter(|&k| dynamic.meta[k as usize].sensor);
         self.moving_sensors.extend(sensors);
         let box_of = |shape: &Shape, at: Vec2| Aabb::from_centre(at, shape.half_extents());
+        // The box around dynamic body `i`'s path this step.
+        let path_of = |shape: &Shape, i: usize| {
+            let end = box_of(shape, dynamic.pos[i]);
+            start
+                .get(i)
+                .map_or(end, |&from| end.union(&box_of(shape, from)))
+        };
         for &i in &self.far {
             let i = i as usize;
             let visitor = &dynamic.meta[i];
             let Some(shape) = visitor.shape else { continue };
-            let mut area = box_of(&shape, dynamic.pos[i]);
-            if let Some(&from) = start.get(i) {
-                area = area.union(&box_of(&shape, from));
-            }
+            let area = path_of(&shape, i);
             let mut meet = |sensor: &BodyMeta, at: ColliderRef| {
                 if sensor.filter.allows(&visitor.filter) {
                     out.push(SensorCandidate {
@@ -228,11 +232,7 @@ impl Sweeps {
                     continue;
                 };
                 // The box around the sensor's own path too.
-                let mut path = box_of(&sensor_shape, dynamic.pos[k]);
-                if let Some(&from) = start.get(k) {
-                    path = path.union(&box_of(&sensor_shape, from));
-                }
-                if path.overlaps(&area) {
+                if path_of(&sensor_shape, k).overlaps(&area) {
                     meet(meta, ColliderRef::dynamic(k as u32));
                 }
             }

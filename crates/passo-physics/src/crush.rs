@@ -75,7 +75,7 @@ impl Crushes {
     /// Lets go of the warm-start impulses of crushed columns among `rows`
     /// (contacts of `bodies` dynamic bodies, warm started) that open or
     /// shear this step; `kinematic(b)`: body B's velocity if it is
-    /// kinematic. Returns how many contacts were let go of. Deterministic:
+    /// kinematic. Deterministic:
     /// the presses are taken in the order of their bodies, and each body's
     /// contacts in the order of `rows`.
     pub(crate) fn release(
@@ -83,7 +83,7 @@ impl Crushes {
         rows: &mut [Constraint],
         bodies: usize,
         kinematic: impl Fn(ColliderRef) -> Option<Vec2>,
-    ) -> usize {
+    ) {
         let moves = |v: Vec2| v.length_squared() > LEAVING * LEAVING;
         // A press: a kinematic body that moves.
         let press = |c: &Constraint| kinematic(c.b).filter(|&v| moves(v));
@@ -92,7 +92,7 @@ impl Crushes {
         // jaws carrying what they grip move together).
         let opens =
             |moving: Vec2, far: ColliderRef| moves(moving - kinematic(far).unwrap_or(Vec2::ZERO));
-        self.release_with(rows, bodies, press, opens)
+        self.release_with(rows, bodies, press, opens);
     }
 
     /// The contacts among `rows` (the last step's) whose warm-start
@@ -105,10 +105,18 @@ impl Crushes {
         bodies: usize,
         k: u32,
     ) -> &[u32] {
+        let press = |c: &Constraint| (c.b == ColliderRef::dynamic(k)).then_some(Vec2::ZERO);
+        self.released.clear();
+        // Most removed bodies pressed nothing: no copy for them.
+        if !rows
+            .iter()
+            .any(|c| c.normal_impulse > 0.0 && press(c).is_some())
+        {
+            return &self.released;
+        }
         let mut copy = std::mem::take(&mut self.copy);
         copy.clear();
         copy.extend_from_slice(rows);
-        let press = |c: &Constraint| (c.b == ColliderRef::dynamic(k)).then_some(Vec2::ZERO);
         self.release_with(&mut copy, bodies, press, |_, _| true);
         self.copy = copy;
         &self.released
@@ -118,14 +126,14 @@ impl Crushes {
     /// the bodies it pushes, in its direction, all of one press's contacts
     /// of one normal together, and lets go of the column where it meets
     /// an immovable body `far` for which `opens(press velocity, far)`. The
-    /// contacts let go of are listed in `released`; returns how many.
+    /// contacts let go of are listed in `released`.
     fn release_with(
         &mut self,
         rows: &mut [Constraint],
         bodies: usize,
         press: impl Fn(&Constraint) -> Option<Vec2>,
         opens: impl Fn(Vec2, ColliderRef) -> bool,
-    ) -> usize {
+    ) {
         self.released.clear();
         let pushing = |c: &Constraint| c.normal_impulse > 0.0;
         self.presses.clear();
@@ -136,7 +144,7 @@ impl Crushes {
             }
         }
         if self.presses.is_empty() {
-            return 0;
+            return;
         }
         self.presses.sort_unstable();
         self.index(rows, bodies, pushing);
@@ -153,8 +161,7 @@ impl Crushes {
             let opens = |far: ColliderRef| opens(moving, far);
             if self.reaches_immovable(rows, body, sources, towards, opens, &mut budget) {
                 for &b in &self.column {
-                    let (start, end) = (self.starts[b as usize], self.starts[b as usize + 1]);
-                    for &r in &self.rows[start as usize..end as usize] {
+                    for &r in pushing_contacts(&self.starts, &self.rows, b) {
                         let c = &mut rows[r as usize];
                         if c.normal_impulse != 0.0 {
                             self.released.push(r);
@@ -165,13 +172,11 @@ impl Crushes {
             }
         }
         self.presses = presses;
-        self.released.len()
     }
 
     /// The pushing contacts of each body, in `starts` and `rows` (a
     /// counting sort: linear in the contacts).
     fn index(&mut self, rows: &[Constraint], bodies: usize, pushing: impl Fn(&Constraint) -> bool) {
-        let moved_b = |c: &Constraint| c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0);
         self.starts.clear();
         self.starts.resize(bodies + 1, 0);
         for c in rows.iter().filter(|c| pushing(c)) {
@@ -234,15 +239,14 @@ impl Crushes {
             let x = self.column[next];
             next += 1;
             *budget -= 1;
-            let (start, end) = (self.starts[x as usize], self.starts[x as usize + 1]);
-            for &r in &self.rows[start as usize..end as usize] {
+            for &r in pushing_contacts(&self.starts, &self.rows, x) {
                 let c = &rows[r as usize];
                 if c.a == x && c.b == press {
                     continue;
                 }
                 // The normal out of x, and the body on the other side.
                 let (out, other) = if c.a == x {
-                    (c.normal, c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0))
+                    (c.normal, moved_b(c))
                 } else {
                     (-c.normal, Some(c.a as usize))
                 };
@@ -263,4 +267,16 @@ impl Crushes {
         }
         crushed
     }
+}
+
+/// Body B of contact `c` if the contacts move it: dynamic, and neither
+/// kinematic, static nor held asleep.
+fn moved_b(c: &Constraint) -> Option<usize> {
+    c.b.dynamic_index().filter(|_| c.inv_mass_b > 0.0)
+}
+
+/// The pushing contacts of body `b`, from the index `starts` and `rows`
+/// (see `Crushes::index`).
+fn pushing_contacts<'a>(starts: &[u32], rows: &'a [u32], b: u32) -> &'a [u32] {
+    &rows[starts[b as usize] as usize..starts[b as usize + 1] as usize]
 }

@@ -260,6 +260,16 @@ impl Walker<'_> {
         }
     }
 
+    /// [`advance`](Self::advance) through `body` (a platform carrying the
+    /// character, a body pushing it), which moves along with it: where it
+    /// got.
+    fn advance_past(&mut self, body: BodyId, from: Vec2, by: Vec2) -> Vec2 {
+        self.ignored = Some(body);
+        let (to, _) = self.advance(from, by);
+        self.ignored = None;
+        to
+    }
+
     /// Pushes the character at `at` out of every solid body it overlaps
     /// (one-way platforms only when it is on their solid side), a few
     /// rounds.
@@ -305,8 +315,7 @@ impl Walker<'_> {
     fn swept_by_kinematic(&self, start: Vec2, at: Vec2) -> Option<(BodyId, Vec2)> {
         let dt = self.ahead?;
         let carried = at - start;
-        let area = crate::Aabb::from_centre(start, self.shape.half_extents())
-            .union(&crate::Aabb::from_centre(at, self.shape.half_extents()));
+        let area = self.swept(start, carried);
         let mut first: Option<(f32, BodyId, Vec2)> = None;
         self.near(&area, |f: Found<'_>| {
             let Some(i) = f
@@ -454,16 +463,12 @@ impl World {
             && let Some(b) = self.body(ground.body)
             && b.kind == crate::BodyKind::Kinematic
         {
-            walker.ignored = Some(ground.body);
-            at = walker.advance(at, b.velocity * dt).0;
-            walker.ignored = None;
+            at = walker.advance_past(ground.body, at, b.velocity * dt);
         }
         if let Some((pusher, push)) = walker.swept_by_kinematic(body.position, at) {
             // Through anything in the way but the pusher, which ends
             // behind it.
-            walker.ignored = Some(pusher);
-            at = walker.advance(at, push).0;
-            walker.ignored = None;
+            at = walker.advance_past(pusher, at, push);
         }
         at = walker.push_out(at);
         let mut pushes: Vec<(usize, Vec2)> = Vec::new();
