@@ -222,14 +222,7 @@ pub fn run_scene(
     mut after: impl FnMut(u64, &World),
 ) {
     for tick in 1..=ticks {
-        let t_end = tick as f64 / 60.0;
-        passo_scene::BuiltScene::drive_platforms(
-            &built.platforms,
-            &mut built.world,
-            t_end,
-            1.0 / 60.0,
-        );
-        built.world.step(1.0 / 60.0);
+        built.step(tick, 1.0 / 60.0);
         after(tick, &built.world);
     }
 }

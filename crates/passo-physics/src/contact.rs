@@ -176,8 +176,9 @@ pub struct SensorPair {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ContactEvents {
     /// The step these events happened in: [`StepStats::steps`] right after
-    /// it (0 before the first). A game reading events once per frame
-    /// handles them only when this changed.
+    /// it (0 before the first, right after a restore, and in a world that
+    /// has never held a shaped body, where nothing can touch). A game
+    /// reading events once per frame handles them only when this changed.
     ///
     /// [`StepStats::steps`]: crate::StepStats::steps
     pub step: u64,

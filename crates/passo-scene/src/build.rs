@@ -103,6 +103,19 @@ impl BuiltScene {
         }
     }
 
+    /// Steps the world one fixed tick of `dt` seconds with its path
+    /// platforms driven: `tick` is the number of the tick this step ends,
+    /// counted from the scene's start (1 for the first step), so each
+    /// platform reaches its place at `tick × dt` seconds, as in the demo.
+    /// A game with its own clock calls
+    /// [`drive_platforms`](BuiltScene::drive_platforms) and
+    /// [`World::step`] itself.
+    pub fn step(&mut self, tick: u64, dt: f32) {
+        let t_end = tick as f64 * f64::from(dt);
+        Self::drive_platforms(&self.platforms, &mut self.world, t_end, dt);
+        self.world.step(dt);
+    }
+
     /// The body with this name, if any.
     pub fn body_named(&self, name: &str) -> Option<BodyId> {
         self.bodies

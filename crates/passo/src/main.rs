@@ -63,6 +63,8 @@ fn run(cli: Cli) -> Result<()> {
                 let scene = scenes::load(name)?;
                 println!("{name:16} {}", scene.file.description);
             }
+            let (name, description) = scenes::INTEGRATORS;
+            println!("{name:16} {description}");
             Ok(())
         }
         Some(Command::Demo(args)) => demo::run(args),

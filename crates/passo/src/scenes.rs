@@ -112,6 +112,12 @@ pub fn load(name_or_path: &str) -> Result<Scene> {
         // A built-in scene's level map is read from the source tree's
         // assets, where its file was.
         Some(b) => Ok(Scene::parse(b.text, &built_in_path(b.name))?),
+        None if name_or_path == INTEGRATORS.0 => bail!(
+            "`{}` is built in code for the demo, not a scene file: \
+             run it with `passo demo --scene {}`",
+            INTEGRATORS.0,
+            INTEGRATORS.0
+        ),
         None => bail!(
             "no scene named `{name_or_path}`: give a path to a .ron file or one of: {}",
             names().join(", ")
@@ -130,6 +136,14 @@ fn built_in_path(name: &str) -> String {
 fn is_path(path: &Path) -> bool {
     path.extension().is_some_and(|e| e == "ron") || path.components().count() > 1
 }
+
+/// The demo's comparison of the integrators, built in code (one world
+/// per integrator side by side): its name and what `passo scenes` says of
+/// it. The headless commands take scene files only.
+pub const INTEGRATORS: (&str, &str) = (
+    "integrators",
+    "One spring under each integrator side by side (the demo only: built in code, not a file)",
+);
 
 /// Names of the built-in scenes, in menu order.
 pub fn names() -> Vec<&'static str> {

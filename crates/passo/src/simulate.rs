@@ -46,18 +46,16 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         timestep = resumed;
     }
     let dt = timestep.dt();
-    let world = &mut built.world;
     // A resumed run is the snapshot's world at the snapshot's rate.
     let resumed = args.resume.as_ref().map_or(String::new(), |p| {
         format!(" (resumed from {})", p.display())
     });
-    let hz = format!("{:.6}", timestep.hz());
     eprintln!(
         "{}{resumed}: {} bodies, {} Hz, stages: {:?}",
         scene.file.name,
-        world.len(),
-        hz.trim_end_matches('0').trim_end_matches('.'),
-        world.active_stages()
+        built.world.len(),
+        rate(timestep.hz()),
+        built.world.active_stages()
     );
 
     let mut csv = match &args.csv {
@@ -66,7 +64,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
                 .with_context(|| format!("cannot create {}", path.display()))?;
             let mut w = std::io::BufWriter::new(file);
             writeln!(w, "tick,body,x,y,vx,vy")?;
-            write_rows(&mut w, world, 0)?;
+            write_rows(&mut w, &built.world, 0)?;
             Some(w)
         }
         None => None,
@@ -77,13 +75,14 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let first = timestep.tick();
     for tick in 1..=args.ticks {
         // The loop counts the tick too, so a saved snapshot's tick follows
-        // the world.
+        // the world, and its count is the platforms' clock (a resumed run
+        // goes on from the snapshot's tick).
         timestep.advance_ticks(1);
-        world.step(dt);
+        built.step(timestep.tick(), dt);
         if let Some(w) = &mut csv
             && (tick % args.every == 0 || tick == args.ticks)
         {
-            write_rows(w, world, tick)?;
+            write_rows(w, &built.world, tick)?;
         }
         progress.set(tick);
     }
@@ -92,6 +91,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         w.flush()?;
     }
     debug_assert_eq!(timestep.tick() - first, args.ticks);
+    let world = &built.world;
     if let Some(path) = &args.save {
         GameSnapshot::capture(world, &timestep).save(path)?;
     }
@@ -115,6 +115,13 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         println!("{:016x}", world.state_hash());
     }
     Ok(())
+}
+
+/// A rate for people: to a thousandth of a hertz, without trailing zeros
+/// (the step is whole nanoseconds, so 60 Hz is 59.999999 Hz to six places).
+fn rate(hz: f64) -> String {
+    let text = format!("{hz:.3}");
+    text.trim_end_matches('0').trim_end_matches('.').to_owned()
 }
 
 fn write_rows(w: &mut impl Write, world: &World, tick: u64) -> std::io::Result<()> {

@@ -57,6 +57,78 @@ fn simulate_prints_the_same_hash_for_the_same_run() {
 }
 
 #[test]
+fn simulate_drives_the_path_platforms_as_the_demo_does() {
+    // The demo, headless, with no input: 123 ticks of the playground.
+    let mut sim = passo::demo::load(&passo::demo::Entry::File("playground".into())).unwrap();
+    for _ in 0..123 {
+        sim.session.timestep.advance_ticks(1);
+        sim.tick();
+    }
+    let demo = format!("{:016x}", sim.scene.lanes[0].world.state_hash());
+    let out = passo(&["simulate", "playground", "--ticks", "123", "--hash"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(stdout(&out).trim(), demo, "the same bits as the demo");
+    assert!(
+        stderr(&out).contains("bodies, 60 Hz,"),
+        "the rate for people: {}",
+        stderr(&out)
+    );
+
+    // The playground's moving platform (a kinematic box 4 m wide, 0.3 m
+    // high) is somewhere else after a second.
+    let dir = std::env::temp_dir().join(format!("passo-cli-platform-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("playground.csv");
+    let path = csv.to_str().unwrap();
+    let out = passo(&[
+        "simulate",
+        "playground",
+        "--ticks",
+        "60",
+        "--every",
+        "60",
+        "--csv",
+        path,
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let file = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/scenes/playground.ron"
+    );
+    let scene = passo_scene::Scene::load(file.as_ref()).unwrap();
+    let built = scene.build().unwrap();
+    assert!(!built.platforms.is_empty(), "the playground has platforms");
+    let dt = f64::from(
+        passo_loop::FixedTimestep::from_hz(scene.file.rate_hz)
+            .unwrap()
+            .dt(),
+    );
+    for platform in &built.platforms {
+        let row = |tick: &str| -> Vec<f32> {
+            let line = text
+                .lines()
+                .find(|l| l.starts_with(&format!("{tick},{},", platform.id.index())))
+                .unwrap();
+            line.split(',')
+                .skip(2)
+                .map(|v| v.parse().unwrap())
+                .collect()
+        };
+        let (first, last) = (row("0"), row("60"));
+        let expected = platform.at(60.0 * dt);
+        assert_eq!(&first[..2], &[platform.start.x, platform.start.y]);
+        assert!(
+            (last[0] - expected.x).abs() < 1e-4 && (last[1] - expected.y).abs() < 1e-4,
+            "platform {} at {last:?}, not {expected}",
+            platform.id.index()
+        );
+        assert!(expected != platform.start, "it moved");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
 fn simulate_writes_csv_rows_at_the_chosen_interval() {
     let dir = std::env::temp_dir().join(format!("passo-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -104,6 +176,18 @@ fn bad_input_gives_a_clear_error_and_a_non_zero_exit() {
     assert!(err.contains("bad.ron:1:"), "{err}");
     assert!(err.contains("did you mean `mass`?"), "{err}");
     std::fs::remove_dir_all(dir).unwrap();
+
+    // The demo's integrator comparison is listed, and the headless
+    // commands say where to run it.
+    let out = passo(&["scenes"]);
+    assert!(stdout(&out).contains("integrators "), "{}", stdout(&out));
+    let out = passo(&["simulate", "integrators"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("run it with `passo demo --scene integrators`"),
+        "{}",
+        stderr(&out)
+    );
 
     let out = passo(&["simulate", "rain", "--every", "0"]);
     assert_eq!(out.status.code(), Some(2), "clap rejects a zero interval");

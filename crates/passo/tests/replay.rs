@@ -219,6 +219,34 @@ fn passo_replay_checks_the_final_state() {
 }
 
 #[test]
+fn the_final_hash_is_written_as_the_commands_print_it_and_read_in_either_form() {
+    let replay = Replay {
+        scene: "stack".into(),
+        ticks: 3,
+        inputs: Vec::new(),
+        commands: Vec::new(),
+        final_hash: 0x05fb_82a0_c6e2_4792,
+    };
+    let text = replay.to_ron();
+    let written = r#""05fb82a0c6e24792""#;
+    assert!(text.contains(&format!("final_hash: {written}")), "{text}");
+    assert_eq!(Replay::from_ron(&text).unwrap(), replay);
+    // Files written before hold the hash as a decimal integer.
+    let decimal = text.replace(written, &replay.final_hash.to_string());
+    assert_eq!(Replay::from_ron(&decimal).unwrap(), replay);
+    for bad in [
+        r#""""#,
+        r#""12345678901234567""#,
+        r#""+12""#,
+        r#""xyz""#,
+        "-5",
+    ] {
+        let err = Replay::from_ron(&text.replace(written, bad)).unwrap_err();
+        assert!(err.to_string().contains("state hash"), "{bad}: {err}");
+    }
+}
+
+#[test]
 fn replays_out_of_order_past_the_end_absurd_or_endless_are_refused() {
     let replay = record(Duration::from_micros(16_667));
     let mut late = replay.clone();

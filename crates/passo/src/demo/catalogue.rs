@@ -13,7 +13,7 @@ pub enum Entry {
 impl Entry {
     /// The entry for a `--scene` value.
     pub fn named(name: &str) -> Self {
-        if name == "integrators" {
+        if name == crate::scenes::INTEGRATORS.0 {
             Self::Integrators
         } else {
             Self::File(name.to_owned())
@@ -35,7 +35,7 @@ pub fn catalogue() -> Vec<(String, Entry)> {
         .iter()
         .map(|n| ((*n).to_owned(), Entry::File((*n).to_owned())))
         .collect();
-    list.push(("integrators".into(), Entry::Integrators));
+    list.push((crate::scenes::INTEGRATORS.0.into(), Entry::Integrators));
     for name in crate::scenes::names() {
         if !showcase.contains(&name) {
             list.push((name.to_owned(), Entry::File(name.to_owned())));

@@ -57,8 +57,55 @@ pub struct Replay {
     pub inputs: Vec<(u64, Input)>,
     /// Commands applied before each listed tick, in order.
     pub commands: Vec<(u64, Command)>,
-    /// State hash after the last tick.
+    /// State hash after the last tick: written as the sixteen hex digits
+    /// `passo replay` prints; a decimal number (older files) is read too.
+    #[serde(with = "hex_hash")]
     pub final_hash: u64,
+}
+
+/// A state hash in a replay file: the hex digits the commands print, or a
+/// plain integer.
+mod hex_hash {
+    use serde::de::{self, Visitor};
+    use serde::{Deserializer, Serializer};
+    use std::fmt;
+
+    pub(super) fn serialize<S: Serializer>(hash: &u64, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&format!("{hash:016x}"))
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<u64, D::Error> {
+        d.deserialize_any(HashVisitor)
+    }
+
+    struct HashVisitor;
+
+    impl Visitor<'_> for HashVisitor {
+        type Value = u64;
+
+        fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+            f.write_str("a state hash: up to sixteen hex digits in quotes, or an integer")
+        }
+
+        fn visit_u64<E: de::Error>(self, v: u64) -> Result<u64, E> {
+            Ok(v)
+        }
+
+        fn visit_i64<E: de::Error>(self, v: i64) -> Result<u64, E> {
+            u64::try_from(v).map_err(|_| E::custom(format!("a negative state hash: {v}")))
+        }
+
+        fn visit_str<E: de::Error>(self, v: &str) -> Result<u64, E> {
+            let digits = v.strip_prefix("0x").unwrap_or(v);
+            let hex = digits.bytes().all(|b| b.is_ascii_hexdigit());
+            if !hex || digits.is_empty() || digits.len() > 16 {
+                return Err(E::custom(format!(
+                    "a state hash is 1 to 16 hex digits, not `{v}`"
+                )));
+            }
+            u64::from_str_radix(digits, 16).map_err(E::custom)
+        }
+    }
 }
 
 impl Replay {
