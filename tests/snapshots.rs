@@ -127,6 +127,37 @@ fn ron_and_binary_snapshots_of_world_and_loop_continue_exactly() {
 }
 
 #[test]
+fn a_body_that_flew_past_the_coordinate_limit_saves_and_loads_back() {
+    let mut world = World::new(passo_physics::WorldSettings {
+        forces: passo_physics::ForceModels::none(),
+        ..Default::default()
+    })
+    .unwrap();
+    let def =
+        BodyDef::new_dynamic(Vec2::ZERO, Shape::circle(0.5)).with_velocity(Vec2::new(1000.0, 0.0));
+    let id = world.add_body(def).unwrap();
+    // Three hours at 1 000 m/s: 1.08e7 m, past `MAX_COORDINATE` (1e7).
+    for _ in 0..3 {
+        world.step(3600.0);
+    }
+    let far = world.body(id).unwrap().position;
+    assert!(far.x > passo_physics::constants::MAX_COORDINATE, "{far}");
+    let saved = GameSnapshot::capture(&world, &FixedTimestep::from_hz(60.0).unwrap());
+    world.step(1.0 / 60.0);
+    for copy in [
+        GameSnapshot::from_ron(&saved.to_ron()).unwrap(),
+        GameSnapshot::from_bytes(&saved.to_bytes()).unwrap(),
+    ] {
+        let (mut restored, _) = copy.restore().unwrap();
+        assert_eq!(restored.body(id).unwrap().position, far);
+        restored.step(1.0 / 60.0);
+        assert_eq!(restored.state_hash(), world.state_hash());
+    }
+    // Placing a body there is still refused.
+    assert!(world.try_set_position(id, far).is_err());
+}
+
+#[test]
 fn damaged_snapshots_are_refused_with_the_reason() {
     let mut world = busy();
     run(&mut world, 5);

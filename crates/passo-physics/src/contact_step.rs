@@ -4,7 +4,7 @@
 //! limits; then record events and sleep. Each stage is a function, and
 //! each is skipped when the plan does not need it.
 
-use crate::bodies::SpeedLimits;
+use crate::bodies::{DynamicBodies, SpeedLimits};
 use crate::colouring::Pass;
 use crate::constants::DEEP_OVERLAP;
 use crate::contact_world::{ContactWorld, StepParams};
@@ -245,6 +245,7 @@ impl World {
             self.stats.swept_stops = self.stats.swept_stops.saturating_add(stops as u64);
         }
         self.finish_contacts(&mut cw, &plan);
+        resets += put_back_non_finite(&mut self.dynamic, &mut cw);
         self.may_rest |= settings.sleeping;
         cw.end_step(
             &mut self.dynamic,
@@ -426,6 +427,40 @@ impl World {
             );
         }
     }
+}
+
+/// Puts every dynamic body the step left with a non-finite position or
+/// velocity back where the step began, at rest, and drops its contacts'
+/// impulses (so neither the next step's warm start nor a snapshot carries
+/// them); returns how many it put back. Only impulses that overflow `f32`
+/// get here: the heaviest body allowed (10^30 kg) meeting something at
+/// 10^9 m/s with the speed limit turned off. The common case is one pass
+/// over the bodies with no branch.
+fn put_back_non_finite(dynamic: &mut DynamicBodies, cw: &mut ContactWorld) -> u64 {
+    let finite = |p: &Vec2, v: &Vec2| p.is_finite() & v.is_finite();
+    let all_finite =
+        (dynamic.pos.iter().zip(&dynamic.vel)).fold(true, |ok, (p, v)| ok & finite(p, v));
+    if all_finite {
+        return 0;
+    }
+    let mut resets = 0;
+    for (i, start) in cw.motion.start.iter().enumerate() {
+        if !finite(&dynamic.pos[i], &dynamic.vel[i]) {
+            dynamic.pos[i] = *start;
+            dynamic.vel[i] = Vec2::ZERO;
+            resets += 1;
+        }
+    }
+    for row in &mut cw.solved.rows {
+        let impulses = [row.normal_impulse, row.tangent_impulse, row.push_impulse];
+        if !impulses.iter().all(|x| x.is_finite()) || !row.max_normal_impulse.is_finite() {
+            row.normal_impulse = 0.0;
+            row.tangent_impulse = 0.0;
+            row.push_impulse = 0.0;
+            row.max_normal_impulse = 0.0;
+        }
+    }
+    resets
 }
 
 /// What the position stage moves each body by: its velocity plus push

@@ -5,7 +5,8 @@ use crate::collider::ColliderRef;
 use crate::contact_state::ContactState;
 use crate::contact_world::ContactWorld;
 use crate::world::{Location, Slot};
-use crate::{BodyId, BodyKind, PhysicsError, StepStats, World, WorldSettings};
+use crate::{BodyDef, BodyId, BodyKind, PhysicsError, StepStats, World, WorldSettings};
+use glam::Vec2;
 
 /// Everything a world needs to continue exactly where it was: settings,
 /// every body (position, velocity, accumulated force, material, ids and
@@ -170,8 +171,17 @@ impl WorldSnapshot {
             crate::error::mass("mass", m.mass)
                 .map_err(|e| invalid(format!("dynamic body {i}: {e}")))?;
         }
+        // A body a step carried past `MAX_COORDINATE` keeps flying, and
+        // loads back where it was: a restored position need only be finite.
         let def = body.to_def();
-        def.validate()
+        crate::error::finite_vec("position", def.position)
+            .and_then(|_| {
+                BodyDef {
+                    position: Vec2::ZERO,
+                    ..def
+                }
+                .validate()
+            })
             .and_then(|()| self.settings.check_restored_body(&def))
             .map_err(|e| invalid(format!("dynamic body {i}: {e}")))?;
         // A kinematic body has inverse mass zero and infinite mass.

@@ -402,6 +402,49 @@ mod tests {
     }
 
     #[test]
+    fn impulses_that_overflow_put_the_bodies_back_instead_of_leaving_nan() {
+        use crate::Shape;
+        // No speed limit: the heaviest bodies allowed, at 1e9 m/s, into a
+        // wall and into each other. Their impulses overflow `f32`.
+        let mut world = World::new(WorldSettings {
+            max_speed: f32::INFINITY,
+            ..Default::default()
+        })
+        .unwrap();
+        let wall = BodyDef::new_static(Vec2::new(10.0, 0.0), Shape::rect(1.0, 10.0));
+        world.add_body(wall).unwrap();
+        let heavy = |x: f32, vx: f32| {
+            BodyDef::new_dynamic(Vec2::new(x, 0.0), Shape::circle(0.5))
+                .with_mass(1e30)
+                .with_velocity(Vec2::new(vx, 0.0))
+        };
+        let ids = [
+            world.add_body(heavy(0.0, 1e9)).unwrap(),
+            world.add_body(heavy(-20.0, 1e9)).unwrap(),
+            world.add_body(heavy(-30.0, -1e9)).unwrap(),
+        ];
+        let starts: Vec<Vec2> = ids
+            .iter()
+            .map(|&id| world.body(id).unwrap().position)
+            .collect();
+        for _ in 0..5 {
+            world.step(1.0 / 60.0);
+            for &id in &ids {
+                let b = world.body(id).unwrap();
+                assert!(b.position.is_finite() && b.velocity.is_finite(), "{b:?}");
+            }
+        }
+        assert!(world.stats().non_finite_resets > 0);
+        // Put back where its step began, at rest: the first is never past the wall.
+        let first = world.body(ids[0]).unwrap();
+        assert!(first.position.x < 10.0, "{first:?}");
+        assert!(starts.iter().all(|p| p.is_finite()));
+        // Nothing non-finite is carried to the next step or into a save.
+        let restored = World::from_snapshot(world.snapshot());
+        assert!(restored.is_ok(), "{:?}", restored.err());
+    }
+
+    #[test]
     fn an_overflowing_force_is_clamped_not_turned_into_nan() {
         let mut world = World::new(WorldSettings {
             forces: ForceModels::none(),
