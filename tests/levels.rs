@@ -323,6 +323,62 @@ fn maps_that_would_exhaust_the_machine_are_errors() {
 }
 
 #[test]
+fn a_tile_with_thousands_of_properties_painted_everywhere_is_read_once() {
+    // One ice tile with 4 000 properties over all 512 × 512 cells: each
+    // cell used to get its own copy of them (about 60 GB here; 450 MB for
+    // 64 × 64 cells and 1 000 properties).
+    let (side, junk) = (512usize, 4000);
+    let names: Vec<String> = (0..junk).map(|i| format!("p{i}")).collect();
+    let tmx_props: String = names
+        .iter()
+        .map(|n| format!(r#"<property name="{n}" type="int" value="1"/>"#))
+        .collect();
+    let cells = vec!["1"; side * side].join(",");
+    let tmx = format!(
+        r#"<?xml version="1.0" encoding="UTF-8"?>
+<map version="1.10" orientation="orthogonal" renderorder="right-down" width="{side}" height="{side}" tilewidth="16" tileheight="16" infinite="0">
+ <tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1">
+  <tile id="0" type="ice"><properties><property name="friction" type="float" value="0.05"/>{tmx_props}</properties></tile>
+ </tileset>
+ <layer id="1" name="solid" width="{side}" height="{side}"><data encoding="csv">{cells}</data></layer>
+</map>"#
+    );
+    let json_props: Vec<String> = names
+        .iter()
+        .map(|n| format!(r#"{{"name":"{n}","type":"int","value":1}}"#))
+        .collect();
+    let tmj = format!(
+        r#"{{"orientation":"orthogonal","infinite":false,"width":{side},"height":{side},"tilewidth":16,"tileheight":16,
+  "tilesets":[{{"firstgid":1,"name":"t","tiles":[{{"id":0,"class":"ice","properties":[{{"name":"friction","type":"float","value":0.05}},{}]}}]}}],
+  "layers":[{{"type":"tilelayer","name":"solid","width":{side},"height":{side},"data":[{cells}]}}]}}"#,
+        json_props.join(",")
+    );
+    let from_tmx = level_ref("many.tmx")
+        .load(&map_file("many.tmx", &tmx))
+        .unwrap();
+    let from_tmj = level_ref("many.tmj")
+        .load(&map_file("many.tmj", &tmj))
+        .unwrap();
+    assert_eq!(from_tmx, from_tmj);
+    let map = &from_tmx.map;
+    let side = side as u32;
+    assert_eq!((map.width(), map.height()), (side, side));
+    for (x, y) in [
+        (0, 0),
+        (side - 1, 0),
+        (0, side - 1),
+        (side - 1, side - 1),
+        (300, 200),
+    ] {
+        let kind = map.kinds()[usize::from(map.get(x, y).expect("every cell is filled"))];
+        assert_eq!(
+            kind.friction, 0.05,
+            "the tile's own property, at ({x}, {y})"
+        );
+    }
+}
+
+#[test]
 fn a_level_counts_against_the_scenes_body_limit() {
     // A checkerboard of 1 500 × 1 500 cells: 1 125 000 one-cell boxes.
     let row = |odd: usize| -> String {

@@ -52,8 +52,8 @@ pub struct SceneFile {
     /// The region to show; absent fits every body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera: Option<Camera>,
-    /// Bodies listed one by one.
-    #[serde(default)]
+    /// Bodies listed one by one (at most [`MAX_BODIES`]).
+    #[serde(default, deserialize_with = "at_most_max_bodies")]
     pub bodies: Vec<BodySpec>,
     /// Bodies made by pattern.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -61,6 +61,37 @@ pub struct SceneFile {
     /// A level on a grid: a Tiled map or ASCII art (see [`TileMapRef`](crate::TileMapRef)).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilemap: Option<crate::map_ref::TileMapRef>,
+}
+
+/// Reads `bodies`, refusing the list as soon as it holds more than
+/// [`MAX_BODIES`]: a file of ten million `()` (30 MB) took 1.5 GB to read
+/// before its count was checked.
+fn at_most_max_bodies<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<BodySpec>, D::Error> {
+    struct Bounded;
+    impl<'de> serde::de::Visitor<'de> for Bounded {
+        type Value = Vec<BodySpec>;
+
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            write!(f, "a list of at most {MAX_BODIES} bodies")
+        }
+
+        fn visit_seq<A: serde::de::SeqAccess<'de>>(
+            self,
+            mut seq: A,
+        ) -> Result<Self::Value, A::Error> {
+            let mut bodies = Vec::new();
+            while let Some(body) = seq.next_element()? {
+                if bodies.len() == MAX_BODIES {
+                    return Err(serde::de::Error::custom(format!(
+                        "`bodies` lists more than {MAX_BODIES} bodies; at most {MAX_BODIES} are allowed"
+                    )));
+                }
+                bodies.push(body);
+            }
+            Ok(bodies)
+        }
+    }
+    d.deserialize_seq(Bounded)
 }
 
 fn default_rate() -> f64 {
@@ -482,6 +513,8 @@ mod tests {
 
     #[test]
     fn values_out_of_range_name_the_field_and_the_range() {
+        // One body more than a scene may have, each `()`: refused while read.
+        let many = format!("(name: \"x\", bodies: [{}])", "(),".repeat(MAX_BODIES + 1));
         let cases = [
             (
                 "(name: \"x\", rate_hz: 0)",
@@ -526,6 +559,10 @@ mod tests {
             (
                 "(name: \"x\", generators: [Rain(origin: (0,0), count: 4000000000, columns: 10, spacing: (1,1), body: ())])",
                 "`generators` make 4000000000 bodies; at most 1000000 are allowed",
+            ),
+            (
+                &many,
+                "`bodies` lists more than 1000000 bodies; at most 1000000 are allowed",
             ),
             (
                 "(name: \"x\", bodies: [(colour: \"red\")])",

@@ -138,6 +138,21 @@ fn tile_kind(tile: &RawTile) -> Result<TileKind, String> {
     Ok(kind)
 }
 
+/// The index of `kind` in `map`, added the first time (`kinds` lists the
+/// map's kinds in order).
+fn kind_in(
+    map: &mut TileMap,
+    kinds: &mut Vec<TileKind>,
+    kind: TileKind,
+) -> Result<u8, passo_physics::PhysicsError> {
+    if let Some(k) = kinds.iter().position(|k| *k == kind) {
+        return Ok(k as u8);
+    }
+    let k = map.add_kind(kind)?;
+    kinds.push(kind);
+    Ok(k)
+}
+
 /// What an object's class (or `kind` property) makes of it.
 enum ObjectRole {
     Body(BodyKind, bool, bool),
@@ -188,18 +203,21 @@ impl RawMap {
             .map_err(|e| invalid("map".into(), e.to_string()))?;
         let layer_field = format!("layer `{}`", wanted.layer);
         let mut kinds: Vec<TileKind> = Vec::new();
-        for (i, tile) in cells.iter().enumerate() {
+        // Each distinct tile's kind in the map, worked out at the first
+        // cell that shows it (so an error names that cell).
+        let mut kind_of: Vec<Option<u8>> = vec![None; self.tiles.len()];
+        for (i, &tile) in cells.iter().enumerate() {
             let Some(tile) = tile else { continue };
             let (x, row) = (i as u32 % self.width, i as u32 / self.width);
             let at = || format!("{layer_field}, tile ({x}, {row})");
-            let kind = tile_kind(tile).map_err(|m| invalid(at(), m))?;
-            let k = match kinds.iter().position(|k| *k == kind) {
-                Some(k) => k as u8,
+            let k = match kind_of[tile as usize] {
+                Some(k) => k,
                 None => {
-                    let k = map
-                        .add_kind(kind)
+                    let kind =
+                        tile_kind(&self.tiles[tile as usize]).map_err(|m| invalid(at(), m))?;
+                    let k = kind_in(&mut map, &mut kinds, kind)
                         .map_err(|e| invalid(at(), e.to_string()))?;
-                    kinds.push(kind);
+                    kind_of[tile as usize] = Some(k);
                     k
                 }
             };

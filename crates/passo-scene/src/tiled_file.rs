@@ -5,6 +5,7 @@
 //! tile map may be, is an error, never a panic.
 
 use crate::error::SceneError;
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// A property value, as both formats give it.
@@ -53,9 +54,32 @@ pub(crate) struct RawMap {
     pub height: u32,
     pub tile_width: f32,
     pub tile_height: f32,
-    /// Every tile layer: its name and tiles, row by row from the top.
-    pub tile_layers: Vec<(String, Vec<Option<RawTile>>)>,
+    /// The distinct tiles the wanted layer shows, each read once however
+    /// many cells show it (a tile's properties are not copied per cell).
+    pub tiles: Vec<RawTile>,
+    /// Every tile layer: its name and, cell by cell, row by row from the
+    /// top, the index in `tiles` of the tile there (only the wanted
+    /// layer's cells are read).
+    pub tile_layers: Vec<(String, Vec<Option<u32>>)>,
     pub objects: Vec<RawObject>,
+}
+
+/// The distinct tiles of a layer by a key of the file's (a tileset and a
+/// tile id, or a global id), each read once into [`RawMap::tiles`].
+struct Palette<K>(BTreeMap<K, u32>);
+
+impl<K: Ord> Palette<K> {
+    fn new() -> Self {
+        Self(BTreeMap::new())
+    }
+
+    /// The index in `tiles` of the tile `key`, read by `read` the first time.
+    fn index(&mut self, key: K, tiles: &mut Vec<RawTile>, read: impl FnOnce() -> RawTile) -> u32 {
+        *self.0.entry(key).or_insert_with(|| {
+            tiles.push(read());
+            (tiles.len() - 1) as u32
+        })
+    }
 }
 
 pub(crate) fn read_tmx(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneError> {
@@ -121,18 +145,22 @@ fn collect_tmx_layers<'m>(
                 raw.tile_layers.push((name, Vec::new()))
             }
             tiled::LayerType::Tiles(tiles) => {
-                let cells = (0..map.height as i32)
-                    .flat_map(|y| (0..map.width as i32).map(move |x| (x, y)))
-                    .map(|(x, y)| {
-                        tiles.get_tile(x, y).map(|t| match t.get_tile() {
-                            Some(tile) => RawTile {
-                                class: tile.user_type.clone(),
-                                properties: tmx_properties(&tile.properties),
-                            },
-                            None => RawTile::default(),
-                        })
-                    })
-                    .collect();
+                let mut palette = Palette::new();
+                let mut cells = Vec::with_capacity(map.width as usize * map.height as usize);
+                for y in 0..map.height as i32 {
+                    for x in 0..map.width as i32 {
+                        cells.push(tiles.get_tile(x, y).map(|t| {
+                            let key = (t.tileset_index(), t.id());
+                            palette.index(key, &mut raw.tiles, || match t.get_tile() {
+                                Some(tile) => RawTile {
+                                    class: tile.user_type.clone(),
+                                    properties: tmx_properties(&tile.properties),
+                                },
+                                None => RawTile::default(),
+                            })
+                        }));
+                    }
+                }
                 raw.tile_layers.push((name, cells));
             }
             tiled::LayerType::Objects(objects) => {
@@ -284,7 +312,7 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneE
                 .unwrap_or_default(),
         )
     };
-    fn layers(json: &Json) -> Vec<Json> {
+    fn layers(json: &Json) -> Vec<&Json> {
         let mut out = Vec::new();
         for layer in json
             .get("layers")
@@ -295,13 +323,13 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneE
             if layer.get("type").and_then(Json::as_str) == Some("group") {
                 out.extend(layers(layer));
             } else {
-                out.push(layer.clone());
+                out.push(layer);
             }
         }
         out
     }
     for layer in layers(&json) {
-        let name = text(&layer, "name");
+        let name = text(layer, "name");
         match layer.get("type").and_then(Json::as_str) {
             Some("tilelayer") => {
                 if name != wanted_layer {
@@ -322,10 +350,16 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneE
                     )));
                 }
                 // The top bits of a global id are flip flags.
+                let mut palette = Palette::new();
                 let cells = data
                     .iter()
                     .map(|v| v.as_u64().unwrap_or(0) as u32 & 0x1FFF_FFFF)
-                    .map(|gid| (gid != 0).then(|| tile_of(gid).unwrap_or_default()))
+                    .map(|gid| {
+                        (gid != 0).then(|| {
+                            let read = || tile_of(gid).unwrap_or_default();
+                            palette.index(gid, &mut raw.tiles, read)
+                        })
+                    })
                     .collect();
                 raw.tile_layers.push((name, cells));
             }

@@ -117,8 +117,14 @@ impl SceneFile {
         }
         let total = self.listed_bodies();
         if total > MAX_BODIES as u64 {
+            // (A file's `bodies` list alone is held to the limit while read.)
+            let field = if self.generators.is_empty() {
+                "bodies"
+            } else {
+                "generators"
+            };
             return Err(c.fail(
-                "generators",
+                field,
                 format!("make {total} bodies; at most {} are allowed", MAX_BODIES),
             ));
         }
