@@ -141,3 +141,19 @@ fn same_state_at_every_tick_whatever_the_time_scale_and_pauses() {
     });
     assert_eq!(hashes, reference);
 }
+
+#[test]
+fn every_step_the_loop_takes_a_world_takes() {
+    // The loop refuses steps longer than a world takes (`World::step`
+    // panicked on the step of a 1/7200 Hz loop).
+    assert_eq!(
+        passo_loop::MAX_STEP.as_secs_f32(),
+        passo_physics::constants::MAX_STEP
+    );
+    assert!(FixedTimestep::from_hz(1.0 / 7200.0).is_err());
+    assert!(FixedTimestep::from_seconds(3600.5).is_err());
+    let slowest = FixedTimestep::from_hz(1.0 / 3600.0).unwrap();
+    let (mut world, _) = scene();
+    world.step(slowest.dt());
+    assert!(world.bodies().all(|b| b.position.is_finite()));
+}

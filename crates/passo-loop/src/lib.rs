@@ -30,6 +30,6 @@ mod timestep;
 pub use clock::RealClock;
 pub use runner::{Game, run_frame};
 pub use timestep::{
-    DEFAULT_MAX_FRAME_TIME, DEFAULT_MAX_TICKS_PER_FRAME, FixedTimestep, Frame, LoopError,
+    DEFAULT_MAX_FRAME_TIME, DEFAULT_MAX_TICKS_PER_FRAME, FixedTimestep, Frame, LoopError, MAX_STEP,
     MAX_TIME_SCALE,
 };

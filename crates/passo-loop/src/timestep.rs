@@ -22,14 +22,18 @@ pub const DEFAULT_MAX_TICKS_PER_FRAME: u32 = 16;
 /// Largest accepted time scale (fast forward), 1000×.
 pub const MAX_TIME_SCALE: f64 = 1000.0;
 
+/// Longest fixed step, an hour (a rate of 1/3600 Hz): the longest a
+/// `passo-physics` world steps (`World::step` panics on a longer one).
+pub const MAX_STEP: Duration = Duration::from_secs(3600);
+
 /// A value the loop cannot use.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LoopError {
-    /// A rate that is not finite and > 0 Hz, too high for a 1 ns step, or
-    /// too low for a step that fits in `u64::MAX` ns (about 584 years; a
-    /// rate below about 5.4e-11 Hz).
+    /// A rate that is not finite, too high for a 1 ns step (above 1e9 Hz),
+    /// or too low for a step of at most [`MAX_STEP`] (below 1/3600 Hz).
     InvalidRate(f64),
-    /// A step that is not finite and > 0 seconds, or rounds to 0 ns.
+    /// A step that is not finite, rounds to 0 ns, or is longer than
+    /// [`MAX_STEP`].
     InvalidStep(f64),
     /// A time scale outside `[0, 1000]` or not finite.
     InvalidTimeScale(f64),
@@ -43,12 +47,16 @@ impl fmt::Display for LoopError {
             Self::InvalidRate(hz) => {
                 write!(
                     f,
-                    "fixed rate must be finite, > 0 and at most 1e9 Hz, with a step of at \
-                     most u64::MAX ns (about 584 years), got {hz}"
+                    "fixed rate must be finite, at most 1e9 Hz and at least 1/3600 Hz \
+                     (a step of at most an hour, MAX_STEP), got {hz}"
                 )
             }
             Self::InvalidStep(s) => {
-                write!(f, "fixed step must be finite and at least 1 ns, got {s} s")
+                write!(
+                    f,
+                    "fixed step must be finite, at least 1 ns and at most 3600 s (MAX_STEP), \
+                     got {s} s"
+                )
             }
             Self::InvalidTimeScale(s) => {
                 write!(
@@ -128,10 +136,13 @@ impl FixedTimestep {
     /// A timestep of exactly `step`.
     ///
     /// # Panics
-    /// If `step` is zero (a programming error; use
-    /// [`from_seconds`](Self::from_seconds) for values from outside).
+    /// If `step` is zero or longer than [`MAX_STEP`] (a programming error;
+    /// use [`from_seconds`](Self::from_seconds) for values from outside).
     pub fn new(step: Duration) -> Self {
-        assert!(!step.is_zero(), "FixedTimestep::new: the step must be > 0");
+        assert!(
+            !step.is_zero() && step <= MAX_STEP,
+            "FixedTimestep::new: the step must be > 0 and at most MAX_STEP (an hour), got {step:?}"
+        );
         Self {
             step,
             accumulator: Duration::ZERO,
@@ -181,11 +192,12 @@ impl FixedTimestep {
     /// then [`alpha`](Self::alpha) stays just below one.
     ///
     /// # Panics
-    /// If `step` is zero.
+    /// If `step` is zero or longer than [`MAX_STEP`].
     pub fn set_step(&mut self, step: Duration) {
         assert!(
-            !step.is_zero(),
-            "FixedTimestep::set_step: the step must be > 0"
+            !step.is_zero() && step <= MAX_STEP,
+            "FixedTimestep::set_step: the step must be > 0 and at most MAX_STEP (an hour), \
+             got {step:?}"
         );
         self.step = step;
     }
@@ -416,10 +428,8 @@ fn step_from_hz(hz: f64) -> Result<Duration, LoopError> {
     if !(hz.is_finite() && hz > 0.0 && hz <= 1e9) {
         return Err(LoopError::InvalidRate(hz));
     }
-    // A rate so low that the step does not fit in u64 nanoseconds
-    // (`u64::MAX as f64` is 2^64, one past the largest).
     let ns = (1e9 / hz).round();
-    if ns >= u64::MAX as f64 {
+    if ns > MAX_STEP.as_nanos() as f64 {
         return Err(LoopError::InvalidRate(hz));
     }
     Ok(Duration::from_nanos(ns as u64))
@@ -427,7 +437,7 @@ fn step_from_hz(hz: f64) -> Result<Duration, LoopError> {
 
 fn step_from_seconds(seconds: f64) -> Result<Duration, LoopError> {
     let ns = (seconds * 1e9).round();
-    if !(seconds.is_finite() && ns >= 1.0 && ns < u64::MAX as f64) {
+    if !(seconds.is_finite() && ns >= 1.0 && ns <= MAX_STEP.as_nanos() as f64) {
         return Err(LoopError::InvalidStep(seconds));
     }
     Ok(Duration::from_nanos(ns as u64))
@@ -630,8 +640,17 @@ mod tests {
 
     #[test]
     fn invalid_rates_and_steps_are_refused() {
-        // Below about 5.4e-11 Hz the step would not fit in u64 ns.
-        for hz in [0.0, -60.0, f64::NAN, f64::INFINITY, 2e9, 5e-11, 1e-300] {
+        // Below 1/3600 Hz the step would be longer than a world steps.
+        for hz in [
+            0.0,
+            -60.0,
+            f64::NAN,
+            f64::INFINITY,
+            2e9,
+            1.0 / 7200.0,
+            5e-11,
+            1e-300,
+        ] {
             assert!(matches!(
                 FixedTimestep::from_hz(hz),
                 Err(LoopError::InvalidRate(_))
@@ -640,19 +659,17 @@ mod tests {
             assert!(matches!(t.set_hz(hz), Err(LoopError::InvalidRate(_))));
             assert_eq!(t.step(), ns(16_666_667), "a refused rate changes nothing");
         }
-        // The lowest rates whose step fits: about 584 years.
-        let slow = FixedTimestep::from_hz(5.5e-11).unwrap();
-        assert_eq!(slow.step(), ns((1e9 / 5.5e-11f64).round() as u64));
-        assert!(slow.step() < ns(u64::MAX));
-        assert!(FixedTimestep::from_seconds(1.8e10).is_ok());
-        assert!(FixedTimestep::from_seconds(1.9e10).is_err());
-        for s in [0.0, -0.1, f64::NAN, 1e-10] {
-            assert!(FixedTimestep::from_seconds(s).is_err());
+        // The lowest rate: a step of exactly an hour.
+        let slow = FixedTimestep::from_hz(1.0 / 3600.0).unwrap();
+        assert_eq!(slow.step(), MAX_STEP);
+        assert!(FixedTimestep::from_seconds(3600.0).is_ok());
+        for s in [0.0, -0.1, f64::NAN, 1e-10, 3_600.000_001, 1.9e10] {
+            assert!(FixedTimestep::from_seconds(s).is_err(), "{s}");
         }
         assert_eq!(
             FixedTimestep::from_hz(0.0).unwrap_err().to_string(),
-            "fixed rate must be finite, > 0 and at most 1e9 Hz, with a step of at most \
-             u64::MAX ns (about 584 years), got 0"
+            "fixed rate must be finite, at most 1e9 Hz and at least 1/3600 Hz (a step of at \
+             most an hour, MAX_STEP), got 0"
         );
         assert_eq!(FixedTimestep::from_seconds(0.02).unwrap().step(), 20 * MS);
     }
@@ -661,6 +678,12 @@ mod tests {
     #[should_panic(expected = "the step must be > 0")]
     fn a_zero_step_is_a_programming_error() {
         FixedTimestep::new(Duration::ZERO);
+    }
+
+    #[test]
+    #[should_panic(expected = "at most MAX_STEP (an hour), got 7200s")]
+    fn a_step_longer_than_a_world_takes_is_a_programming_error() {
+        FixedTimestep::new(MAX_STEP).set_step(2 * MAX_STEP);
     }
 
     #[test]

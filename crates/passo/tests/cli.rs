@@ -228,15 +228,20 @@ fn a_saved_snapshot_resumes_to_the_same_hash_as_an_uninterrupted_run() {
 fn snapshots_and_replays_no_run_could_make_are_refused_and_a_resume_says_so() {
     let dir = std::env::temp_dir().join(format!("passo-cli-bad-snap-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    // A loop whose step is longer than a world steps (two hours): the
-    // resumed run panicked in `World::step`.
+    // A loop whose step is longer than a world steps (two hours, which
+    // the loop itself refuses, written into a file): the resumed run
+    // panicked in `World::step`.
     let world = passo_physics::World::default();
-    let slow = passo_loop::FixedTimestep::from_hz(1.0 / 7200.0).unwrap();
-    let snapshot = GameSnapshot::capture(&world, &slow);
-    let err = snapshot.clone().restore().unwrap_err().to_string();
+    let slowest = passo_loop::FixedTimestep::from_hz(1.0 / 3600.0).unwrap();
+    let text = GameSnapshot::capture(&world, &slowest).to_ron();
+    let hour = "secs: 3600,";
+    assert_eq!(text.matches(hour).count(), 1, "{text}");
+    let text = text.replace(hour, "secs: 7200,");
+    let err = GameSnapshot::from_ron(&text).and_then(|s| s.restore());
+    let err = format!("{:#}", err.unwrap_err());
     assert!(err.contains("longer than a world steps (3600 s)"), "{err}");
     let file = dir.join("slow.ron");
-    snapshot.save(&file).unwrap();
+    std::fs::write(&file, text).unwrap();
     let out = passo(&[
         "simulate",
         "projectile",
