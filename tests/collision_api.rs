@@ -300,6 +300,18 @@ fn point_box_and_ray_queries() {
         w.ray_cast(Vec2::new(f32::NAN, 0.0), Vec2::X, 10.0)
             .is_none()
     );
+    // Any length but zero: a subnormal direction (its length rounds to
+    // zero) or one whose length overflows still points somewhere.
+    for direction in [Vec2::new(1e-45, 0.0), Vec2::new(f32::MAX, 0.0)] {
+        let hit = w.ray_cast(Vec2::ZERO, direction, 100.0).unwrap();
+        assert_eq!((hit.body, hit.distance), (ball, 1.5), "{direction}");
+    }
+    let diagonal = w.ray_cast(Vec2::ZERO, Vec2::splat(f32::MAX), 100.0);
+    assert_eq!(diagonal, w.ray_cast(Vec2::ZERO, Vec2::ONE, 100.0));
+    assert!(
+        w.ray_cast(Vec2::ZERO, Vec2::new(f32::INFINITY, 0.0), 10.0)
+            .is_none()
+    );
 }
 
 #[test]
