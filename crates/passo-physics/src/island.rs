@@ -48,6 +48,14 @@ impl Islands {
         self.to_wake.clear();
     }
 
+    /// Forgets the islands marked to wake: every body woke. A mark left
+    /// behind would name an island that no longer exists, and wake the
+    /// next one given its id (its root's slot) for nothing, in a live world
+    /// but not in one restored from a save (which has no marks).
+    pub(crate) fn forget_marks(&mut self) {
+        self.to_wake.clear();
+    }
+
     /// Marks the island of sleeping body `i` (and the body itself, at once)
     /// to be woken.
     pub(crate) fn wake_body(&mut self, bodies: &mut DynamicBodies, i: usize) {

@@ -315,6 +315,7 @@ impl SleepingContacts {
     /// sleeping is off and while the stage is idle.
     pub(crate) fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
         self.pending.clear();
+        self.islands.forget_marks();
         if self.list.is_empty() && self.tree.len() == 0 && dynamic.all_fresh() {
             return;
         }
