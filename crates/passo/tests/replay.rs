@@ -219,6 +219,30 @@ fn passo_replay_checks_the_final_state() {
 }
 
 #[test]
+fn a_level_scene_records_and_replays() {
+    // The platformer's level map is found beside its scene file when the
+    // recording restarts the scene, and again when the replay loads it
+    // (both looked for it beside the scene's name in the working
+    // directory, and failed).
+    let mut sim = load(&Entry::File("platformer".into())).unwrap();
+    sim.start_recording().unwrap();
+    for frame in 0..90 {
+        sim.scene.set_input(Input {
+            right: frame < 60,
+            jump: frame == 30,
+            ..Default::default()
+        });
+        sim.frame(Duration::from_micros(16_667));
+    }
+    let replay = sim.stop_recording().unwrap();
+    assert!(replay.ticks > 60, "{} ticks", replay.ticks);
+    assert_eq!(run_replay(&replay).unwrap(), replay.final_hash);
+    let mut other = replay.clone();
+    other.inputs.retain(|(_, input)| !input.jump);
+    assert_ne!(run_replay(&other).unwrap(), replay.final_hash, "the jump counts");
+}
+
+#[test]
 fn the_final_hash_is_written_as_the_commands_print_it_and_read_in_either_form() {
     let replay = Replay {
         scene: "stack".into(),

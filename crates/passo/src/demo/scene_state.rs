@@ -37,6 +37,9 @@ pub struct SceneState {
     /// The scene file, to rebuild (reset, body count) from; `None` for the
     /// integrator comparison.
     pub file: Option<SceneFile>,
+    /// Where the scene file was (a path, or a built-in scene's place in
+    /// the source tree): a level map it names is found beside it.
+    source: String,
     /// Game input for the next tick (jump is consumed by it).
     input: Input,
     /// Kinematic bodies of lane 0 that follow a path (moving platforms).
@@ -138,6 +141,7 @@ impl SceneState {
             twin,
             fixed_integrators: false,
             file: Some(file),
+            source: scene.source.clone(),
             input: Input::default(),
             platforms,
             ticks: 0,
@@ -167,6 +171,7 @@ impl SceneState {
             twin: None,
             fixed_integrators: true,
             file: None,
+            source: String::new(),
             input: Input::default(),
             platforms: Vec::new(),
             ticks: 0,
@@ -183,7 +188,7 @@ impl SceneState {
             Some(file) => {
                 let scene = Scene {
                     file,
-                    source: self.name.clone(),
+                    source: self.source.clone(),
                 };
                 scene.file.validate(&scene.source)?;
                 Self::from_scene(&scene, self.history.plot())?
