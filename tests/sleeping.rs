@@ -469,7 +469,11 @@ fn a_world_woken_whole_keeps_no_mark_that_wakes_an_island_later() {
         w.apply_impulse(ball, Vec2::new(0.0, 0.5));
         w.step(DT);
     }
-    assert_eq!(world.is_asleep(boxes[0]), Some(true), "the ball woke only itself");
+    assert_eq!(
+        world.is_asleep(boxes[0]),
+        Some(true),
+        "the ball woke only itself"
+    );
     assert_eq!(restored.is_asleep(boxes[0]), Some(true));
     for k in 0..60 {
         for w in [&mut world, &mut restored] {

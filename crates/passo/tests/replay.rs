@@ -239,7 +239,11 @@ fn a_level_scene_records_and_replays() {
     assert_eq!(run_replay(&replay).unwrap(), replay.final_hash);
     let mut other = replay.clone();
     other.inputs.retain(|(_, input)| !input.jump);
-    assert_ne!(run_replay(&other).unwrap(), replay.final_hash, "the jump counts");
+    assert_ne!(
+        run_replay(&other).unwrap(),
+        replay.final_hash,
+        "the jump counts"
+    );
 }
 
 #[test]
@@ -296,6 +300,19 @@ fn replays_out_of_order_past_the_end_absurd_or_endless_are_refused() {
         ticks: u64::MAX,
         ..replay.clone()
     };
+    let spawn = (
+        replay.ticks,
+        Command::Spawn {
+            at: [0.0, 5.0],
+            round: true,
+        },
+    );
+    let recorded_spawns = (replay.commands.iter())
+        .filter(|(_, c)| matches!(c, Command::Spawn { .. }))
+        .count();
+    let room = Replay::MAX_SPAWNS - recorded_spawns;
+    let mut spawns = replay.clone();
+    spawns.commands.extend(vec![spawn.clone(); room + 1]);
     let mut nan_knobs = replay.clone();
     let mut knobs = load(&Entry::File("playground".into()))
         .unwrap()
@@ -361,6 +378,11 @@ fn replays_out_of_order_past_the_end_absurd_or_endless_are_refused() {
             ),
         ),
         (
+            "spawns",
+            spawns,
+            "the replay spawns 20001 bodies, more than the most a replay may, 20000".to_string(),
+        ),
+        (
             "endless",
             endless.clone(),
             format!(
@@ -384,6 +406,9 @@ fn replays_out_of_order_past_the_end_absurd_or_endless_are_refused() {
         ..replay.clone()
     };
     longest.validate().unwrap();
+    let mut most_spawns = replay.clone();
+    most_spawns.commands.extend(vec![spawn; room]);
+    most_spawns.validate().unwrap();
     // A list of commands longer than the cap is refused (after the file is
     // parsed; the file's size bounds what parsing reads).
     let mut many = replay.clone();

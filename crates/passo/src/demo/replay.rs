@@ -127,6 +127,12 @@ impl Replay {
     /// of the panel's slider.
     pub const MAX_RAIN_COUNT: u32 = 20_000;
 
+    /// Most bodies a replay may spawn ([`Command::Spawn`], one a click),
+    /// 20 000: as many as the rain slider's top. A file of a million
+    /// spawns on one spot (37 MB) made a world that ran `passo replay` out
+    /// of memory.
+    pub const MAX_SPAWNS: usize = 20_000;
+
     /// RON text.
     pub fn to_ron(&self) -> String {
         ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::new().struct_names(false))
@@ -145,6 +151,7 @@ impl Replay {
     /// have (1 to 10 000 Hz), finite slider values, and at most [`MAX_TICKS`](Self::MAX_TICKS)
     /// ticks, [`MAX_COMMANDS`](Self::MAX_COMMANDS) commands,
     /// [`MAX_REBUILDS`](Self::MAX_REBUILDS) of them rebuilding the scene,
+    /// [`MAX_SPAWNS`](Self::MAX_SPAWNS) of them spawning a body,
     /// and rain counts up to [`MAX_RAIN_COUNT`](Self::MAX_RAIN_COUNT). A
     /// command out of order would be applied at the wrong tick and one past
     /// the end never, so they are refused; the limits keep a replay from
@@ -183,7 +190,7 @@ impl Replay {
         };
         in_order(&mut self.inputs.iter().map(|(t, _)| *t), "an input")?;
         in_order(&mut self.commands.iter().map(|(t, _)| *t), "a command")?;
-        let mut rebuilds = 0;
+        let (mut rebuilds, mut spawns) = (0, 0);
         for (tick, command) in &self.commands {
             match *command {
                 Command::Rate(hz) if !(hz.is_finite() && (1.0..=10_000.0).contains(&hz)) => {
@@ -199,8 +206,15 @@ impl Replay {
                     bail!("the slider values set at tick {tick} must be finite, got {knobs:?}");
                 }
                 Command::Reset | Command::RainCount(_) => rebuilds += 1,
+                Command::Spawn { .. } => spawns += 1,
                 _ => {}
             }
+        }
+        if spawns > Self::MAX_SPAWNS {
+            bail!(
+                "the replay spawns {spawns} bodies, more than the most a replay may, {}",
+                Self::MAX_SPAWNS
+            );
         }
         if rebuilds > Self::MAX_REBUILDS {
             bail!(

@@ -29,6 +29,10 @@ pub struct Sim {
     paused_before_scrub: bool,
     /// The plot's time: the loop's ticks, run on from a change of rate.
     plot_clock: Clock,
+    /// Whether each tick keeps the state before it, for rewinding (not
+    /// when a replay is checked headless: nobody rewinds it there, and a
+    /// replay that spawns thousands of bodies held ten states of them).
+    keeps_rewind: bool,
 }
 
 /// Loads a scene of the list.
@@ -52,6 +56,7 @@ pub fn load(entry: &Entry) -> Result<Sim> {
 /// final state hash (which matches the recorded one if all is well).
 pub fn run_replay(replay: &Replay) -> Result<u64> {
     let mut sim = load(&Entry::named(&replay.scene))?;
+    sim.keeps_rewind = false;
     sim.start_playback(replay.clone())?;
     for _ in 0..replay.ticks {
         sim.session.timestep.advance_ticks(1);
@@ -72,6 +77,7 @@ impl Sim {
             rewinding: false,
             paused_before_scrub: false,
             plot_clock: Clock::default(),
+            keeps_rewind: true,
         }
     }
 
@@ -123,7 +129,9 @@ impl Sim {
     pub fn tick(&mut self) {
         // Kept while recording and replaying too: a finished replay can be
         // rewound.
-        self.scene.save_for_rewind();
+        if self.keeps_rewind {
+            self.scene.save_for_rewind();
+        }
         self.replay_commands_and_input();
         self.session.record_input(self.scene.input());
         let timestep = &self.session.timestep;
