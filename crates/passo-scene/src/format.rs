@@ -184,7 +184,8 @@ impl Colour {
     /// Parses `#rrggbb` or `#rrggbbaa`.
     pub fn parse(text: &str) -> Option<Self> {
         let hex = text.strip_prefix('#')?;
-        if !(hex.len() == 6 || hex.len() == 8) || !hex.is_ascii() {
+        // Hex digits only (`from_str_radix` would take a `+` sign too).
+        if !(hex.len() == 6 || hex.len() == 8) || !hex.bytes().all(|b| b.is_ascii_hexdigit()) {
             return None;
         }
         let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok();
@@ -580,7 +581,15 @@ mod tests {
         assert_eq!(Colour::parse("#ff8000"), Some(Colour([255, 128, 0, 255])));
         assert_eq!(Colour::parse("#ff800080"), Some(Colour([255, 128, 0, 128])));
         assert_eq!(Colour([1, 2, 3, 255]).to_hex(), "#010203");
-        for bad in ["ff8000", "#ff80", "#gg8000", "#ff8000ff00", "#ééé"] {
+        for bad in [
+            "ff8000",
+            "#ff80",
+            "#gg8000",
+            "#ff8000ff00",
+            "#ééé",
+            "#+f+f+f",
+            "#-1-1-1",
+        ] {
             assert_eq!(Colour::parse(bad), None, "{bad}");
         }
     }

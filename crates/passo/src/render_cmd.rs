@@ -1,7 +1,7 @@
 //! `passo render`: simulate a scene headlessly and write a picture.
 
 use crate::draw::{DrawOptions, draw_world};
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use passo_loop::FixedTimestep;
 use passo_render::{AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer};
 use std::path::PathBuf;
@@ -14,8 +14,8 @@ pub struct RenderArgs {
     /// Fixed ticks to simulate before taking the picture.
     #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u64).range(0..=100_000_000))]
     pub ticks: u64,
-    /// The PNG file to write.
-    #[arg(long)]
+    /// The PNG file to write (its name ends in `.png`).
+    #[arg(long, value_parser = crate::draw::png_path)]
     pub out: PathBuf,
     /// Picture size in pixels, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
@@ -50,14 +50,6 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 
 /// Runs `passo render`.
 pub fn run(args: &RenderArgs) -> Result<()> {
-    // Before the simulation, which may take long.
-    if args
-        .out
-        .extension()
-        .is_none_or(|e| !e.eq_ignore_ascii_case("png"))
-    {
-        bail!("--out must name a .png file, got {}", args.out.display());
-    }
     let scene = crate::scenes::load(&args.scene)?;
     let mut built = scene.build()?;
     let dt = FixedTimestep::from_hz(scene.file.rate_hz)?.dt();

@@ -305,9 +305,17 @@ fn render_refuses_an_output_that_is_not_png_before_simulating() {
         "--out",
         "rain.jpg",
     ]);
-    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(out.status.code(), Some(2), "an argument error");
     assert!(
-        stderr(&out).contains("--out must name a .png file, got rain.jpg"),
+        stderr(&out).contains("--out <OUT>': must name a .png file, got rain.jpg"),
+        "{}",
+        stderr(&out)
+    );
+    // The demo's screenshot too: it wrote PNG data under any name.
+    let out = passo(&["demo", "--frames", "1", "--screenshot", "shot.jpg"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("--screenshot <SCREENSHOT>': must name a .png file, got shot.jpg"),
         "{}",
         stderr(&out)
     );

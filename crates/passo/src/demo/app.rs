@@ -29,8 +29,9 @@ pub struct DemoArgs {
     /// Run this many frames, then exit (for tests and recordings).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100_000_000))]
     pub frames: Option<u64>,
-    /// With --frames: save the last presented frame as a PNG.
-    #[arg(long, requires = "frames")]
+    /// With --frames: save the last presented frame as a PNG (its name
+    /// ends in `.png`).
+    #[arg(long, requires = "frames", value_parser = crate::draw::png_path)]
     pub screenshot: Option<PathBuf>,
     /// Window size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x800", value_parser = crate::render_cmd::parse_size)]
