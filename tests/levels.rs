@@ -206,7 +206,42 @@ fn malformed_maps_are_errors_not_panics() {
 </map>"#;
     let scene = map_file("short.tmx", short);
     let err = level_ref("short.tmx").load(&scene).unwrap_err().to_string();
-    assert!(err.contains("short.tmx"), "{err}");
+    // Counted before the `tiled` crate reads the layer (it panicked inside,
+    // and its message was printed, before the error).
+    assert!(
+        err.contains("short.tmx") && err.contains("a layer of 8 cells whose data holds 3 tiles"),
+        "{err}"
+    );
+    // A layer that says it is larger than its data, so that a cell of the
+    // map falls past the data; compressed and plain base64 data counted too.
+    let huge = short.replace(
+        r#"width="4" height="2"><data"#,
+        r#"width="65536" height="65536"><data"#,
+    );
+    let ids: Vec<u8> = [1u32; 7].iter().flat_map(|id| id.to_le_bytes()).collect();
+    let zlib = tmx_4x2(&format!(
+        r#"<data encoding="base64" compression="zlib">{}</data>"#,
+        zlib_base64(&ids)
+    ));
+    use base64::Engine;
+    let plain = tmx_4x2(&format!(
+        r#"<data encoding="base64">{}</data>"#,
+        base64::engine::general_purpose::STANDARD.encode(&ids)
+    ));
+    for (name, text, tiles) in [
+        ("huge.tmx", huge, 3),
+        ("zlib.tmx", zlib, 7),
+        ("plain.tmx", plain, 7),
+    ] {
+        let err = level_ref(name)
+            .load(&map_file(name, &text))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains(name) && err.contains(&format!("holds {tiles} tiles")),
+            "{err}"
+        );
+    }
     // A .tmj whose data does not match its size.
     let tmj = r#"{"orientation": "orthogonal", "width": 4, "height": 2, "tilewidth": 16, "tileheight": 16,
         "tilesets": [], "layers": [{"type": "tilelayer", "name": "solid", "data": [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]}]}"#;

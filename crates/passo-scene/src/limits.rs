@@ -65,35 +65,101 @@ pub(crate) fn read_tiled_xml(path: &Path) -> std::io::Result<std::io::Cursor<Vec
 /// instructions, declarations and quoted attribute values skipped) that
 /// decodes the text of each `<data>` element compressed with zlib or gzip
 /// (its `<chunk>`s included) and stops as soon as the total passes the
-/// limit. Whether the rest is a valid map is the parser's business.
+/// limit. It also counts the tiles of each layer's CSV or base64 `<data>`
+/// against the layer's `width` × `height`: the `tiled` crate indexes a
+/// layer by its size and panics on one whose data is shorter. Whether the
+/// rest is a valid map is the parser's business.
 pub(crate) fn check_xml(bytes: &[u8]) -> Result<(), String> {
     scan(bytes, MAX_TILE_DATA_BYTES)
+}
+
+/// The `<data>` element being scanned.
+struct Data {
+    /// How its tiles are written (`None`: as XML elements, not counted).
+    encoding: Option<Encoding>,
+    /// Its depth, to find its own end tag.
+    depth: usize,
+    /// Tiles read so far.
+    tiles: u64,
+    /// Whether it holds `<chunk>`s (an infinite map's: no layer size).
+    chunked: bool,
+}
+
+/// How a `<data>` element writes its tiles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Encoding {
+    Csv,
+    Base64(Option<Compression>),
+}
+
+impl Encoding {
+    /// The encoding of a `<data ...>` tag, if it is one the scan counts.
+    fn of(tag: &[u8]) -> Result<Option<Self>, String> {
+        Ok(match attribute(tag, b"encoding")?.as_deref() {
+            Some(b"csv") => Some(Self::Csv),
+            Some(b"base64") => Some(Self::Base64(Compression::of(tag)?)),
+            _ => None,
+        })
+    }
+
+    /// The tiles in a run of the element's text; compressed data counts
+    /// against `budget` bytes of expansion, and adds to `expanded`.
+    fn tiles(self, text: &[u8], budget: u64, expanded: &mut u64) -> Result<u64, String> {
+        use base64::Engine;
+        let text = text.trim_ascii();
+        if text.is_empty() {
+            return Ok(0);
+        }
+        let bytes = match self {
+            Self::Csv => {
+                let entries = text.split(|&b| b == b',');
+                return Ok(entries.filter(|e| !e.trim_ascii().is_empty()).count() as u64);
+            }
+            Self::Base64(Some(c)) => {
+                let n = c.expand(text, budget - *expanded)?;
+                *expanded += n;
+                n
+            }
+            Self::Base64(None) => base64::engine::general_purpose::STANDARD
+                .decode(text)
+                .map_err(|e| format!("has tile data that is not base64: {e}"))?
+                .len() as u64,
+        };
+        // A tile is a little-endian u32.
+        Ok(bytes / 4)
+    }
 }
 
 /// [`check_xml`] with a budget of `budget` bytes of expanded tile data.
 ///
 /// Names are compared by their local part (`x:data` is a `data`, as the
-/// `tiled` crate reads it), attribute values are unescaped, a compressed
-/// `<data>` lasts until its own end tag (an element inside it does not end
-/// it), and each run of its text (comments and CDATA sections included) is
-/// decoded whole, unescaped, at the next tag.
+/// `tiled` crate reads it), attribute values are unescaped, a `<data>`
+/// lasts until its own end tag (an element inside it does not end it), and
+/// each run of its text (comments and CDATA sections included) is decoded
+/// whole, unescaped, at the next tag.
 fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
     let mut depth = 0usize;
-    // Inside a compressed `<data>` element: its compression and depth.
-    let mut compressed: Option<(Compression, usize)> = None;
+    // The cells of the last `<layer>`, and the `<data>` being read.
+    let mut cells: Option<u64> = None;
+    let mut data: Option<Data> = None;
     // Its text since the last tag.
     let mut run: Vec<u8> = Vec::new();
     let mut expanded = 0u64;
-    let mut flush = |run: &mut Vec<u8>, compressed: Option<(Compression, usize)>| {
-        if let Some((c, _)) = compressed {
-            expanded += c.expand(run, budget - expanded)?;
+    let mut flush = |run: &mut Vec<u8>, data: &mut Option<Data>| {
+        if let Some(Data {
+            encoding: Some(e),
+            tiles,
+            ..
+        }) = data
+        {
+            *tiles += e.tiles(run, budget, &mut expanded)?;
         }
         run.clear();
         Ok::<(), String>(())
     };
     let mut i = 0;
     while let Some(offset) = bytes[i..].iter().position(|&b| b == b'<') {
-        if compressed.is_some() {
+        if data.is_some() {
             run.extend_from_slice(&unescape(&bytes[i..i + offset])?);
         }
         i += offset;
@@ -102,7 +168,7 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
             find(rest, b"-->")? + 3
         } else if rest.starts_with(b"<![CDATA[") {
             let end = find(rest, b"]]>")?;
-            if compressed.is_some() {
+            if data.is_some() {
                 run.extend_from_slice(&rest[9..end]);
             }
             end + 3
@@ -111,23 +177,43 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
         } else if rest.starts_with(b"<!") {
             tag_end(rest)? + 1
         } else if rest.starts_with(b"</") {
-            flush(&mut run, compressed)?;
-            if compressed.is_some_and(|(_, at)| at == depth) {
-                compressed = None;
+            flush(&mut run, &mut data)?;
+            if data.as_ref().is_some_and(|d| d.depth == depth) {
+                let d = data.take().expect("checked");
+                if let (Some(cells), Some(_), false) = (cells, d.encoding, d.chunked)
+                    && d.tiles < cells
+                {
+                    return Err(format!(
+                        "has a layer of {cells} cells whose data holds {} tiles",
+                        d.tiles
+                    ));
+                }
             }
             depth = depth.saturating_sub(1);
             tag_end(rest)? + 1
         } else {
-            flush(&mut run, compressed)?;
+            flush(&mut run, &mut data)?;
             let end = tag_end(rest)?;
             let tag = &rest[1..end];
+            let element = local(name(tag));
+            if element == b"layer" {
+                cells = layer_cells(tag)?;
+            }
+            if let Some(d) = &mut data {
+                d.chunked |= element == b"chunk";
+            }
             if !tag.ends_with(b"/") {
                 depth += 1;
                 if depth > MAX_XML_DEPTH {
                     return Err(format!("nests its elements more than {MAX_XML_DEPTH} deep"));
                 }
-                if compressed.is_none() && local(name(tag)) == b"data" {
-                    compressed = Compression::of(tag)?.map(|c| (c, depth));
+                if data.is_none() && element == b"data" {
+                    data = Some(Data {
+                        encoding: Encoding::of(tag)?,
+                        depth,
+                        tiles: 0,
+                        chunked: false,
+                    });
                 }
             }
             end + 1
@@ -135,6 +221,18 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
         i += end;
     }
     Ok(())
+}
+
+/// The cells of a `<layer ...>` tag, `width` × `height`, if it gives both.
+fn layer_cells(tag: &[u8]) -> Result<Option<u64>, String> {
+    let number = |key: &[u8]| -> Result<Option<u64>, String> {
+        let value = attribute(tag, key)?;
+        Ok(value.and_then(|v| std::str::from_utf8(&v).ok()?.trim().parse().ok()))
+    };
+    Ok(match (number(b"width")?, number(b"height")?) {
+        (Some(w), Some(h)) => Some(u64::saturating_mul(w, h)),
+        _ => None,
+    })
 }
 
 /// The compressions the `tiled` crate reads (with base64 encoding).
@@ -145,12 +243,8 @@ enum Compression {
 }
 
 impl Compression {
-    /// The compression of a `<data ...>` tag, if it is base64 and zlib or
-    /// gzip.
+    /// The compression of a base64 `<data ...>` tag, if zlib or gzip.
     fn of(tag: &[u8]) -> Result<Option<Self>, String> {
-        if attribute(tag, b"encoding")?.as_deref() != Some(b"base64") {
-            return Ok(None);
-        }
         Ok(match attribute(tag, b"compression")?.as_deref() {
             Some(b"zlib") => Some(Self::Zlib),
             Some(b"gzip") => Some(Self::Gzip),
@@ -161,10 +255,6 @@ impl Compression {
     /// How many bytes `text` (base64) expands to, if at most `budget`.
     fn expand(self, text: &[u8], budget: u64) -> Result<u64, String> {
         use base64::Engine;
-        let text = text.trim_ascii();
-        if text.is_empty() {
-            return Ok(0);
-        }
         let data = base64::engine::general_purpose::STANDARD
             .decode(text)
             .map_err(|e| format!("has tile data that is not base64: {e}"))?;
