@@ -423,10 +423,6 @@ mod tests {
             world.add_body(heavy(-20.0, 1e9)).unwrap(),
             world.add_body(heavy(-30.0, -1e9)).unwrap(),
         ];
-        let starts: Vec<Vec2> = ids
-            .iter()
-            .map(|&id| world.body(id).unwrap().position)
-            .collect();
         for _ in 0..5 {
             world.step(1.0 / 60.0);
             for &id in &ids {
@@ -438,7 +434,6 @@ mod tests {
         // Put back where its step began, at rest: the first is never past the wall.
         let first = world.body(ids[0]).unwrap();
         assert!(first.position.x < 10.0, "{first:?}");
-        assert!(starts.iter().all(|p| p.is_finite()));
         // Nothing non-finite is carried to the next step or into a save.
         let restored = World::from_snapshot(world.snapshot());
         assert!(restored.is_ok(), "{:?}", restored.err());
