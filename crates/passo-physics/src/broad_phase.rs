@@ -97,6 +97,12 @@ pub(crate) struct BroadPhase {
     /// (a kinematic body, which every body its box overlaps must meet, as
     /// a wall); empty: no such proxy. Set by the caller before a search.
     pub(crate) uncapped: Vec<bool>,
+    /// Per proxy: whether it is a kinematic body that is no sensor. Two
+    /// such never meet (the narrow phase skips the pair), so the search
+    /// does not pair them: a pile of kinematic bodies on one spot, whose
+    /// pairs are uncapped, cost a step `O(k²)` pairs for nothing. Empty:
+    /// no such proxy. Set by the caller with `uncapped`.
+    pub(crate) immovable: Vec<bool>,
     /// Corner grid: each proxy's cell, row by row.
     cell_of: Vec<u32>,
     /// Corner grid: the proxies sorted by cell (stable).
@@ -223,10 +229,13 @@ impl BroadPhase {
 
         // The pairs of the buckets in `range`, in bucket order.
         let (sorted, starts) = (&self.sorted, &self.starts);
-        // Reported in the cell of the overlap's lower-left corner only.
+        // Reported in the cell of the overlap's lower-left corner only;
+        // never between two immovable proxies.
+        let immovable = |p: u32| self.immovable.get(p as usize) == Some(&true);
         let pair = |ea: &Entry, eb: &Entry, out: &mut Vec<(u32, u32)>| {
             let (a, b) = (&proxies[ea.proxy as usize], &proxies[eb.proxy as usize]);
-            if cell_of(a.min.max(b.min)) == ea.cell {
+            if cell_of(a.min.max(b.min)) == ea.cell && !(immovable(ea.proxy) && immovable(eb.proxy))
+            {
                 out.push(ordered(ea.proxy, eb.proxy));
             }
         };
@@ -741,6 +750,39 @@ mod tests {
         };
         assert_eq!(platform_pairs(true), 200);
         assert!(platform_pairs(false) < 200, "the bound applies otherwise");
+    }
+
+    #[test]
+    fn immovable_proxies_never_pair_with_each_other() {
+        // 300 kinematic boxes on one spot (uncapped, so every one of them
+        // used to meet all the others) and 10 small dynamic ones among them.
+        let mut next = uniform(11);
+        let proxies: Vec<Aabb> = (0..310)
+            .map(|_| {
+                let centre = Vec2::splat(3.0) + Vec2::new(next(), next()) * 0.05;
+                Aabb::from_centre(centre, Vec2::splat(0.5))
+            })
+            .collect();
+        let kinematic = |p: u32| p < 300;
+        let mut grid = BroadPhase::default();
+        grid.uncapped = (0..310).map(kinematic).collect();
+        grid.immovable = grid.uncapped.clone();
+        let mut pairs = Vec::new();
+        grid.find_pairs(&proxies, &[], false, &mut pairs);
+        assert!(grid.crowded > 0, "a crowded cell");
+        assert!(pairs.iter().all(|&(a, b)| !(kinematic(a) && kinematic(b))));
+        // Each dynamic box still meets every kinematic one, and the other
+        // dynamic ones (nine, under the crowded-cell bound).
+        for d in 300..310u32 {
+            let met = pairs.iter().filter(|&&(a, b)| a == d || b == d).count();
+            assert_eq!(met, 300 + 9, "proxy {d}");
+        }
+        // A kinematic sensor (uncapped, not immovable) meets them all.
+        grid.immovable[0] = false;
+        pairs.clear();
+        grid.find_pairs(&proxies, &[], false, &mut pairs);
+        let sensor = pairs.iter().filter(|&&(a, b)| a == 0 || b == 0).count();
+        assert_eq!(sensor, 309);
     }
 
     #[test]

@@ -23,6 +23,12 @@ const NARROWED_LEVEL: usize = 256;
 /// No proxy (or no body) here.
 pub(crate) const NO_PROXY: u32 = u32::MAX;
 
+/// Most kinematic boxes within reach of one whose covered faces are
+/// worked out: a box of a moving tile map has eight neighbours at most, and
+/// one with more than 64 lies in a pile (bodies generated on one spot),
+/// where looking at every other box made a step `O(k²)`.
+const MAX_KINEMATIC_NEIGHBOURS: usize = 64;
+
 /// How far a body's speculative contacts reach (its *margin*): half the
 /// speculative distance, plus the body's possible travel this step with
 /// continuous collision, up to its reach ([`SPECULATIVE_REACH`] of its
@@ -339,13 +345,20 @@ impl Proxies {
                 }
             });
             let kinematic = &dynamic.kinematic;
-            self.kinematic_tree.query(&near, |item| {
+            let mut met = 0;
+            self.kinematic_tree.query_while(&near, |item| {
                 let other = kinematic[item as usize];
                 let covers = other != k && can_cover(&dynamic.meta[other as usize], meta_k);
                 if let (true, Some(b)) = (covers, box_of(other)) {
                     neighbours.push(b);
                 }
+                met += 1;
+                met <= MAX_KINEMATIC_NEIGHBOURS
             });
+            if met > MAX_KINEMATIC_NEIGHBOURS {
+                // A pile, not a level: none of its faces is covered.
+                continue;
+            }
             // Neighbours cover a face together, as for static boxes (a
             // moving tile map's boxes meet as a static map's do).
             let faces = Faces::covered_by_all(&a, &neighbours, LINEAR_SLOP, &mut spans);
@@ -485,10 +498,12 @@ impl Proxies {
     /// static body. A level has few kinematic bodies.
     pub(crate) fn widen_kinematic(&mut self, dynamic: &DynamicBodies) {
         self.grid.uncapped.clear();
+        self.grid.immovable.clear();
         if dynamic.kinematic.is_empty() {
             return;
         }
         self.grid.uncapped.resize(self.boxes.len(), false);
+        self.grid.immovable.resize(self.boxes.len(), false);
         let reach = self
             .margins
             .iter()
@@ -501,6 +516,7 @@ impl Proxies {
             if p != NO_PROXY {
                 self.boxes[p as usize] = self.boxes[p as usize].grown(reach);
                 self.grid.uncapped[p as usize] = true;
+                self.grid.immovable[p as usize] = !dynamic.meta[k as usize].sensor;
             }
         }
     }

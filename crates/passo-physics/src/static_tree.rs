@@ -113,6 +113,15 @@ impl StaticTree {
     /// Calls `f` with every item whose box overlaps `aabb`, in tree order.
     #[inline(always)]
     pub(crate) fn query(&self, aabb: &Aabb, mut f: impl FnMut(u32)) {
+        self.query_while(aabb, |item| {
+            f(item);
+            true
+        });
+    }
+
+    /// [`query`](Self::query) that stops as soon as `f` returns `false`.
+    #[inline(always)]
+    pub(crate) fn query_while(&self, aabb: &Aabb, mut f: impl FnMut(u32) -> bool) {
         if self.nodes.is_empty() {
             return;
         }
@@ -126,8 +135,8 @@ impl StaticTree {
             }
             if node.count > 0 {
                 for &item in &self.items[node.first as usize..(node.first + node.count) as usize] {
-                    if self.boxes[item as usize].overlaps(aabb) {
-                        f(item);
+                    if self.boxes[item as usize].overlaps(aabb) && !f(item) {
+                        return;
                     }
                 }
             } else {
