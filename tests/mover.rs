@@ -669,3 +669,57 @@ fn a_fast_block_at_head_height_never_ends_inside_the_character() {
         }
     }
 }
+
+#[test]
+fn a_lift_coming_down_onto_it_crushes_it_and_says_so() {
+    // A lift comes down at 1 or 8 m/s onto a character standing on the
+    // floor: a thin one (0.3 m) to 0.15 m above the floor, a thick one
+    // (0.6 m) all the way down. There is no room. It used to sink through
+    // the character's head (by up to 0.46 m, on the ground, no ceiling
+    // reported), then throw it on top of the lift.
+    let ground = 0.5;
+    for (thickness, lowest, speed) in [(0.3, 0.15, 1.0f32), (0.3, 0.15, 8.0), (0.6, 0.0, 3.0)] {
+        let mut world = level("..........\n##########");
+        let player = character(&mut world, 2.5, ground);
+        let shape = Shape::rect(2.0, thickness);
+        let lift = BodyDef::new_kinematic(Vec2::new(2.5, 3.5), shape, Vec2::ZERO);
+        let lift = world.add_body(lift).unwrap();
+        let mover = CharacterMover::default();
+        let skin = mover.skin;
+        let bottom_stop = ground + lowest;
+        let mut crushed_at = None;
+        for tick in 1..=240usize {
+            let y = (3.5 - speed * tick as f32 * DT).max(bottom_stop + thickness / 2.0);
+            world.set_kinematic_target(lift, Vec2::new(2.5, y), DT);
+            let out = world
+                .move_character(player, Vec2::ZERO, &mover, DT)
+                .unwrap();
+            world.step(DT);
+            let p = at(&world, player);
+            let head = p.y + HALF.y;
+            let lift_bottom = at(&world, lift).y - thickness / 2.0;
+            let case = format!("{thickness} m at {speed} m/s, tick {tick}");
+            if out.crushed.is_some() {
+                assert_eq!(out.crushed, Some(lift), "{case}");
+                crushed_at.get_or_insert(tick);
+            } else {
+                // Until crushed, never overlapped by more than the skin.
+                assert!(
+                    lift_bottom >= head - skin - 1e-4,
+                    "{case}: {lift_bottom} in {head}"
+                );
+            }
+            // Never thrown on top of the lift: it stays on the floor.
+            let standing = ground + HALF.y + skin;
+            assert!((p.y - standing).abs() < 0.02, "{case}: {p}");
+        }
+        let tick = crushed_at.expect("it is crushed");
+        // The lift's bottom reaches the head (0.81 m) at this tick.
+        let start_bottom = 3.5 - thickness / 2.0;
+        let meets = ((start_bottom - (ground + 2.0 * HALF.y + skin)) / speed / DT).ceil() as usize;
+        assert!(
+            tick.abs_diff(meets) <= 2,
+            "{thickness} m at {speed} m/s: tick {tick}, not {meets}"
+        );
+    }
+}

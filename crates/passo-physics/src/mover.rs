@@ -105,6 +105,11 @@ pub struct MoveOutcome {
     pub stepped: f32,
     /// Dynamic bodies it pushed.
     pub pushed: u32,
+    /// A kinematic body sweeping into it left it no room (a lift coming
+    /// down onto it, a wall pressing it against another): the body. The
+    /// character is left where it stands, overlapped; a game usually
+    /// treats this as the character being crushed.
+    pub crushed: Option<BodyId>,
 }
 
 /// The first thing a cast meets.
@@ -353,6 +358,37 @@ impl Walker<'_> {
         first.map(|(_, body, push)| (body, push))
     }
 
+    /// The kinematic body (not one-way) that overlaps the character at
+    /// `at` from above by more than the skin where it ends the step, the
+    /// character standing on ground there: it has no room (a lift come
+    /// down onto it). The lowest id of several.
+    fn crushing(&self, at: Vec2) -> Option<BodyId> {
+        self.ground(at, 2.0 * self.mover.skin)?;
+        let mut crusher: Option<BodyId> = None;
+        let area = crate::Aabb::from_centre(at, self.shape.half_extents());
+        self.near(&area, |f: Found<'_>| {
+            let kinematic = f.dynamic.is_some() && f.meta.kinematic && f.meta.one_way.is_none();
+            let place = self.place(&f);
+            // Its underside above the feet, however deep it is in, or its
+            // top higher than a step: a body down at the feet no higher than
+            // `max_step` (a low platform sliding in under them, a thin lift
+            // come down to the floor) is climbed on top instead.
+            let feet = at.y - self.shape.half_extents().y;
+            let (h, skin) = (f.shape.half_extents().y, self.mover.skin);
+            let above =
+                place.y - h > feet + skin || place.y + h > feet + self.mover.max_step + skin;
+            if kinematic
+                && above
+                && collide(&self.shape, at, &f.shape, place, 0.0)
+                    .is_some_and(|m| m.separation < -self.mover.skin)
+                && crusher.is_none_or(|c| f.id < c)
+            {
+                crusher = Some(f.id);
+            }
+        });
+        crusher
+    }
+
     /// The ground within `reach` below `at`: the hit, if its normal is
     /// ground enough.
     fn ground(&self, at: Vec2, reach: f32) -> Option<Hit> {
@@ -376,7 +412,9 @@ impl World {
     ///
     /// A kinematic body that sweeps into the character this step (steered
     /// before the call) pushes it along to a skin in front of where the
-    /// body ends, however fast it goes.
+    /// body ends, however fast it goes. One that comes down onto it with
+    /// no room left under it crushes it: [`MoveOutcome::crushed`] names it,
+    /// and the character stays where it stands.
     ///
     /// Limits: a circle character rolls up a
     /// block's rounded corner once the corner is under it within
@@ -470,7 +508,13 @@ impl World {
             // behind it.
             at = walker.advance_past(pusher, at, push);
         }
+        // Crushed: left where it stands, not pushed out through the body
+        // that crushes it (once that body is past its middle, the way out
+        // was up through it, on top).
+        out.crushed = walker.crushing(at);
+        walker.ignored = out.crushed;
         at = walker.push_out(at);
+        walker.ignored = None;
         let mut pushes: Vec<(usize, Vec2)> = Vec::new();
         let mut remaining = translation;
         for _ in 0..4 {
