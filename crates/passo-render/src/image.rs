@@ -30,6 +30,17 @@ impl RgbaImage {
         let path = path.as_ref();
         let err =
             |e: &dyn std::fmt::Display| RenderError::Image(format!("{}: {e}", path.display()));
+        // Checked before the file is made: a picture that cannot be written
+        // leaves a picture already there as it was.
+        let want = self.width as usize * self.height as usize * 4;
+        if self.pixels.len() != want || self.width == 0 || self.height == 0 {
+            return Err(err(&format!(
+                "a {} × {} picture needs {want} bytes of pixels, it has {}",
+                self.width,
+                self.height,
+                self.pixels.len()
+            )));
+        }
         let file = std::fs::File::create(path).map_err(|e| err(&e))?;
         let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), self.width, self.height);
         encoder.set_color(png::ColorType::Rgba);
@@ -114,5 +125,26 @@ mod tests {
         };
         assert_eq!(short.get(1, 0), Some([0; 4]));
         assert_eq!(short.get(3, 3), None, "it panicked");
+    }
+
+    #[test]
+    fn a_picture_that_cannot_be_saved_leaves_the_file_there_as_it_was() {
+        let dir = std::env::temp_dir().join(format!("passo-png-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("kept.png");
+        let good = RgbaImage {
+            width: 2,
+            height: 2,
+            pixels: (0..16).collect(),
+        };
+        good.save_png(&path).unwrap();
+        let short = RgbaImage {
+            width: 3,
+            ..good.clone()
+        };
+        let err = short.save_png(&path).unwrap_err().to_string();
+        assert!(err.contains("needs 24 bytes of pixels, it has 16"), "{err}");
+        assert_eq!(RgbaImage::load_png(&path).unwrap(), good, "emptied before");
+        std::fs::remove_dir_all(dir).unwrap();
     }
 }

@@ -86,6 +86,18 @@ impl OffscreenTarget {
 /// 256 MiB on lavapipe: an 8 193 × 8 193 target) is read in bands of rows.
 pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Result<RgbaImage, RenderError> {
     use wgpu::TextureFormat as F;
+    // What the copy needs, checked here: wgpu panics on either.
+    if texture.sample_count() != 1 {
+        return Err(RenderError::Readback(format!(
+            "cannot read back a multisampled texture ({} samples): resolve it first",
+            texture.sample_count()
+        )));
+    }
+    if !texture.usage().contains(wgpu::TextureUsages::COPY_SRC) {
+        return Err(RenderError::Readback(
+            "cannot read back a texture without COPY_SRC usage".into(),
+        ));
+    }
     let bgra = match texture.format() {
         F::Rgba8Unorm | F::Rgba8UnormSrgb => false,
         F::Bgra8Unorm | F::Bgra8UnormSrgb => true,

@@ -58,6 +58,10 @@ impl Renderer {
     /// hardware encodes colours and blends in linear light; with a `*Unorm`
     /// format the shaders encode sRGB themselves, so both give the same
     /// picture.
+    ///
+    /// # Panics
+    /// If `format` is not a colour format the device blends (wgpu refuses
+    /// the pipeline): use a surface's format or an 8-bit RGBA or BGRA one.
     pub fn new(gpu: &Gpu, format: wgpu::TextureFormat) -> Self {
         let device = &gpu.device;
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
@@ -236,7 +240,11 @@ impl Renderer {
         }
         pass.set_bind_group(0, &self.bind_group, &[]);
         if let Some(clip) = list.clip {
-            let Some([x, y, w, h]) = within(clip, size) else {
+            // Cut to the target itself too: a scissor past it is a wgpu
+            // validation panic, and `size` is the caller's word for it.
+            let target = view.texture().size();
+            let bound = (size.0.min(target.width), size.1.min(target.height));
+            let Some([x, y, w, h]) = within(clip, bound) else {
                 return; // nothing of the target is left to draw on
             };
             pass.set_scissor_rect(x, y, w, h);

@@ -2,7 +2,9 @@
 //! land where the camera says.
 
 use glam::Vec2;
-use passo_render::{AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer, RgbaImage};
+use passo_render::{
+    AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer, RgbaImage, wgpu,
+};
 
 const BACKGROUND: [u8; 4] = [20, 22, 28, 255];
 const RED: [u8; 4] = [228, 108, 58, 255];
@@ -269,9 +271,45 @@ fn a_clip_keeps_the_shapes_inside_it_and_the_background_everywhere() {
         assert_eq!(close(corner, RED, 1), inside, "{clip:?}: {corner:?}");
         assert_eq!(beside, BACKGROUND, "{clip:?}");
     }
+    // A size given larger than the target (against `render`'s contract)
+    // with a clip: the scissor is cut to the target itself, where wgpu
+    // panicked on a rectangle past it.
+    list.clip = Some([300, 200, 100, 100]);
+    let mut renderer = Renderer::new(&gpu, target.format());
+    renderer.render(target.view(), (640, 480), &camera, &list);
+    let image = target.read(&gpu).unwrap();
+    assert_eq!(image.get(5, 5), Some(BACKGROUND));
     // Clearing the list draws on the whole target again.
     list.clear(BACKGROUND);
     assert_eq!(list.clip, None);
+}
+
+#[test]
+fn textures_that_cannot_be_copied_are_an_error_not_a_panic() {
+    let gpu = gpu();
+    let texture = |usage, sample_count| {
+        gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: None,
+            size: wgpu::Extent3d {
+                width: 8,
+                height: 8,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage,
+            view_formats: &[],
+        })
+    };
+    let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
+    let no_copy = passo_render::read_texture(&gpu, &texture(attachment, 1)).unwrap_err();
+    assert!(no_copy.to_string().contains("COPY_SRC"), "{no_copy}");
+    let copyable = attachment | wgpu::TextureUsages::COPY_SRC;
+    let samples = passo_render::read_texture(&gpu, &texture(attachment, 4)).unwrap_err();
+    assert!(samples.to_string().contains("multisampled"), "{samples}");
+    assert!(passo_render::read_texture(&gpu, &texture(copyable, 1)).is_ok());
 }
 
 #[test]
