@@ -73,14 +73,20 @@ impl Camera2D {
         let (lowest, highest) = (self.height.min(1e-3), self.height.max(1e7));
         let height = (self.height / factor).clamp(lowest, highest);
         let applied = self.height / height;
-        self.centre = anchor + (self.centre - anchor) / applied;
-        self.height = height;
+        let centre = anchor + (self.centre - anchor) / applied;
+        // An anchor near the end of `f32` can overflow the new centre: the
+        // view then stays where it was (a centre of -inf never came back).
+        if centre.is_finite() {
+            self.centre = centre;
+            self.height = height;
+        }
     }
 
-    /// Moves the view by `delta` metres.
+    /// Moves the view by `delta` metres (not past the end of `f32`).
     pub fn pan(&mut self, delta: Vec2) {
-        if delta.is_finite() {
-            self.centre += delta;
+        let centre = self.centre + delta;
+        if centre.is_finite() {
+            self.centre = centre;
         }
     }
 
@@ -161,6 +167,16 @@ mod tests {
         assert_eq!(cam.height, 10.0, "bad factors are ignored");
         cam.pan(Vec2::new(1.0, 0.0));
         assert!((cam.centre.x - (1.5 + 1.0)).abs() < 1e-5);
+        // Zooming out about a point near the end of `f32`, or panning past
+        // it, would leave an infinite centre no pan brings back.
+        let kept = cam;
+        cam.zoom_about(1e-6, Vec2::splat(3e38));
+        cam.pan(Vec2::splat(f32::MAX));
+        cam.pan(Vec2::splat(f32::MAX));
+        assert!(cam.centre.is_finite(), "{cam:?}");
+        cam.pan(-cam.centre);
+        cam.pan(kept.centre);
+        assert_eq!(cam.centre, kept.centre, "and a pan brings it back");
     }
 
     #[test]
