@@ -51,10 +51,18 @@ fn vs_main(@builtin(vertex_index) vertex: u32, instance: Instance) -> VsOut {
     );
     // Grow the quad by the fringe so the anti-aliased edge is not clipped.
     let grown = instance.half_extents + vec2<f32>(globals.pixel_size * (FRINGE_PX + 0.5));
-    let local = corners[vertex] * grown;
-    let world = instance.centre + local;
+    var local = corners[vertex] * grown;
+    var clip = (instance.centre + local - globals.centre) * globals.scale;
+    // A quad far larger than the view (10^8 times its height) rasterised
+    // with pixels missing: one reaching past the view is cut to just
+    // outside it (clip coordinates within +-2), and its local coordinates
+    // follow. Quads inside that range are left exactly as they were.
+    if (any(abs(clip) > vec2<f32>(2.0))) {
+        clip = clamp(clip, vec2<f32>(-2.0), vec2<f32>(2.0));
+        local = clip / globals.scale + globals.centre - instance.centre;
+    }
     var out: VsOut;
-    out.clip = vec4<f32>((world - globals.centre) * globals.scale, 0.0, 1.0);
+    out.clip = vec4<f32>(clip, 0.0, 1.0);
     out.local = local;
     out.half_extents = instance.half_extents;
     out.fill = instance.fill;

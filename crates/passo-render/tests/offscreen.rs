@@ -285,6 +285,42 @@ fn a_clip_keeps_the_shapes_inside_it_and_the_background_everywhere() {
 }
 
 #[test]
+fn shapes_far_larger_than_the_view_keep_every_pixel() {
+    // A ground slab 100 km wide, its top at y = 0, in a view 1 mm high,
+    // and a circle of radius 10^9 m centred in the default 20 m view.
+    // Quads 10^8 times the view rasterised with pixels missing (half of
+    // the slab's; the circle's centre pixel was background).
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 64, 48);
+    let mut camera = Camera2D::default();
+    for _ in 0..100 {
+        camera.zoom_about(2.0, Vec2::ZERO);
+    }
+    assert_eq!(camera.height, 1e-3);
+    let mut list = DrawList::new(BACKGROUND);
+    list.rect(Vec2::new(0.0, -1.0), Vec2::new(5e4, 1.0), RED);
+    let slab = draw(&gpu, &target, &camera, &list);
+    // The top half shows the background, the bottom half the slab (the
+    // rows next to y = 0 are its outline and edge).
+    for x in [0, 20, 32, 63] {
+        for y in [0, 10, 21] {
+            assert_eq!(slab.get(x, y), Some(BACKGROUND), "({x}, {y})");
+        }
+        for y in [28, 40, 47] {
+            assert!(close(slab.get(x, y).unwrap(), RED, 1), "({x}, {y})");
+        }
+    }
+    list.clear(BACKGROUND);
+    list.circle(Vec2::ZERO, 1e9, BLUE);
+    let ball = draw(&gpu, &target, &Camera2D::default(), &list);
+    let filled = (0..48)
+        .flat_map(|y| (0..64).map(move |x| (x, y)))
+        .filter(|&(x, y)| close(ball.get(x, y).unwrap(), BLUE, 1))
+        .count();
+    assert_eq!(filled, 64 * 48, "every pixel inside the circle");
+}
+
+#[test]
 fn textures_that_cannot_be_copied_are_an_error_not_a_panic() {
     let gpu = gpu();
     let texture = |usage, sample_count| {
