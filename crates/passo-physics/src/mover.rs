@@ -105,10 +105,11 @@ pub struct MoveOutcome {
     pub stepped: f32,
     /// Dynamic bodies it pushed.
     pub pushed: u32,
-    /// A kinematic body sweeping into it left it no room (a lift coming
-    /// down onto it, a wall pressing it against another): the body. The
+    /// A kinematic body came down onto it with no room left under it (a
+    /// lift onto a character standing on the floor): the body. The
     /// character is left where it stands, overlapped; a game usually
-    /// treats this as the character being crushed.
+    /// treats this as the character being crushed. (A body pressing it
+    /// sideways against a wall is not reported.)
     pub crushed: Option<BodyId>,
 }
 
