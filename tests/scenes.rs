@@ -229,9 +229,8 @@ fn path_platforms_follow_their_path_and_carry_what_stands_on_them() {
         .unwrap();
     let dt = 1.0 / 60.0;
     for tick in 0..360u32 {
+        built.step(u64::from(tick + 1), dt);
         let t_end = f64::from(tick + 1) * f64::from(dt);
-        passo_scene::BuiltScene::drive_platforms(&built.platforms, &mut built.world, t_end, dt);
-        built.world.step(dt);
         let at = built.world.body(mover).unwrap().position;
         assert!(
             (at - platform.at(t_end)).length() < 1e-4,
