@@ -135,17 +135,6 @@ pub fn add_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], optio
     }
 }
 
-/// A path for a picture (`passo render --out`, `passo demo
-/// --screenshot`): it must end in `.png`, the one format written, so that
-/// nothing is written as PNG under another format's name.
-pub fn png_path(text: &str) -> Result<std::path::PathBuf, String> {
-    let path = std::path::PathBuf::from(text);
-    match path.extension() {
-        Some(e) if e.eq_ignore_ascii_case("png") => Ok(path),
-        _ => Err(format!("must name a .png file, got {text}")),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

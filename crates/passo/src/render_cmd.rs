@@ -15,7 +15,7 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u64).range(0..=100_000_000))]
     pub ticks: u64,
     /// The PNG file to write (its name ends in `.png`).
-    #[arg(long, value_parser = crate::draw::png_path)]
+    #[arg(long, value_parser = png_path)]
     pub out: PathBuf,
     /// Picture size in pixels, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
@@ -46,6 +46,17 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
         }
     };
     Ok((dim(w)?, dim(h)?))
+}
+
+/// A path for a picture (`passo render --out`, `passo demo
+/// --screenshot`): it must end in `.png`, the one format written, so that
+/// nothing is written as PNG under another format's name.
+pub fn png_path(text: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(text);
+    match path.extension() {
+        Some(e) if e.eq_ignore_ascii_case("png") => Ok(path),
+        _ => Err(format!("must name a .png file, got {text}")),
+    }
 }
 
 /// Runs `passo render`.

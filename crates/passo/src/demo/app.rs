@@ -31,7 +31,7 @@ pub struct DemoArgs {
     pub frames: Option<u64>,
     /// With --frames: save the last presented frame as a PNG (its name
     /// ends in `.png`).
-    #[arg(long, requires = "frames", value_parser = crate::draw::png_path)]
+    #[arg(long, requires = "frames", value_parser = crate::render_cmd::png_path)]
     pub screenshot: Option<PathBuf>,
     /// Window size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x800", value_parser = crate::render_cmd::parse_size)]
