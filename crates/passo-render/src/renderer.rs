@@ -3,6 +3,7 @@
 use crate::draw_list::{LineInstance, ShapeInstance};
 use crate::{Camera2D, DrawList, Gpu};
 use bytemuck::{Pod, Zeroable};
+use glam::{DVec2, Vec2};
 
 /// The shape pipeline's WGSL (`shaders/shapes.wgsl`), built in.
 pub const SHAPES_WGSL: &str = include_str!("../../../shaders/shapes.wgsl");
@@ -48,6 +49,9 @@ pub struct Renderer {
     shape_capacity: usize,
     line_buffer: wgpu::Buffer,
     line_capacity: usize,
+    /// The lines of the frame cut to the view, when some reach far past it
+    /// (see [`lines_in_view`]).
+    cut_lines: Vec<LineInstance>,
     /// A list has been longer than the device's largest buffer (warned
     /// once, not every frame).
     over_capacity: bool,
@@ -143,6 +147,7 @@ impl Renderer {
             shape_capacity: 256,
             line_buffer,
             line_capacity: 256,
+            cut_lines: Vec::new(),
             over_capacity: false,
         }
     }
@@ -204,15 +209,16 @@ impl Renderer {
             "passo shape instances",
             &list.shapes,
         );
+        let in_view = lines_in_view(&list.lines, centre, scale, size, &mut self.cut_lines);
         let lines = upload(
             &self.device,
             &self.queue,
             &mut self.line_buffer,
             &mut self.line_capacity,
             "passo line instances",
-            &list.lines,
+            in_view,
         );
-        let cut = shapes as usize != list.shapes.len() || lines as usize != list.lines.len();
+        let cut = shapes as usize != list.shapes.len() || lines as usize != in_view.len();
         if cut && !std::mem::replace(&mut self.over_capacity, true) {
             log::warn!(
                 "{} shapes and {} lines to draw, the device's largest buffer holds {shapes} and \
@@ -259,6 +265,112 @@ impl Renderer {
             pass.set_vertex_buffer(0, self.line_buffer.slice(..));
             pass.draw(0..6, 0..lines);
         }
+    }
+}
+
+/// The lines to draw: `lines` itself when each lies within two views of
+/// the target's centre, else copies in `cut` with every line that reaches
+/// past that cut to it, and those wholly outside left out.
+///
+/// `f32` cannot place a long line in a small view: one from -10^9 to
+/// 10^9 m seen 20 m wide puts its quad's corners at 10^8 times the view,
+/// where the rasteriser loses the line and the fragment shader's distance
+/// to it is off by tens of metres. The cut is made in `f64` from the
+/// exact endpoints, so the new ones are as exact as any point near the
+/// view. The box is two views wide each way (clip coordinates within
+/// +-2, as the shape shader clamps) plus the line's pad, so the new ends,
+/// caps and all, stay out of sight.
+fn lines_in_view<'a>(
+    lines: &'a [LineInstance],
+    centre: Vec2,
+    scale: Vec2,
+    size: (u32, u32),
+    cut: &'a mut Vec<LineInstance>,
+) -> &'a [LineInstance] {
+    let view = ClipBox::new(centre, scale, size);
+    if lines.iter().all(|l| view.holds(l)) {
+        return lines;
+    }
+    cut.clear();
+    cut.extend(lines.iter().filter_map(|l| view.cut(l)));
+    cut
+}
+
+/// The box of clip coordinates a line must lie in to be drawn as it is.
+struct ClipBox {
+    centre: DVec2,
+    scale: DVec2,
+    /// Clip units per pixel, the larger of the two axes.
+    per_pixel: f64,
+}
+
+impl ClipBox {
+    fn new(centre: Vec2, scale: Vec2, size: (u32, u32)) -> Self {
+        Self {
+            centre: centre.as_dvec2(),
+            scale: scale.as_dvec2(),
+            per_pixel: 2.0 / f64::from(size.0.min(size.1).max(1)),
+        }
+    }
+
+    /// Half the box's side for `line`: two views plus the quad's pad (as
+    /// `lines.wgsl` grows it) past each end.
+    fn half_side(&self, line: &LineInstance) -> f64 {
+        2.0 + (0.5 * f64::from(line.width.max(0.0)) + 1.5) * self.per_pixel
+    }
+
+    fn clip(&self, p: [f32; 2]) -> DVec2 {
+        (Vec2::from(p).as_dvec2() - self.centre) * self.scale
+    }
+
+    /// Both ends inside the box, or an end not finite (left to the GPU).
+    fn holds(&self, line: &LineInstance) -> bool {
+        let half = self.half_side(line);
+        let inside = |p: DVec2| p.abs().max_element() <= half || !p.is_finite();
+        inside(self.clip(line.start)) && inside(self.clip(line.end))
+    }
+
+    /// `line` cut to the box (Liang-Barsky), or `None` if it misses it.
+    fn cut(&self, line: &LineInstance) -> Option<LineInstance> {
+        if self.holds(line) {
+            return Some(*line);
+        }
+        let half = self.half_side(line);
+        let (a, b) = (self.clip(line.start), self.clip(line.end));
+        if !(a.is_finite() && b.is_finite()) {
+            return Some(*line);
+        }
+        let d = b - a;
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        for (p, q) in [
+            (-d.x, a.x + half),
+            (d.x, half - a.x),
+            (-d.y, a.y + half),
+            (d.y, half - a.y),
+        ] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return None;
+                }
+            } else if p < 0.0 {
+                t0 = t0.max(q / p);
+            } else {
+                t1 = t1.min(q / p);
+            }
+        }
+        if t0 > t1 {
+            return None;
+        }
+        let (start, end) = (
+            Vec2::from(line.start).as_dvec2(),
+            Vec2::from(line.end).as_dvec2(),
+        );
+        let at = |t: f64| (start + (end - start) * t).as_vec2().to_array();
+        Some(LineInstance {
+            start: at(t0),
+            end: at(t1),
+            ..*line
+        })
     }
 }
 
@@ -347,7 +459,7 @@ fn fitting(len: usize, capacity: usize, max_bytes: u64, size: usize) -> (usize, 
 
 #[cfg(test)]
 mod tests {
-    use super::fitting;
+    use super::{LineInstance, Vec2, fitting, lines_in_view};
 
     #[test]
     fn instances_past_the_devices_largest_buffer_are_not_drawn() {
@@ -361,5 +473,48 @@ mod tests {
         assert_eq!(fitting(6_000_000, 256, max, 48), (5_592_405, 5_592_405));
         // A list that shrinks keeps the buffer.
         assert_eq!(fitting(100, 5_592_405, max, 48), (5_592_405, 100));
+    }
+
+    fn line(start: [f32; 2], end: [f32; 2]) -> LineInstance {
+        LineInstance {
+            start,
+            end,
+            colour: [1.0; 4],
+            width: 2.0,
+            _pad: [0.0; 3],
+        }
+    }
+
+    #[test]
+    fn lines_past_two_views_are_cut_to_them_and_lines_outside_left_out() {
+        // A 100 x 100 pixel view of 10 x 10 m about (5, 0): clip x = (x - 5)
+        // / 5. Two views each way plus the pad (1 + 1.5 pixels, 0.05 clip
+        // units): x from -5.25 to 15.25, y from -10.25 to 10.25 m.
+        let (centre, scale, size) = (Vec2::new(5.0, 0.0), Vec2::splat(0.2), (100, 100));
+        let mut cut = Vec::new();
+        let near = [
+            line([0.0, 0.0], [10.0, 3.0]),
+            line([-5.0, 9.0], [15.0, -9.0]),
+        ];
+        let same = lines_in_view(&near, centre, scale, size, &mut cut);
+        assert_eq!(same.as_ptr(), near.as_ptr(), "nothing cut, nothing copied");
+        let far = [
+            near[0],
+            line([-1e9, 1.0], [1e9, 1.0]),
+            line([-1e9, 11.0], [1e9, 11.0]),
+            line([5.0, -1e9], [5.0, -1e9 + 1.0]),
+            line([f32::NAN, 0.0], [1e9, 0.0]),
+        ];
+        let drawn = lines_in_view(&far, centre, scale, size, &mut cut).to_vec();
+        assert_eq!(drawn.len(), 3, "the two lines wholly outside are left out");
+        assert_eq!(drawn[0], near[0]);
+        let across = drawn[1];
+        assert_eq!(across.start, [-5.25, 1.0]);
+        assert_eq!(across.end, [15.25, 1.0]);
+        assert_eq!(
+            (across.colour, across.width),
+            (near[0].colour, near[0].width)
+        );
+        assert!(drawn[2].start[0].is_nan(), "a NaN end is left to the GPU");
     }
 }

@@ -321,6 +321,49 @@ fn shapes_far_larger_than_the_view_keep_every_pixel() {
 }
 
 #[test]
+fn lines_far_longer_than_the_view_keep_their_place() {
+    // A horizontal line 100 km long through a view 1 mm high, and a
+    // diagonal from (-10^9, -10^9) m to (10^9, 10^9) m through the default
+    // 20 m view: each must cross the whole view where it lies.
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 64, 48);
+    let mut camera = Camera2D::default();
+    for _ in 0..100 {
+        camera.zoom_about(2.0, Vec2::ZERO);
+    }
+    let mut list = DrawList::new(BACKGROUND);
+    list.line(Vec2::new(-5e4, 0.0), Vec2::new(5e4, 0.0), 4.0, RED);
+    let flat = draw(&gpu, &target, &camera, &list);
+    for x in [0, 1, 20, 32, 62, 63] {
+        // Rows 23 and 24 straddle y = 0; the line is 4 pixels wide.
+        for y in [23, 24] {
+            assert!(close(flat.get(x, y).unwrap(), RED, 1), "({x}, {y})");
+        }
+        for y in [0, 10, 30, 47] {
+            assert_eq!(flat.get(x, y), Some(BACKGROUND), "({x}, {y})");
+        }
+    }
+    list.clear(BACKGROUND);
+    list.line(Vec2::splat(-1e9), Vec2::splat(1e9), 4.0, BLUE);
+    let camera = Camera2D::default();
+    let diagonal = draw(&gpu, &target, &camera, &list);
+    // The pixel on the diagonal in each row is the line's; a pixel ten
+    // columns to its side is background.
+    for y in [2u32, 10, 23, 24, 36, 45] {
+        let world = camera.pixel_to_world(Vec2::new(32.0, y as f32 + 0.5), (64, 48));
+        let x = camera.world_to_pixel(Vec2::splat(world.y), (64, 48)).x as u32;
+        assert!(close(diagonal.get(x, y).unwrap(), BLUE, 1), "({x}, {y})");
+        assert_eq!(
+            diagonal.get(x + 10, y),
+            Some(BACKGROUND),
+            "({}, {y})",
+            x + 10
+        );
+        assert_eq!(diagonal.get(x.saturating_sub(10), y), Some(BACKGROUND));
+    }
+}
+
+#[test]
 fn textures_that_cannot_be_copied_are_an_error_not_a_panic() {
     let gpu = gpu();
     let texture = |usage, sample_count| {
