@@ -1,6 +1,7 @@
 //! The game of the `platformer` example, apart from its window: a level
 //! made in the Tiled editor, a player moved by the character mover (walk,
-//! run, jump, slide on ice, glide, wind), coins
+//! run, jump, slide on ice, glide, wind; crushed by a moving body, it
+//! starts again at the spawn point), coins
 //! and a goal as sensors, and the game-feel helpers every platformer
 //! writes by hand (they belong in a game, not in the physics): coyote
 //! time, jump buffering and variable jump height.
@@ -61,6 +62,10 @@ pub struct Platformer {
     platforms: Vec<Platform>,
     /// The player's body (kinematic).
     pub player: BodyId,
+    /// Where the player starts, and starts again once crushed.
+    start: Vec2,
+    /// Times the player was crushed (and started again).
+    pub crushed: u32,
     mover: CharacterMover,
     velocity: Vec2,
     since_ground: f32,
@@ -88,11 +93,9 @@ impl Platformer {
             .find(|(name, _)| name == "player")
             .ok_or("the level has no `player` spawn point")?;
         let mover = CharacterMover::default();
-        let def = BodyDef::new_kinematic(
-            spawn + Vec2::new(0.0, 0.5 * PLAYER_SIZE.y + mover.skin),
-            Shape::rect(PLAYER_SIZE.x, PLAYER_SIZE.y),
-            Vec2::ZERO,
-        );
+        let start = spawn + Vec2::new(0.0, 0.5 * PLAYER_SIZE.y + mover.skin);
+        let def =
+            BodyDef::new_kinematic(start, Shape::rect(PLAYER_SIZE.x, PLAYER_SIZE.y), Vec2::ZERO);
         let player = built.world.add_body(def).map_err(|e| e.to_string())?;
         built.bodies.push(SceneBody {
             id: player,
@@ -105,6 +108,8 @@ impl Platformer {
             bodies: built.bodies,
             platforms: built.platforms,
             player,
+            start,
+            crushed: 0,
             mover,
             velocity: Vec2::ZERO,
             since_ground: f32::INFINITY,
@@ -137,6 +142,11 @@ impl Platformer {
         else {
             return;
         };
+        if now.crushed.is_some() {
+            self.start_again();
+            self.world.step(dt);
+            return;
+        }
         let on_ice = now
             .ground
             .and_then(|g| self.world.body(g))
@@ -197,9 +207,23 @@ impl Platformer {
             if out.wall.is_some() && !on_ice {
                 self.velocity.x = 0.0;
             }
+            if out.crushed.is_some() {
+                self.start_again();
+            }
         }
         self.world.step(dt);
         self.collect();
+    }
+
+    /// Crushed: the player starts again at the spawn point, at rest.
+    fn start_again(&mut self) {
+        self.crushed += 1;
+        // Where it is, at rest: a kinematic body keeps the velocity the
+        // mover steered it with.
+        self.world.set_position(self.player, self.start);
+        self.world.set_velocity(self.player, Vec2::ZERO);
+        self.velocity = Vec2::ZERO;
+        self.rising_from_jump = false;
     }
 
     /// Coins the player touches are taken; the goal is noted.

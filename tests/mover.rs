@@ -723,3 +723,107 @@ fn a_lift_coming_down_onto_it_crushes_it_and_says_so() {
         );
     }
 }
+
+#[test]
+fn a_kinematic_wall_pressing_it_against_a_wall_crushes_it_and_says_so() {
+    // A kinematic wall (0.2 m thick, 0.6 or 1.2 m tall) slides along the
+    // floor at 1, 3 or 8 m/s and presses the character against a static
+    // wall: there is no room. The character must never end inside either
+    // wall by more than the skin until it is crushed, nor be thrown on top
+    // of the kinematic wall or through the static one; once crushed,
+    // `crushed` names the kinematic wall, from about the tick the gap closes.
+    let cases = [(1.2f32, 1.0f32), (1.2, 3.0), (0.6, 8.0), (1.2, 8.0)];
+    // On the floor, and in the air (mid-jump: the mover is given no
+    // motion, so it hangs 0.2 m up).
+    for ((height, speed), lift) in cases.into_iter().flat_map(|c| [(c, 0.0f32), (c, 0.2)]) {
+        let ground = 0.5;
+        let mut world = level("..........#\n..........#\n..........#\n###########");
+        // The static wall's face is at x = 5.
+        let mover = CharacterMover::default();
+        let skin = mover.skin;
+        let player = character(&mut world, 5.0 - HALF.x - skin, ground + lift);
+        let centre_y = ground + height / 2.0;
+        let shape = Shape::rect(0.2, height);
+        let pusher = BodyDef::new_kinematic(Vec2::new(2.0, centre_y), shape, Vec2::ZERO);
+        let pusher = world.add_body(pusher).unwrap();
+        // It stops with its face 0.1 m past the static wall's face less the
+        // character's width: a 0.1 m squeeze.
+        let stop = 5.0 - 2.0 * HALF.x + 0.1 - 0.1;
+        let mut crushed_at = None;
+        for tick in 1..=240usize {
+            let x = (2.0 + speed * tick as f32 * DT).min(stop);
+            world.set_kinematic_target(pusher, Vec2::new(x, centre_y), DT);
+            let out = world
+                .move_character(player, Vec2::ZERO, &mover, DT)
+                .unwrap();
+            world.step(DT);
+            let p = at(&world, player);
+            let face = at(&world, pusher).x + 0.1;
+            let case =
+                format!("{height} m at {speed} m/s, {lift} m up, tick {tick}: {p}, face {face}");
+            assert!(p.x + HALF.x <= 5.0 + 1e-4, "{case}: into the static wall");
+            let height_kept = (p.y - (ground + lift + HALF.y + skin)).abs() < 0.02;
+            assert!(height_kept, "{case}: thrown up or down");
+            if out.crushed.is_some() {
+                assert_eq!(out.crushed, Some(pusher), "{case}");
+                crushed_at.get_or_insert(tick);
+            } else {
+                assert!(
+                    p.x - HALF.x >= face - skin - 1e-4,
+                    "{case}: inside the pusher"
+                );
+            }
+        }
+        let case = format!("{height} m at {speed} m/s, {lift} m up");
+        let tick = crushed_at.unwrap_or_else(|| panic!("{case}: not crushed"));
+        // The gap (one skin) closes at this tick.
+        let gap_closes = ((5.0 - 2.0 * HALF.x - skin - 2.1) / speed / DT).ceil() as usize;
+        assert!(
+            tick.abs_diff(gap_closes) <= 2,
+            "{case}: tick {tick}, not {gap_closes}"
+        );
+    }
+}
+
+#[test]
+fn a_lift_carrying_it_into_a_ceiling_crushes_it_and_says_so() {
+    // A character rides a lift (0.2 m thick) going up at 1 or 4 m/s
+    // towards a ceiling whose underside is at y = 3; the lift stops 0.1 m
+    // short of leaving the character room. It must never be pushed into the
+    // ceiling, and `crushed` names the lift from about the tick the gap
+    // closes.
+    for speed in [1.0f32, 4.0] {
+        let mut world = level("######\n......\n......\n......\n......\n......\n......");
+        let mover = CharacterMover::default();
+        let skin = mover.skin;
+        let ceiling = 3.0;
+        let start = 0.5;
+        let lift_shape = Shape::rect(2.0, 0.2);
+        let lift = BodyDef::new_kinematic(Vec2::new(1.5, start - 0.1), lift_shape, Vec2::ZERO);
+        let lift = world.add_body(lift).unwrap();
+        let player = character(&mut world, 1.5, start);
+        let top_stop = ceiling - 2.0 * HALF.y + 0.1;
+        let mut crushed_at = None;
+        for tick in 1..=240usize {
+            let top = (start + speed * tick as f32 * DT).min(top_stop);
+            world.set_kinematic_target(lift, Vec2::new(1.5, top - 0.1), DT);
+            let out = world
+                .move_character(player, Vec2::ZERO, &mover, DT)
+                .unwrap();
+            world.step(DT);
+            let p = at(&world, player);
+            let case = format!("{speed} m/s, tick {tick}: {p}");
+            assert!(p.y + HALF.y <= ceiling + 1e-4, "{case}: into the ceiling");
+            if out.crushed.is_some() {
+                assert_eq!(out.crushed, Some(lift), "{case}");
+                crushed_at.get_or_insert(tick);
+            }
+        }
+        let tick = crushed_at.unwrap_or_else(|| panic!("{speed} m/s: not crushed"));
+        let gap_closes = ((ceiling - 2.0 * HALF.y - skin - start) / speed / DT).ceil() as usize;
+        assert!(
+            tick.abs_diff(gap_closes) <= 2,
+            "{speed} m/s: tick {tick}, not {gap_closes}"
+        );
+    }
+}

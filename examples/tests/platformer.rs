@@ -136,3 +136,51 @@ fn the_wind_carries_the_player_standing_still() {
         "moved {moved}, expected {expected}"
     );
 }
+
+#[test]
+fn a_crushed_player_starts_again_at_the_spawn_point() {
+    // The player walks 1.5 m from where it landed, and a block comes down
+    // onto it there: the game puts it back at the spawn point.
+    use passo_physics::glam::Vec2;
+    use passo_physics::{BodyDef, Shape};
+    let mut game = level();
+    for _ in 0..30 {
+        game.update(Keys::default(), DT);
+    }
+    let start = game.player_position();
+    let right = Keys {
+        right: true,
+        ..Keys::default()
+    };
+    for _ in 0..20 {
+        game.update(right, DT);
+    }
+    let walked = game.player_position();
+    assert!(walked.x > start.x + 1.0, "it walked: {start} -> {walked}");
+    let block = BodyDef::new_kinematic(
+        walked + Vec2::new(0.0, 1.0),
+        Shape::rect(0.6, 0.4),
+        Vec2::ZERO,
+    );
+    let block = game.world.add_body(block).unwrap();
+    for tick in 1..=60 {
+        let y = (walked.y + 1.0 - 3.0 * tick as f32 * DT).max(walked.y);
+        game.world
+            .set_kinematic_target(block, Vec2::new(walked.x, y), DT);
+        game.update(Keys::default(), DT);
+        if game.crushed > 0 {
+            break;
+        }
+    }
+    assert_eq!(game.crushed, 1, "crushed once");
+    // Put back at the spawn point, it lands where it first stood.
+    for _ in 0..30 {
+        game.update(Keys::default(), DT);
+    }
+    assert_eq!(game.crushed, 1, "crushed once");
+    let at = game.player_position();
+    assert!(
+        (at - start).length() < 0.02,
+        "back at the start {start}: {at}"
+    );
+}

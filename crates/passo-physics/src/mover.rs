@@ -105,11 +105,12 @@ pub struct MoveOutcome {
     pub stepped: f32,
     /// Dynamic bodies it pushed.
     pub pushed: u32,
-    /// A kinematic body came down onto it with no room left under it (a
-    /// lift onto a character standing on the floor): the body. The
-    /// character is left where it stands, overlapped; a game usually
-    /// treats this as the character being crushed. (A body pressing it
-    /// sideways against a wall is not reported.)
+    /// A kinematic body pressed into it with no room left to get out of
+    /// the way (a lift come down onto a character standing on the floor, a
+    /// moving wall pressing it against another, in the air or not, a lift
+    /// carrying it into a ceiling): the body. The character is left where
+    /// it is, overlapped; a game usually treats this as the character
+    /// being crushed.
     pub crushed: Option<BodyId>,
 }
 
@@ -390,6 +391,46 @@ impl Walker<'_> {
         crusher
     }
 
+    /// The kinematic body (not one-way) that overlaps the character at
+    /// `at` by more than the skin with no way out: moving the character
+    /// out of it, along the way out of the overlap, meets something that
+    /// does not give way (a wall, the floor, a ceiling; not a dynamic
+    /// body). A wall pressing it sideways against another, in the air or
+    /// on the ground, or a platform lifting it into a ceiling. The lowest
+    /// id of several.
+    fn squeezing(&mut self, at: Vec2) -> Option<BodyId> {
+        let skin = self.mover.skin;
+        let area = crate::Aabb::from_centre(at, self.shape.half_extents());
+        let mut inside: Vec<(BodyId, Vec2)> = Vec::new();
+        self.near(&area, |f: Found<'_>| {
+            let kinematic = f.dynamic.is_some() && f.meta.kinematic && f.meta.one_way.is_none();
+            if !kinematic {
+                return;
+            }
+            if let Some(m) = collide(&self.shape, at, &f.shape, self.place(&f), 0.0)
+                && m.separation < -skin
+            {
+                // `m.normal` points from the character to the body.
+                inside.push((f.id, m.normal * m.separation));
+            }
+        });
+        inside.sort_by_key(|&(id, _)| id);
+        let ignored = self.ignored;
+        let mut squeezer = None;
+        for (id, way_out) in inside {
+            self.ignored = Some(id);
+            let blocked = self
+                .cast(at, way_out)
+                .is_some_and(|hit| hit.fraction < 1.0 && hit.pushable.is_none());
+            if blocked {
+                squeezer = Some(id);
+                break;
+            }
+        }
+        self.ignored = ignored;
+        squeezer
+    }
+
     /// The ground within `reach` below `at`: the hit, if its normal is
     /// ground enough.
     fn ground(&self, at: Vec2, reach: f32) -> Option<Hit> {
@@ -413,9 +454,10 @@ impl World {
     ///
     /// A kinematic body that sweeps into the character this step (steered
     /// before the call) pushes it along to a skin in front of where the
-    /// body ends, however fast it goes. One that comes down onto it with
-    /// no room left under it crushes it: [`MoveOutcome::crushed`] names it,
-    /// and the character stays where it stands.
+    /// body ends, however fast it goes. One that presses into it with no
+    /// room left (down onto it on the floor, against a wall, up into a
+    /// ceiling) crushes it: [`MoveOutcome::crushed`] names it, and the
+    /// character stays where it is.
     ///
     /// Limits: a circle character rolls up a
     /// block's rounded corner once the corner is under it within
@@ -512,7 +554,7 @@ impl World {
         // Crushed: left where it stands, not pushed out through the body
         // that crushes it (once that body is past its middle, the way out
         // was up through it, on top).
-        out.crushed = walker.crushing(at);
+        out.crushed = walker.crushing(at).or_else(|| walker.squeezing(at));
         walker.ignored = out.crushed;
         at = walker.push_out(at);
         walker.ignored = None;
