@@ -360,6 +360,27 @@ impl Walker<'_> {
         first.map(|(_, body, push)| (body, push))
     }
 
+    /// Calls `f` with each kinematic body (not one-way) the character at
+    /// `at` overlaps by more than the skin where the body ends the step:
+    /// the body, where it is met, and the way out of it (the character's
+    /// shortest move out of the overlap).
+    fn kinematic_inside(&self, at: Vec2, mut f: impl FnMut(&Found<'_>, Vec2, Vec2)) {
+        let area = crate::Aabb::from_centre(at, self.shape.half_extents());
+        self.near(&area, |found: Found<'_>| {
+            let kinematic = found.dynamic.is_some() && found.meta.kinematic;
+            if !kinematic || found.meta.one_way.is_some() {
+                return;
+            }
+            let place = self.place(&found);
+            if let Some(m) = collide(&self.shape, at, &found.shape, place, 0.0)
+                && m.separation < -self.mover.skin
+            {
+                // `m.normal` points from the character to the body.
+                f(&found, place, m.normal * m.separation);
+            }
+        });
+    }
+
     /// The kinematic body (not one-way) that overlaps the character at
     /// `at` from above by more than the skin where it ends the step, the
     /// character standing on ground there: it has no room (a lift come
@@ -367,10 +388,7 @@ impl Walker<'_> {
     fn crushing(&self, at: Vec2) -> Option<BodyId> {
         self.ground(at, 2.0 * self.mover.skin)?;
         let mut crusher: Option<BodyId> = None;
-        let area = crate::Aabb::from_centre(at, self.shape.half_extents());
-        self.near(&area, |f: Found<'_>| {
-            let kinematic = f.dynamic.is_some() && f.meta.kinematic && f.meta.one_way.is_none();
-            let place = self.place(&f);
+        self.kinematic_inside(at, |f, place, _| {
             // Its underside above the feet, however deep it is in, or its
             // top higher than a step: a body down at the feet no higher than
             // `max_step` (a low platform sliding in under them, a thin lift
@@ -379,12 +397,7 @@ impl Walker<'_> {
             let (h, skin) = (f.shape.half_extents().y, self.mover.skin);
             let above =
                 place.y - h > feet + skin || place.y + h > feet + self.mover.max_step + skin;
-            if kinematic
-                && above
-                && collide(&self.shape, at, &f.shape, place, 0.0)
-                    .is_some_and(|m| m.separation < -self.mover.skin)
-                && crusher.is_none_or(|c| f.id < c)
-            {
+            if above && crusher.is_none_or(|c| f.id < c) {
                 crusher = Some(f.id);
             }
         });
@@ -399,21 +412,8 @@ impl Walker<'_> {
     /// on the ground, or a platform lifting it into a ceiling. The lowest
     /// id of several.
     fn squeezing(&mut self, at: Vec2) -> Option<BodyId> {
-        let skin = self.mover.skin;
-        let area = crate::Aabb::from_centre(at, self.shape.half_extents());
         let mut inside: Vec<(BodyId, Vec2)> = Vec::new();
-        self.near(&area, |f: Found<'_>| {
-            let kinematic = f.dynamic.is_some() && f.meta.kinematic && f.meta.one_way.is_none();
-            if !kinematic {
-                return;
-            }
-            if let Some(m) = collide(&self.shape, at, &f.shape, self.place(&f), 0.0)
-                && m.separation < -skin
-            {
-                // `m.normal` points from the character to the body.
-                inside.push((f.id, m.normal * m.separation));
-            }
-        });
+        self.kinematic_inside(at, |f, _, way_out| inside.push((f.id, way_out)));
         inside.sort_by_key(|&(id, _)| id);
         let ignored = self.ignored;
         let mut squeezer = None;
