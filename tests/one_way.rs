@@ -208,6 +208,21 @@ fn a_platform_can_be_made_one_way_and_a_filter_changed_after_creation() {
     // Dynamic bodies cannot be one-way; zero normals are refused.
     assert!(world.set_one_way(a, Some(UP)).is_err());
     assert!(world.set_one_way(slab, Some(Vec2::ZERO)).is_err());
+    // Any other finite normal is a direction, however long or short (its
+    // length overflowed or rounded to zero, and it was refused as zero).
+    let platform =
+        |normal| BodyDef::new_static(Vec2::ZERO, Shape::rect(1.0, 0.2)).with_one_way(normal);
+    for (normal, unit) in [
+        (Vec2::new(0.0, 3e38), UP),
+        (Vec2::new(3e38, 3e38), Vec2::ONE.normalize()),
+        (Vec2::new(1e-30, 1e-30), Vec2::ONE.normalize()),
+        (Vec2::new(0.0, 1e-45), UP),
+    ] {
+        let id = world.add_body(platform(normal)).unwrap();
+        assert_eq!(world.body(id).unwrap().one_way, Some(unit), "{normal}");
+        world.set_one_way(id, Some(-normal)).unwrap();
+        assert_eq!(world.body(id).unwrap().one_way, Some(-unit), "{normal}");
+    }
     assert!(
         world
             .add_body(BodyDef {

@@ -298,10 +298,18 @@ pub(crate) fn check_drag_area(what: &'static str, area: f32) -> Result<f32, Phys
     at_most(what, area, MAX_DRAG_AREA, "in [0, 1e6] m² (MAX_DRAG_AREA)")
 }
 
+/// The unit vector along `v`, or `None` for a zero or non-finite `v`.
+/// Scaled by its largest component first, so a subnormal vector (whose
+/// length rounds to zero) or one whose length overflows still has its
+/// direction.
+pub(crate) fn unit_direction(v: Vec2) -> Option<Vec2> {
+    (v / v.abs().max_element()).try_normalize()
+}
+
 /// A one-way normal must be finite and not zero; returns it normalised.
 pub(crate) fn check_one_way(what: &'static str, normal: Vec2) -> Result<Vec2, PhysicsError> {
     finite_vec(what, normal)?;
-    normal.try_normalize().ok_or(PhysicsError::OutOfRange {
+    unit_direction(normal).ok_or(PhysicsError::OutOfRange {
         what,
         value: 0.0,
         allowed: "a non-zero direction",

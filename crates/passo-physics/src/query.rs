@@ -298,9 +298,7 @@ impl World {
         max_distance: f32,
         filter: &QueryFilter,
     ) -> Option<RayHit> {
-        // Scaled first, so a subnormal direction (whose length rounds to
-        // zero) or one whose length overflows still has its direction.
-        let dir = (direction / direction.abs().max_element()).try_normalize()?;
+        let dir = crate::body::unit_direction(direction)?;
         if !origin.is_finite() || max_distance.is_nan() || max_distance < 0.0 {
             return None;
         }

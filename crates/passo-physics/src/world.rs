@@ -357,7 +357,7 @@ impl World {
             restitution: def.restitution,
             filter: def.filter,
             sensor: def.sensor,
-            one_way: def.one_way.and_then(Vec2::try_normalize),
+            one_way: def.one_way.and_then(crate::body::unit_direction),
             drop_through: 0.0,
             bullet: def.bullet,
             min_speed: def.min_speed,
