@@ -403,3 +403,61 @@ fn a_box_and_a_circle_slide_from_a_one_way_run_onto_solid_ground_level_with_it()
         assert!(world.body(body).unwrap().position.x > 2.9);
     }
 }
+
+#[test]
+fn a_crate_resting_above_a_covered_face_is_not_shoved_sideways() {
+    // A face counts as covered when a static or kinematic box lies flush on
+    // it or across it. A crate resting above such a face (on a thin coat
+    // flush on the ground, or on a ledge a lift rises through) was given a
+    // sideways contact as deep as its own width and pushed 0.95 m along
+    // the ground, or 5 cm in one step, at rest before and after.
+    for (hz, coat) in [
+        (60.0f32, 0.011f32),
+        (30.0, 0.011),
+        (30.0, 0.015),
+        (30.0, 0.02),
+    ] {
+        let mut world = World::default();
+        let ground = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(2.0, 1.0));
+        world.add_body(ground).unwrap();
+        let strip = BodyDef::new_static(Vec2::new(0.0, coat / 2.0), Shape::rect(2.0, coat));
+        world.add_body(strip.with_friction(0.02)).unwrap();
+        let at = Vec2::new(0.3, coat + 0.25);
+        let crate_ = world
+            .add_body(BodyDef::new_dynamic(at, Shape::rect(0.5, 0.5)))
+            .unwrap();
+        for _ in 0..120 {
+            world.step(1.0 / hz);
+        }
+        let x = world.body(crate_).unwrap().position.x;
+        assert!(
+            (x - 0.3).abs() < 1e-4,
+            "{hz} Hz, {coat} m coat: the crate went to x = {x}"
+        );
+    }
+    for speed in [0.5f32, 3.0] {
+        let mut world = World::default();
+        let ledge = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(1.0, 1.0));
+        world.add_body(ledge).unwrap();
+        let crate_ = world
+            .add_body(BodyDef::new_dynamic(
+                Vec2::new(0.0, 0.25),
+                Shape::rect(0.5, 0.5),
+            ))
+            .unwrap();
+        let lift = BodyDef::new_kinematic(
+            Vec2::new(0.0, -3.0),
+            Shape::rect(3.0, 0.2),
+            Vec2::new(0.0, speed),
+        );
+        world.add_body(lift).unwrap();
+        for step in 0..(4.0 / speed * 60.0) as usize {
+            world.step(DT);
+            let x = world.body(crate_).unwrap().position.x;
+            assert!(
+                x.abs() < 1e-4,
+                "lift at {speed} m/s, step {step}: the crate went to x = {x}"
+            );
+        }
+    }
+}

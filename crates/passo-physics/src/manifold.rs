@@ -273,7 +273,18 @@ fn box_box_faces(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2, faces_b: Faces) -> Mani
     // `-sign` side.
     let mut axis = if overlap.x < overlap.y { 0 } else { 1 };
     let other = 1 - axis;
-    if faces_b.covered(axis, -sign_of(axis)) && !faces_b.covered(other, -sign_of(other)) {
+    // Leaving through a covered face, the boxes meet across the other
+    // axis instead: a box crossing the joint of two flush boxes is beside
+    // the second by less than it sinks into the top they share. Only while
+    // that is a contact's depth: with the smaller box more than halfway
+    // across the other axis, it lies on whatever covers the face (a coat
+    // flush on it, a lift passing through), and pushing it out sideways
+    // would shove it by its own width.
+    let shallow = overlap[other] < ha[other].min(hb[other]);
+    if faces_b.covered(axis, -sign_of(axis))
+        && !faces_b.covered(other, -sign_of(other))
+        && shallow
+    {
         axis = other;
     }
     let tangent_axis = 1 - axis;
