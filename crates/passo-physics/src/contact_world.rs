@@ -98,12 +98,14 @@ impl ContactWorld {
         if any_asleep {
             self.pair_with_sleepers(dynamic);
         }
+        let events = &self.events;
         let narrow = Narrow {
             proxies: &self.proxies,
             bodies: Colliders { dynamic, statics },
             gravity: step.gravity,
             h: step.h,
             slop: settings.slop,
+            pressed: &|key| events.pressed(key),
         };
         self.narrow.run(&narrow, step.parallel, &mut self.solved);
         if settings.sleeping && any_asleep {
@@ -259,12 +261,14 @@ impl ContactWorld {
         }
         keyed.sort_unstable_by_key(|k| k.0);
         keyed.dedup_by_key(|k| k.0);
+        let events = &self.events;
         let narrow = Narrow {
             proxies,
             bodies,
             gravity: step.gravity,
             h: step.h,
             slop,
+            pressed: &|key| events.pressed(key),
         };
         // Merge the contacts found again into the solved list, in key order.
         let mut merge = Merge::new(&mut self.solved, &mut self.scratch);

@@ -88,14 +88,29 @@ impl EventTracker {
         });
     }
 
+    /// Where the pair `key` is in the cache, if it is.
+    fn cached_at(&self, key: (BodyId, BodyId)) -> Option<usize> {
+        let order = pair_order(key.0.index, key.1.index);
+        let at = self.cache.partition_point(|c| c.order() < order);
+        self.cache.get(at).filter(|c| c.key == key).map(|_| at)
+    }
+
     /// Sets to zero the impulses the pair `key` warm starts the next step
     /// with (none if it has none).
     pub(crate) fn forget_impulses(&mut self, key: (BodyId, BodyId)) {
-        let order = pair_order(key.0.index, key.1.index);
-        let at = self.cache.partition_point(|c| c.order() < order);
-        if let Some(c) = self.cache.get_mut(at).filter(|c| c.key == key) {
+        if let Some(at) = self.cached_at(key) {
+            let c = &mut self.cache[at];
             (c.normal_impulse, c.tangent_impulse, c.push_impulse) = (0.0, 0.0, 0.0);
         }
+    }
+
+    /// Whether the pair `key` pressed on each other at the end of the last
+    /// step (its contact left a normal or push impulse).
+    pub(crate) fn pressed(&self, key: (BodyId, BodyId)) -> bool {
+        self.cached_at(key).is_some_and(|at| {
+            let c = &self.cache[at];
+            c.normal_impulse > 0.0 || c.push_impulse > 0.0
+        })
     }
 
     /// Finds which candidates end the step inside their sensor, and which

@@ -281,9 +281,7 @@ fn box_box_faces(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2, faces_b: Faces) -> Mani
     // flush on it, a lift passing through), and pushing it out sideways
     // would shove it by its own width.
     let shallow = overlap[other] < ha[other].min(hb[other]);
-    if faces_b.covered(axis, -sign_of(axis))
-        && !faces_b.covered(other, -sign_of(other))
-        && shallow
+    if faces_b.covered(axis, -sign_of(axis)) && !faces_b.covered(other, -sign_of(other)) && shallow
     {
         axis = other;
     }

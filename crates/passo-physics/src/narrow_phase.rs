@@ -5,7 +5,7 @@
 use crate::bodies::{Colliders, pair_order};
 use crate::collider::ColliderRef;
 use crate::constants::{ONE_WAY_DEPTH, SPECULATIVE_DISTANCE};
-use crate::constraint::{Constraint, ContactInfo, ContactList};
+use crate::constraint::{Constraint, ContactInfo, ContactList, key};
 use crate::corners::{beyond_corner, over_a_step};
 use crate::filter::CollisionFilter;
 use crate::manifold::{Faces, Manifold, collide_seamless};
@@ -65,6 +65,11 @@ pub(crate) struct Narrow<'a> {
     /// How deep contacts let bodies sink, metres: steps no higher are
     /// climbed (see [`over_a_step`]).
     pub slop: f32,
+    /// Whether a pair (by its contact's [`key`]) pressed on each other at the
+    /// end of the last step: a body standing on a one-way platform stays
+    /// on it, however deep a load presses it in (see
+    /// [`Narrow::one_way_allows`]).
+    pub pressed: &'a (dyn Fn((BodyId, BodyId)) -> bool + Sync),
 }
 
 impl Narrow<'_> {
@@ -166,7 +171,7 @@ impl Narrow<'_> {
         });
         match found {
             Some(m) if !self.may_close(&ca, margin_a, &cb, margin_b, &m) => Outcome::Skip,
-            Some(m) if !one_way_allows(&ca, &cb, &m) => Outcome::Skip,
+            Some(m) if !self.one_way_allows(&ca, &cb, &m) => Outcome::Skip,
             Some(mut m) => {
                 // Two dynamic bodies on exactly the same spot (spawned
                 // there) have no direction between them; each pair gets its
@@ -202,6 +207,40 @@ impl Narrow<'_> {
             Some(i) => self.bodies.dynamic.vel[i] + self.gravity * self.proxies.margin.dt,
             None => Vec2::ZERO,
         }
+    }
+
+    /// Whether a contact with a one-way platform holds: it comes from the
+    /// platform's solid side (the normal from the platform to the other
+    /// body has a positive part along the solid side's normal), the other
+    /// body is not dropping through, and either it is no deeper in the
+    /// platform than [`ONE_WAY_DEPTH`], or it was no deeper before its
+    /// motion over the last step (it fell in faster than its contacts
+    /// reach, with continuous collision off), or it pressed on the
+    /// platform at the end of the last step (it stood on it, and a load
+    /// pressed it in). A body inside deeper than that was coming through
+    /// (from below, or dropping through) and goes on through. A pair
+    /// without a one-way platform always holds.
+    fn one_way_allows(&self, a: &Collider, b: &Collider, m: &Manifold) -> bool {
+        // `m.normal` points from A to B.
+        let (platform, other, solid, away) = match (a.one_way, b.one_way) {
+            (_, Some(n)) => (b, a, n, -m.normal),
+            (Some(n), None) => (a, b, n, m.normal),
+            (None, None) => return true,
+        };
+        if away.dot(solid) <= 0.0 || other.dropping {
+            return false;
+        }
+        let depth = -m.separation;
+        if depth <= ONE_WAY_DEPTH {
+            return true;
+        }
+        let vel = |c: &Collider| {
+            c.body
+                .dynamic_index()
+                .map_or(Vec2::ZERO, |i| self.bodies.dynamic.vel[i])
+        };
+        let sank = -(vel(other) - vel(platform)).dot(solid) * self.proxies.margin.dt;
+        depth - sank <= ONE_WAY_DEPTH || (self.pressed)(key(a.id, b.id))
     }
 
     /// Whether the gap of `m` between `a` and `b` (with proxy margins
@@ -277,21 +316,6 @@ fn spread_direction(a: BodyId, b: BodyId) -> Vec2 {
             return v / len_sq.sqrt();
         }
     }
-}
-
-/// Whether a contact with a one-way platform holds: it comes from the
-/// platform's solid side (the normal from the platform to the other body
-/// has a positive part along the solid side's normal), the other body is
-/// no deeper in it than [`ONE_WAY_DEPTH`] and is not dropping through. A
-/// pair without a one-way platform always holds.
-fn one_way_allows(a: &Collider, b: &Collider, m: &Manifold) -> bool {
-    // `m.normal` points from A to B.
-    let (other, outward) = match (a.one_way, b.one_way) {
-        (_, Some(n)) => (a, -m.normal.dot(n)),
-        (Some(n), None) => (b, m.normal.dot(n)),
-        (None, None) => return true,
-    };
-    outward > 0.0 && m.separation >= -ONE_WAY_DEPTH && !other.dropping
 }
 
 /// Sorts the pairs by key, stably (the same input gives the same order; the
