@@ -35,9 +35,10 @@ pub struct StepStats {
     pub rejected_inputs: u64,
     /// Steps in which bodies were piled so densely in one grid cell that
     /// the broad phase bounded their pairs (each meets at most 64 of the
-    /// bodies after it there, `CROWDED_CELL`): memory stays bounded and the
-    /// pile is pushed apart by the contacts it has, more slowly than with
-    /// all of them.
+    /// bodies after it there, `CROWDED_CELL`), or a body met more than 128
+    /// static bodies and was paired with the first 128: memory stays
+    /// bounded and the pile is pushed apart by the contacts it has, more
+    /// slowly than with all of them.
     #[cfg_attr(feature = "serde", serde(default))]
     pub crowded_steps: u64,
     /// Body-steps in which a fast body, moving farther than its speculative
