@@ -556,3 +556,64 @@ fn a_kinematic_map_on_a_path_carries_a_rider_standing_on_a_joint() {
     .to_string();
     assert!(err.contains("tilemap.path"), "{err}");
 }
+
+#[test]
+fn a_map_and_the_files_it_names_are_bounded_together() {
+    // One 40 MB tileset named twice, spelled two ways (the `tiled` crate
+    // caches by the path as written): 80 MB read for a map of 1 kB.
+    let dir_of = |scene: &str| std::path::Path::new(scene).parent().unwrap().to_owned();
+    let big = format!(
+        r#"<?xml version="1.0"?><tileset name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1"><!-- {} --></tileset>"#,
+        "x".repeat(40 << 20)
+    );
+    let scene = map_file("big.tsx", &big);
+    let dir = dir_of(&scene);
+    std::fs::create_dir_all(dir.join("d")).unwrap();
+    let map = tmx_4x2(r#"<data encoding="csv">1,0,0,1,1,1,1,1</data>"#).replace(
+        r#"<tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1"/>"#,
+        r#"<tileset firstgid="1" source="big.tsx"/><tileset firstgid="2" source="d/../big.tsx"/>"#,
+    );
+    std::fs::write(dir.join("twice.tmx"), map).unwrap();
+    let err = level_ref("twice.tmx").load(&scene).unwrap_err().to_string();
+    assert!(
+        err.contains("big.tsx") && err.contains("64 MiB together"),
+        "{err}"
+    );
+    // A .tmj of 18 million empty objects (54 MB; parsed, they took 3.6 GB
+    // and more) is refused before it is parsed.
+    let objects = format!(
+        r#"{{"orientation": "orthogonal", "width": 1, "height": 1, "tilewidth": 16, "tileheight": 16,
+        "layers": [{{"type": "tilelayer", "name": "solid", "data": [0]}},
+        {{"type": "objectgroup", "name": "o", "objects": [{}{{}}]}}]}}"#,
+        "{},".repeat(18_000_000)
+    );
+    let scene = map_file("objects.tmj", &objects);
+    let err = level_ref("objects.tmj")
+        .load(&scene)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("objects.tmj") && err.contains("JSON values"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_tmj_tileset_listing_its_tiles_out_of_order_gives_each_cell_its_tile() {
+    // Tiles are looked up by a binary search of the set sorted by id (a
+    // search from the front for each distinct tile took hours on a map of
+    // 640 × 640 distinct tiles against a set of 200 000).
+    let tmj = r#"{"orientation": "orthogonal", "width": 4, "height": 1, "tilewidth": 16, "tileheight": 16,
+        "tilesets": [{"firstgid": 1, "tiles": [
+            {"id": 3, "class": "ice"}, {"id": 0, "class": "solid"}, {"id": 2, "class": "bouncy"}]}],
+        "layers": [{"type": "tilelayer", "name": "solid", "data": [4, 1, 3, 2]}]}"#;
+    let scene = map_file("order.tmj", tmj);
+    let level = level_ref("order.tmj").load(&scene).unwrap();
+    let map = &level.map;
+    let kind = |x| map.kinds()[map.get(x, 0).unwrap() as usize];
+    assert_eq!(kind(0), TileKind::ICE);
+    assert_eq!(kind(1), TileKind::SOLID);
+    assert_eq!(kind(2), TileKind::BOUNCY);
+    // Id 1 is not listed: a plain solid tile.
+    assert_eq!(kind(3), TileKind::SOLID);
+}

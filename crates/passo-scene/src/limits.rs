@@ -24,6 +24,109 @@ pub const MAX_XML_DEPTH: usize = 64;
 /// `tiled` crate than a plain one.
 pub const MAX_TILE_DATA_BYTES: u64 = 4 * MAX_FILE_BYTES;
 
+/// The bytes a Tiled map and every file it names (tilesets, templates)
+/// may hold together: [`MAX_FILE_BYTES`]. Each file is read once per
+/// mention (the `tiled` crate caches a tileset by the path as written), so
+/// without a total a small map naming one large tileset many times read it
+/// as many times.
+pub const MAX_MAP_BYTES: u64 = MAX_FILE_BYTES;
+
+/// The JSON values (numbers, strings, booleans, nulls, arrays, objects,
+/// object members) a `.tmj` map and its `.tsj` tilesets may hold together:
+/// a tile layer of the largest tile map, 4096 × 4096, and a million more.
+/// They are counted before the text is parsed; parsed, each takes 32 bytes
+/// or more, so 64 MiB of `{},` (22 million objects) took 4.4 GB.
+pub const MAX_JSON_VALUES: u64 = passo_physics::MAX_TILE_CELLS as u64 + (1 << 20);
+
+/// What one Tiled map load may still read, all its files together (see
+/// [`MAX_MAP_BYTES`] and [`MAX_JSON_VALUES`]).
+pub(crate) struct MapBudget {
+    bytes: std::cell::Cell<u64>,
+    values: std::cell::Cell<u64>,
+}
+
+impl MapBudget {
+    pub(crate) fn new() -> Self {
+        Self {
+            bytes: std::cell::Cell::new(MAX_MAP_BYTES),
+            values: std::cell::Cell::new(MAX_JSON_VALUES),
+        }
+    }
+
+    /// Reads `path` whole out of what is left of the budget's bytes (and
+    /// at most [`MAX_FILE_BYTES`]).
+    fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+        let left = self.bytes.get();
+        let bytes = read_at_most(path, left.min(MAX_FILE_BYTES)).map_err(|e| {
+            if e.kind() == std::io::ErrorKind::InvalidData && left < MAX_FILE_BYTES {
+                std::io::Error::new(
+                    std::io::ErrorKind::InvalidData,
+                    format!(
+                        "takes the map and the files it names past {} MiB together",
+                        MAX_MAP_BYTES >> 20
+                    ),
+                )
+            } else {
+                e
+            }
+        })?;
+        self.bytes.set(left - bytes.len() as u64);
+        Ok(bytes)
+    }
+
+    /// Reads a Tiled XML file for the `tiled` crate: [`read`](Self::read),
+    /// then [`check_xml`].
+    pub(crate) fn read_tiled_xml(&self, path: &Path) -> std::io::Result<std::io::Cursor<Vec<u8>>> {
+        let bytes = self.read(path)?;
+        check_xml(&bytes).map_err(|m| std::io::Error::new(std::io::ErrorKind::InvalidData, m))?;
+        Ok(std::io::Cursor::new(bytes))
+    }
+
+    /// Reads a JSON file of a Tiled map as text: [`read`](Self::read), then
+    /// its values counted against what is left of [`MAX_JSON_VALUES`].
+    pub(crate) fn read_json(&self, path: &Path) -> std::io::Result<String> {
+        let invalid = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
+        let text = String::from_utf8(self.read(path)?).map_err(|e| invalid(e.to_string()))?;
+        let left = self.values.get();
+        let values = json_values(text.as_bytes(), left).ok_or_else(|| {
+            invalid(format!(
+                "takes the map and its tilesets past {MAX_JSON_VALUES} JSON values together"
+            ))
+        })?;
+        self.values.set(left - values);
+        Ok(text)
+    }
+}
+
+/// The values in JSON text, counted without parsing it: each array and
+/// object, and one more after each comma (outside strings), so every
+/// element and member; `None` once past `limit`.
+fn json_values(text: &[u8], limit: u64) -> Option<u64> {
+    let (mut values, mut in_string, mut escaped) = (1u64, false, false);
+    for &b in text {
+        if in_string {
+            match (escaped, b) {
+                (true, _) => escaped = false,
+                (false, b'\\') => escaped = true,
+                (false, b'"') => in_string = false,
+                _ => {}
+            }
+            continue;
+        }
+        match b {
+            b'"' => in_string = true,
+            b'{' | b'[' | b',' => {
+                values += 1;
+                if values > limit {
+                    return None;
+                }
+            }
+            _ => {}
+        }
+    }
+    Some(values)
+}
+
 /// Reads `path` whole, if it is at most [`MAX_FILE_BYTES`] long.
 pub(crate) fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
     read_at_most(path, MAX_FILE_BYTES)
@@ -50,14 +153,6 @@ pub fn read_at_most(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
 pub(crate) fn read_text(path: &Path) -> std::io::Result<String> {
     String::from_utf8(read_file(path)?)
         .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()))
-}
-
-/// Reads a Tiled XML file for the `tiled` crate: [`read_file`], then
-/// [`check_xml`].
-pub(crate) fn read_tiled_xml(path: &Path) -> std::io::Result<std::io::Cursor<Vec<u8>>> {
-    let bytes = read_file(path)?;
-    check_xml(&bytes).map_err(|m| std::io::Error::new(std::io::ErrorKind::InvalidData, m))?;
-    Ok(std::io::Cursor::new(bytes))
 }
 
 /// Checks a Tiled XML file against [`MAX_XML_DEPTH`] and
@@ -395,6 +490,17 @@ mod tests {
         format!(
             r#"<?xml version="1.0"?><!-- a <comment> --><map a="x>y"><layer><data encoding="base64" compression="zlib">{data}</data></layer></map>"#
         )
+    }
+
+    #[test]
+    fn json_values_are_counted_outside_strings() {
+        assert_eq!(json_values(b"7", 10), Some(1));
+        assert_eq!(json_values(b"[1, 2, 3]", 10), Some(4));
+        assert_eq!(json_values(br#"{"a": [], "b": {}}"#, 10), Some(5));
+        // Commas, brackets and escaped quotes inside strings do not count.
+        assert_eq!(json_values(br#"["{,[", "\"{,", "\\", 1]"#, 10), Some(5));
+        assert_eq!(json_values(b"[1, 2, 3]", 3), None);
+        assert_eq!(json_values(&b"{},".repeat(1000), 10_000), Some(2001));
     }
 
     #[test]
