@@ -333,12 +333,12 @@ impl FixedTimestep {
     }
 
     /// Checks a timestep read from outside (a snapshot file): a step of at
-    /// least 1 ns, a cap of at least one tick, a valid time scale. Any tick
-    /// count is accepted: the count stops at `u64::MAX` (see
-    /// [`tick`](Self::tick)).
+    /// least 1 ns and at most [`MAX_STEP`], a cap of at least one tick, a
+    /// valid time scale. Any tick count is accepted: the count stops at
+    /// `u64::MAX` (see [`tick`](Self::tick)).
     pub fn validate(&self) -> Result<(), LoopError> {
-        if self.step.is_zero() {
-            return Err(LoopError::InvalidStep(0.0));
+        if self.step.is_zero() || self.step > MAX_STEP {
+            return Err(LoopError::InvalidStep(self.step.as_secs_f64()));
         }
         if self.max_ticks_per_frame == 0 {
             return Err(LoopError::InvalidMaxTicks);
@@ -609,6 +609,20 @@ mod tests {
         );
         assert_eq!((t.remainder(), frame.alpha), (Duration::ZERO, 0.0));
         assert_eq!(t.tick(), 5);
+    }
+
+    #[test]
+    fn validate_refuses_the_steps_new_refuses() {
+        // A step past MAX_STEP read from a file passed, and the world's
+        // step then panicked on its dt.
+        let mut t = FixedTimestep::new(MAX_STEP);
+        t.validate().unwrap();
+        t.step = MAX_STEP + Duration::from_nanos(1);
+        assert!(matches!(t.validate(), Err(LoopError::InvalidStep(_))));
+        t.step = Duration::from_secs(7200);
+        assert_eq!(t.validate(), Err(LoopError::InvalidStep(7200.0)));
+        t.step = Duration::ZERO;
+        assert_eq!(t.validate(), Err(LoopError::InvalidStep(0.0)));
     }
 
     #[test]

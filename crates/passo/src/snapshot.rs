@@ -3,7 +3,6 @@
 
 use anyhow::{Context, Result, bail};
 use passo_loop::FixedTimestep;
-use passo_physics::constants::MAX_STEP;
 use passo_physics::{World, WorldSnapshot};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -32,14 +31,11 @@ impl GameSnapshot {
         }
     }
 
-    /// Rebuilds the world and the loop, after checking both (a step longer
-    /// than the world takes, [`MAX_STEP`], is refused too).
+    /// Rebuilds the world and the loop, after checking both (the loop's
+    /// check refuses a step longer than a world takes,
+    /// [`passo_loop::MAX_STEP`]).
     pub fn restore(self) -> Result<(World, FixedTimestep)> {
         self.timestep.validate().context("snapshot loop")?;
-        let dt = self.timestep.step().as_secs_f64();
-        if dt > f64::from(MAX_STEP) {
-            bail!("snapshot loop: a step of {dt} s is longer than a world steps ({MAX_STEP} s)");
-        }
         let world = World::from_snapshot(self.world).context("snapshot world")?;
         Ok((world, self.timestep))
     }
