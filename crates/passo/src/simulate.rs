@@ -41,7 +41,11 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let mut built = scene.build()?;
     let mut timestep = FixedTimestep::from_hz(scene.file.rate_hz)?;
     if let Some(path) = &args.resume {
-        let (world, resumed) = GameSnapshot::load(path)?.restore()?;
+        let snapshot = GameSnapshot::load(path)?;
+        snapshot
+            .check_scene(&scene.file.name)
+            .with_context(|| path.display().to_string())?;
+        let (world, resumed) = snapshot.restore()?;
         built.world = world;
         timestep = resumed;
     }
@@ -93,7 +97,11 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     debug_assert_eq!(timestep.tick() - first, args.ticks);
     let world = &built.world;
     if let Some(path) = &args.save {
-        GameSnapshot::capture(world, &timestep).save(path)?;
+        let snapshot = GameSnapshot {
+            scene: Some(scene.file.name.clone()),
+            ..GameSnapshot::capture(world, &timestep)
+        };
+        snapshot.save(path)?;
     }
     let wall = started.elapsed();
     eprintln!(

@@ -16,6 +16,12 @@ pub struct GameSnapshot {
     pub world: WorldSnapshot,
     /// The loop.
     pub timestep: FixedTimestep,
+    /// The name of the scene the world was built from, if known: a run
+    /// resumed from the snapshot must be of that scene, whose platforms it
+    /// drives and whose bodies it names (files written before it was kept
+    /// have none, and resume anything).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scene: Option<String>,
 }
 
 impl GameSnapshot {
@@ -28,6 +34,7 @@ impl GameSnapshot {
         Self {
             world: world.snapshot(),
             timestep: timestep.clone(),
+            scene: None,
         }
     }
 
@@ -51,14 +58,41 @@ impl GameSnapshot {
         Ok(ron::from_str(text)?)
     }
 
-    /// Compact binary (postcard).
+    /// Compact binary (postcard): the world and the loop, then the scene's
+    /// name (after them, so files written before it was kept still load).
     pub fn to_bytes(&self) -> Vec<u8> {
-        postcard::to_stdvec(self).expect("a snapshot always serializes")
+        let mut bytes = postcard::to_stdvec(&(&self.world, &self.timestep))
+            .expect("a snapshot always serializes");
+        if self.scene.is_some() {
+            bytes.extend(postcard::to_stdvec(&self.scene).expect("a name always serializes"));
+        }
+        bytes
     }
 
     /// Parses the compact binary form.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self> {
-        Ok(postcard::from_bytes(bytes)?)
+        let ((world, timestep), rest) = postcard::take_from_bytes(bytes)?;
+        let scene = match rest {
+            [] => None,
+            rest => postcard::from_bytes(rest)?,
+        };
+        Ok(Self {
+            world,
+            timestep,
+            scene,
+        })
+    }
+
+    /// An error unless the snapshot may resume a run of the scene named
+    /// `scene` (its own, or one whose name it did not keep).
+    pub fn check_scene(&self, scene: &str) -> Result<()> {
+        match &self.scene {
+            Some(own) if own != scene => bail!(
+                "is a snapshot of the scene `{own}`, not `{scene}`: its bodies and platforms \
+                 are that scene's"
+            ),
+            _ => Ok(()),
+        }
     }
 
     /// Writes `.ron` files as RON and any other as binary.
@@ -89,4 +123,38 @@ impl GameSnapshot {
 fn is_ron(path: &Path) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("ron"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_scene_name_round_trips_and_files_without_it_still_load() {
+        let world = World::default();
+        let timestep = FixedTimestep::from_hz(60.0).unwrap();
+        let bare = GameSnapshot::capture(&world, &timestep);
+        let named = GameSnapshot {
+            scene: Some("Rain".into()),
+            ..bare.clone()
+        };
+        for snapshot in [&bare, &named] {
+            assert_eq!(
+                &GameSnapshot::from_bytes(&snapshot.to_bytes()).unwrap(),
+                snapshot
+            );
+            assert_eq!(
+                &GameSnapshot::from_ron(&snapshot.to_ron()).unwrap(),
+                snapshot
+            );
+        }
+        // The named form is the bare one with the name after it: a file
+        // written before names were kept reads as one with no name.
+        let (bare_bytes, named_bytes) = (bare.to_bytes(), named.to_bytes());
+        assert!(named_bytes.starts_with(&bare_bytes) && named_bytes.len() > bare_bytes.len());
+        assert!(!bare.to_ron().contains("scene"));
+        assert!(named.check_scene("Rain").is_ok() && bare.check_scene("Stack").is_ok());
+        let err = named.check_scene("Stack").unwrap_err().to_string();
+        assert!(err.contains("`Rain`, not `Stack`"), "{err}");
+    }
 }

@@ -220,6 +220,23 @@ fn a_saved_snapshot_resumes_to_the_same_hash_as_an_uninterrupted_run() {
         ]);
         assert!(rest.status.success(), "{}", stderr(&rest));
         assert_eq!(stdout(&rest), stdout(&whole), "{name}");
+        // Another scene does not resume from it: its platforms would not be
+        // driven and its bodies not named (a stack resumed from a
+        // playground's snapshot flew its lift off, exit 0).
+        let other = passo(&[
+            "simulate",
+            "stack",
+            "--ticks",
+            "1",
+            "--resume",
+            file.to_str().unwrap(),
+        ]);
+        assert_eq!(other.status.code(), Some(1), "{name}: {}", stderr(&other));
+        let err = stderr(&other);
+        assert!(
+            err.contains(name) && err.contains("snapshot of the scene `Rain`, not `Stack`"),
+            "{err}"
+        );
     }
     std::fs::remove_dir_all(dir).unwrap();
 }
