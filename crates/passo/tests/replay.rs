@@ -83,7 +83,10 @@ fn record(frame: Duration) -> Replay {
 fn a_recorded_run_replays_to_the_same_final_state() {
     let replay = record(Duration::from_micros(6944)); // about 144 FPS
     assert!(replay.ticks > 60, "{} ticks", replay.ticks);
-    assert!(replay.inputs.len() >= 4 && replay.commands.len() == 4);
+    // The session's integrator and sliders at tick 0 (the rate is the
+    // scene's own), then the script's four commands.
+    assert!(replay.inputs.len() >= 4 && replay.commands.len() == 2 + 4);
+    assert!(replay.commands[..2].iter().all(|(tick, _)| *tick == 0));
     assert_eq!(
         run_replay(&replay).unwrap(),
         replay.final_hash,
@@ -135,7 +138,18 @@ fn a_recording_that_ends_with_a_command_replays_to_its_final_state() {
         .unwrap();
         let replay = sim.stop_recording().unwrap();
         assert_eq!(replay.ticks, ticks);
-        assert_eq!(replay.commands.len(), 1);
+        // The session's integrator and sliders at tick 0, then the spawn.
+        assert_eq!(replay.commands.len(), 2 + 1);
+        assert_eq!(
+            replay.commands[2],
+            (
+                ticks,
+                Command::Spawn {
+                    at: [2.0, 6.0],
+                    round: true
+                }
+            )
+        );
         assert_eq!(
             run_replay(&replay).unwrap(),
             replay.final_hash,
@@ -451,4 +465,46 @@ fn replays_out_of_order_past_the_end_absurd_or_endless_are_refused() {
         err.contains("larger than a replay file may be (64 MiB)"),
         "{err}"
     );
+}
+
+#[test]
+fn settings_changed_before_recording_are_part_of_the_replay() {
+    // The wind, the gravity, the rate, the integrator and the rain's size
+    // set before "record" stay in force through the restart that begins a
+    // recording, but the replay did not say so: played from the scene's
+    // first state it ended elsewhere (`passo replay` reported the wrong
+    // hash).
+    for scene in ["playground", "rain"] {
+        let mut sim = load(&Entry::File(scene.into())).unwrap();
+        let mut knobs = sim.session.knobs;
+        knobs.wind = true;
+        knobs.wind_speed = 9.0;
+        knobs.gravity = -4.0;
+        let knobs = Command::Knobs {
+            knobs,
+            friction: false,
+            restitution: false,
+            drag: false,
+        };
+        sim.command(knobs).unwrap();
+        sim.command(Command::Rate(90.0)).unwrap();
+        sim.command(Command::Integrator(
+            passo_physics::Integrator::VelocityVerlet,
+        ))
+        .unwrap();
+        if sim.scene.rain_count().is_some() {
+            sim.command(Command::RainCount(300)).unwrap();
+        }
+        sim.start_recording().unwrap();
+        for _ in 0..60 {
+            sim.scene.set_input(Input {
+                right: true,
+                ..Default::default()
+            });
+            sim.frame(Duration::from_micros(16_667));
+        }
+        let replay = sim.stop_recording().unwrap();
+        assert!(replay.ticks > 60, "{scene}: {} ticks", replay.ticks);
+        assert_eq!(run_replay(&replay).unwrap(), replay.final_hash, "{scene}");
+    }
 }

@@ -307,6 +307,30 @@ impl Sim {
         self.session.stop_replays();
         self.reset()?;
         self.session.start_recording();
+        // The restart keeps the session's settings, which a replay played
+        // from the scene's first state would not have: the recording
+        // begins by setting each of them (the rain's size first, since it
+        // rebuilds the scene).
+        let mut settings = Vec::new();
+        settings.extend(self.scene.rain_count().map(Command::RainCount));
+        // The rate only if it is not the scene's own (as `load` sets it).
+        let own = self.scene.file.as_ref().map_or(60.0, |f| f.rate_hz);
+        let step = self.session.timestep.step();
+        if FixedTimestep::from_hz(own).map(|t| t.step()) != Ok(step) {
+            settings.push(Command::Rate(self.session.timestep.hz()));
+        }
+        settings.extend([
+            Command::Integrator(self.scene.integrator()),
+            Command::Knobs {
+                knobs: self.session.knobs,
+                friction: false,
+                restitution: false,
+                drag: false,
+            },
+        ]);
+        for command in &settings {
+            self.session.record_command(command);
+        }
         Ok(())
     }
 
