@@ -117,15 +117,9 @@ impl App {
             return Err(e);
         }
         if let Some(r) = self.running.as_mut()
-            && let Some(path) = r.record_to.clone()
-            && let Some(replay) = r.sim.stop_recording()
+            && r.record_to.is_some()
         {
-            replay.save(&path)?;
-            eprintln!(
-                "replay of {} ticks saved to {}",
-                replay.ticks,
-                path.display()
-            );
+            r.save_recording()?;
         }
         if let Some(path) = &self.args.screenshot {
             let image = self

@@ -200,7 +200,10 @@ impl Running {
     fn act(&mut self, actions: Actions) {
         let mut result = Ok(());
         if let Some(entry) = actions.switch_to {
-            result = load(&entry).map(|sim| {
+            // A new scene ends a recording under way: saved first, not
+            // dropped with the old scene.
+            result = self.save_recording();
+            result = result.and_then(|()| load(&entry)).map(|sim| {
                 self.sim = sim;
                 self.entry = entry;
                 self.camera_moved = false;
@@ -216,18 +219,8 @@ impl Running {
         if actions.record {
             result = result.and_then(|()| self.sim.start_recording());
         }
-        if actions.stop_recording
-            && let Some(replay) = self.sim.stop_recording()
-        {
-            let dir = std::path::Path::new("replays");
-            let path = dir.join(format!("{}-{}.ron", replay.scene, replay.ticks));
-            result = result
-                .and_then(|()| std::fs::create_dir_all(dir).map_err(Into::into))
-                .and_then(|()| replay.save(&path));
-            if result.is_ok() {
-                self.message = Some(format!("replay saved to {}", path.display()));
-            }
-            self.last_replay = Some(replay);
+        if actions.stop_recording {
+            result = result.and_then(|()| self.save_recording());
         }
         if actions.replay_last
             && let Some(replay) = self.last_replay.clone()
@@ -237,6 +230,35 @@ impl Running {
         if let Err(e) = result {
             self.message = Some(format!("{e:#}"));
         }
+    }
+
+    /// Stops the recording under way, if any, and saves it: to the
+    /// `--record` file if one was given, else to
+    /// `replays/<scene>-<ticks>.ron`. It is also kept to replay.
+    pub(super) fn save_recording(&mut self) -> Result<()> {
+        let Some(replay) = self.sim.stop_recording() else {
+            return Ok(());
+        };
+        let path = match &self.record_to {
+            Some(path) => path.clone(),
+            None => {
+                let dir = std::path::Path::new("replays");
+                std::fs::create_dir_all(dir)?;
+                dir.join(format!("{}-{}.ron", replay.scene, replay.ticks))
+            }
+        };
+        let saved = replay.save(&path);
+        if saved.is_ok() {
+            let said = format!(
+                "replay of {} ticks saved to {}",
+                replay.ticks,
+                path.display()
+            );
+            eprintln!("{said}");
+            self.message = Some(said);
+        }
+        self.last_replay = Some(replay);
+        saved
     }
 
     /// Fits the scene into the part of the window beside the panel.
