@@ -203,16 +203,28 @@ fn passo_replay_checks_the_final_state() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("not the recorded"));
 
-    // In a real window (Xvfb), the demo plays it and reports the match.
+    // In a real window (Xvfb), the demo plays it, reports the match and
+    // saves a picture of its final state: the replay ends long before frame
+    // 2 000 (the run failed with "no frame was captured").
     if Process::new("xvfb-run").arg("--help").output().is_err() {
         panic!("xvfb-run is missing: install `xvfb xauth` (see the README)");
     }
     let runtime = dir.join("runtime");
     std::fs::create_dir_all(&runtime).unwrap();
+    let shot = dir.join("end.png");
     let out = Process::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x800x24"])
         .arg(env!("CARGO_BIN_EXE_passo"))
-        .args(["demo", "--frames", "2000", "--size", "640x480", "--replay"])
+        .args([
+            "demo",
+            "--frames",
+            "2000",
+            "--size",
+            "640x480",
+            "--screenshot",
+        ])
+        .arg(&shot)
+        .arg("--replay")
         .arg(&good)
         .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
         .env("XDG_RUNTIME_DIR", &runtime)
@@ -228,6 +240,17 @@ fn passo_replay_checks_the_final_state() {
     assert!(
         stdout.contains(&format!("hash {:016x}", replay.final_hash)),
         "{stdout}"
+    );
+    let image = passo_render::RgbaImage::load_png(&shot).unwrap();
+    assert_eq!((image.width, image.height), (640, 480));
+    let background = image.get(0, 0).unwrap();
+    let drawn = (0..480)
+        .flat_map(|y| (0..640).map(move |x| (x, y)))
+        .filter(|&(x, y)| image.get(x, y) != Some(background))
+        .count();
+    assert!(
+        drawn > 10_000,
+        "the panel and the scene are drawn: {drawn} pixels"
     );
     std::fs::remove_dir_all(dir).unwrap();
 }

@@ -93,6 +93,9 @@ struct App {
     skipped: u64,
     screenshot: Option<RgbaImage>,
     summary: Option<String>,
+    /// The replay (`--replay`) reached its end before `--frames` did: the
+    /// next frame is the last, captured for `--screenshot`.
+    replay_ended: bool,
 }
 
 impl App {
@@ -107,6 +110,7 @@ impl App {
             skipped: 0,
             screenshot: None,
             summary: None,
+            replay_ended: false,
         }
     }
 
@@ -254,10 +258,9 @@ impl ApplicationHandler for App {
                 if self.args.stress {
                     r.stress(self.attempted);
                 }
-                match r.redraw(
-                    self.args.frames.is_some_and(|n| self.presented + 1 == n)
-                        && self.args.screenshot.is_some(),
-                ) {
+                let last =
+                    self.args.frames.is_some_and(|n| self.presented + 1 == n) || self.replay_ended;
+                match r.redraw(last && self.args.screenshot.is_some()) {
                     Ok(Some(shot)) => {
                         self.presented += 1;
                         if shot.is_some() {
@@ -273,7 +276,12 @@ impl ApplicationHandler for App {
                         .playback_status()
                         .is_some_and(|(_, _, result, _)| result.is_some());
                 if let Some(n) = self.args.frames {
-                    if self.presented >= n || replay_done {
+                    // A replay ending before frame `n` ends the run, once a
+                    // frame of its final state is captured for --screenshot
+                    // (the run failed with no frame captured).
+                    self.replay_ended |= replay_done;
+                    let captured = self.args.screenshot.is_none() || self.screenshot.is_some();
+                    if self.presented >= n || (replay_done && captured) {
                         self.summary = Some(r.summary(self.presented, self.skipped));
                         event_loop.exit();
                     } else if self.attempted > n * 10 + 100 {
