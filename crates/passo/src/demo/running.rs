@@ -163,7 +163,13 @@ impl Running {
         let world_at = self
             .camera
             .pixel_to_world(self.mouse.at, self.surface.size());
+        // The panel covers the window's left edge: a press there is the
+        // panel's, even when egui has not yet drawn a frame with the pointer
+        // over it (a click on a checkbox right after moving onto it also
+        // spawned a ball under the panel, out of sight but in replays).
+        let on_panel = self.mouse.at.x < self.panel_px;
         match (button, down) {
+            (MouseButton::Left, true) if on_panel => {}
             (MouseButton::Left, true) => match self.sim.scene.pick(world_at) {
                 Some(id) => self.mouse.fling = Some((id, world_at)),
                 None => {
