@@ -52,10 +52,25 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 /// --screenshot`): it must end in `.png`, the one format written, so that
 /// nothing is written as PNG under another format's name.
 pub fn png_path(text: &str) -> Result<PathBuf, String> {
-    let path = PathBuf::from(text);
+    let path = output_path(text)?;
     match path.extension() {
         Some(e) if e.eq_ignore_ascii_case("png") => Ok(path),
         _ => Err(format!("must name a .png file, got {text}")),
+    }
+}
+
+/// A path a command writes when its work is done (a picture, a snapshot,
+/// a replay): its directory must exist, checked before the work begins,
+/// so that a whole run or session is not lost to a mistyped directory at
+/// the end.
+pub fn output_path(text: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(text);
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(format!(
+            "the directory {} of {text} does not exist",
+            dir.display()
+        )),
+        _ => Ok(path),
     }
 }
 

@@ -31,7 +31,7 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub resume: Option<PathBuf>,
     /// After the run, save a snapshot (`.ron`: readable; else binary).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::render_cmd::output_path)]
     pub save: Option<PathBuf>,
 }
 

@@ -342,6 +342,46 @@ fn render_refuses_an_output_that_is_not_png_before_simulating() {
 }
 
 #[test]
+fn outputs_in_a_directory_that_does_not_exist_are_refused_before_the_work() {
+    // Each was written only at the end: a render of 10^8 ticks, a long
+    // simulation, or a whole recorded session, lost to a mistyped
+    // directory.
+    let missing = "/nonexistent-passo-dir/out";
+    for (args, flag) in [
+        (
+            vec!["render", "rain", "--ticks", "100000000", "--out"],
+            "--out <OUT>",
+        ),
+        (
+            vec!["simulate", "rain", "--ticks", "100000000", "--save"],
+            "--save <SAVE>",
+        ),
+        (vec!["demo", "--record"], "--record <RECORD>"),
+        (
+            vec!["demo", "--frames", "1", "--screenshot"],
+            "--screenshot <SCREENSHOT>",
+        ),
+    ] {
+        let file = if flag.contains("SAVE") || flag.contains("RECORD") {
+            format!("{missing}/x.ron")
+        } else {
+            format!("{missing}/x.png")
+        };
+        let mut args = args;
+        args.push(&file);
+        let out = passo(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: an argument error");
+        let err = stderr(&out);
+        assert!(
+            err.contains(flag) && err.contains("the directory /nonexistent-passo-dir/out of"),
+            "{err}"
+        );
+    }
+    // A file in the working directory (no directory named) is fine.
+    assert_eq!(passo::render_cmd::output_path("x.png"), Ok("x.png".into()));
+}
+
+#[test]
 fn report_refuses_an_output_directory_it_cannot_make_before_measuring() {
     // An existing file where the directory should go: before, the error
     // came after minutes of measuring.

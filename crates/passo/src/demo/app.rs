@@ -41,7 +41,7 @@ pub struct DemoArgs {
     pub software: bool,
     /// Record the player's input and commands from the start, and save the
     /// replay to this file on exit.
-    #[arg(long, conflicts_with = "replay")]
+    #[arg(long, conflicts_with = "replay", value_parser = crate::render_cmd::output_path)]
     pub record: Option<PathBuf>,
     /// Play this replay file in the window; with --frames, exit when it ends.
     #[arg(long)]
