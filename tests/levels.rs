@@ -283,6 +283,15 @@ fn tmx_4x2(data: &str) -> String {
     )
 }
 
+/// [`tmx_4x2`] with a CSV layer, naming the tilesets `tilesets` (files)
+/// instead of its own.
+fn tmx_4x2_naming(tilesets: &str) -> String {
+    tmx_4x2(r#"<data encoding="csv">1,0,0,1,1,1,1,1</data>"#).replace(
+        r#"<tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1"/>"#,
+        tilesets,
+    )
+}
+
 #[test]
 fn a_compressed_layer_reads_as_its_csv_form() {
     let csv = tmx_4x2(r#"<data encoding="csv">1,0,0,1,1,1,1,1</data>"#);
@@ -341,10 +350,7 @@ fn maps_that_would_exhaust_the_machine_are_errors() {
         "</x>".repeat(100)
     );
     let scene = map_file("deep_set.tsx", &tileset);
-    let map = tmx_4x2(r#"<data encoding="csv">1,0,0,1,1,1,1,1</data>"#).replace(
-        r#"<tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1"/>"#,
-        r#"<tileset firstgid="1" source="deep_set.tsx"/>"#,
-    );
+    let map = tmx_4x2_naming(r#"<tileset firstgid="1" source="deep_set.tsx"/>"#);
     let dir = std::path::Path::new(&scene).parent().unwrap();
     std::fs::write(dir.join("uses_set.tmx"), map).unwrap();
     let err = level_ref("uses_set.tmx")
@@ -569,8 +575,7 @@ fn a_map_and_the_files_it_names_are_bounded_together() {
     let scene = map_file("big.tsx", &big);
     let dir = dir_of(&scene);
     std::fs::create_dir_all(dir.join("d")).unwrap();
-    let map = tmx_4x2(r#"<data encoding="csv">1,0,0,1,1,1,1,1</data>"#).replace(
-        r#"<tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1"/>"#,
+    let map = tmx_4x2_naming(
         r#"<tileset firstgid="1" source="big.tsx"/><tileset firstgid="2" source="d/../big.tsx"/>"#,
     );
     std::fs::write(dir.join("twice.tmx"), map).unwrap();
