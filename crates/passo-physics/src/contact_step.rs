@@ -526,9 +526,11 @@ impl Moves<'_> {
         let bodies = pos.iter_mut().zip(state.iter_mut()).zip(delta.iter_mut());
         for (k, ((p, s), d)) in bodies.enumerate() {
             let i = first + k;
+            let mut limited = false;
             if let Some(limits) = limit(i) {
                 let before = s.vel;
-                if limits.apply(&mut s.vel) && self.replay {
+                limited = limits.apply(&mut s.vel);
+                if limited && self.replay {
                     // The contacts' change so far kept, as if the body had
                     // started the substep at the limited speed: a limit's
                     // change is not replayed (and a body no contact touched
@@ -537,8 +539,13 @@ impl Moves<'_> {
                 }
             }
             // Semi-implicit Euler adds an exact zero here, as the
-            // no-contact path does: the same bits either way.
-            let c = self.correction.map_or(Vec2::ZERO, |c| c[i]);
+            // no-contact path does: the same bits either way. A limit that
+            // changed the velocity leaves the correction out, as that path
+            // does (it was worked out for the velocity before the limit).
+            let c = match self.correction {
+                Some(c) if !limited => c[i],
+                _ => Vec2::ZERO,
+            };
             *p += (s.vel + s.push) * self.h + c;
             *d = *p - self.start[i];
         }

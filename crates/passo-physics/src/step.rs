@@ -189,10 +189,18 @@ impl World {
             for (k, (p, v)) in pos.iter_mut().zip(vel.iter_mut()).enumerate() {
                 let i = offset + k;
                 let params = arrays.params(i);
-                let (mut nv, c) =
+                let (mut nv, mut c) =
                     integrate_velocity(integrator, &forces, *p, *v, &params, dt, &mut resets);
-                if let Some(uniform) = limits {
-                    uniform.unwrap_or(arrays.limits[i]).apply(&mut nv);
+                // A limit that changed the velocity leaves out the
+                // integrator's correction, worked out for the velocity
+                // before it: the body moves by its limited velocity, as with
+                // semi-implicit Euler. Kept, it moved a body clamped from a
+                // hard push backwards (2.61 m in a step with explicit Euler)
+                // and made one snapped to rest under gravity climb.
+                if let Some(uniform) = limits
+                    && uniform.unwrap_or(arrays.limits[i]).apply(&mut nv)
+                {
+                    c = Vec2::ZERO;
                 }
                 *v = nv;
                 *p += nv * dt + c;
