@@ -390,16 +390,37 @@ pub(crate) fn ray_shape(
     }
     match *shape {
         Shape::Circle { radius } => {
-            // |o + t d - c|^2 = r^2 with |d| = 1: t^2 + 2 b t + c = 0.
+            // |o + t d - c|^2 = r^2 with |d| = 1: t^2 + 2 b t + c = 0, in
+            // the forms of `cast::ray_circle` that keep their digits from
+            // afar (written as b^2 - c, the discriminant subtracted two
+            // numbers of the distance squared: 300 m from a 5 cm circle it
+            // lost the radius, and the hit came back at the centre with a
+            // zero normal):
+            // - the discriminant as r^2 - q^2, with q the line's distance
+            //   from the centre (Lagrange's identity);
+            // - the first root as -b - sqrt(disc) from afar, and as
+            //   c / (-b + sqrt(disc)) near the circle, where the first
+            //   form cancels (c, the distance squared less r^2, is small
+            //   there, and overflows only from afar);
+            // - the normal from q and the discriminant, not from the hit
+            //   point less the centre.
+            // The origin is outside (else `shape_contains`): heading away
+            // (b > 0), the ray misses.
             let m = origin - p;
             let b = m.dot(dir);
-            let c = m.length_squared() - radius * radius;
-            let disc = b * b - c;
-            if disc < 0.0 {
+            let q = m.dot(dir.perp());
+            let disc = radius * radius - q * q;
+            if disc < 0.0 || b > 0.0 {
                 return None;
             }
-            let t = -b - disc.sqrt();
-            (t >= 0.0 && t <= max_t).then(|| (t, (m + dir * t) / radius))
+            let root = disc.sqrt();
+            let t = if -b > 2.0 * root {
+                -b - root
+            } else {
+                (m.length_squared() - radius * radius) / (-b + root)
+            };
+            let normal = (dir.perp() * q - dir * root) / radius;
+            (t >= 0.0 && t <= max_t).then_some((t, normal))
         }
         Shape::Box { half_extents } => {
             // Slabs: the latest entry over both axes is the hit.
