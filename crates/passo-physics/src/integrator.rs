@@ -38,8 +38,10 @@ pub enum Integrator {
     /// flips cancel, so a body slower than about `mu g dt` kept coasting for
     /// ever. Verlet and RK4 apply it in its exact form for half a step
     /// before their stages and half after (Strang splitting): a sliding
-    /// body stops exactly and never reverses, and the rest of the forces
-    /// keep the method's order.
+    /// body stops exactly and never reverses. The splitting is second
+    /// order: while dry friction acts, RK4 converges at second order (a
+    /// spring with `mu = 0.2` friction: slopes 1.7-2.0 from dt = 1/8 to
+    /// 1/64), and fourth order again where none acts.
     Rk4,
 }
 
