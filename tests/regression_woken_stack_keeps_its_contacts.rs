@@ -143,3 +143,57 @@ fn a_stack_woken_at_the_start_of_a_step_is_solved_whole_in_it() {
         );
     }
 }
+
+#[test]
+fn waking_every_body_keeps_the_stored_contacts_for_queries_until_the_next_step() {
+    // `wake_all`, new settings, a force model or a static body's change
+    // let every sleeping contact go at once: a sleeping player reported not
+    // standing (and `contacts_of` nothing) until the next step, where
+    // `wake(id)` keeps its island's. A snapshot taken in between restores
+    // to a world that steps as this one does.
+    type Poke = fn(&mut World);
+    let pokes: [(&str, Poke); 4] = [
+        ("wake_all", |w| w.wake_all()),
+        ("set_settings", |w| w.set_settings(*w.settings()).unwrap()),
+        ("a static body added", |w| {
+            let far = BodyDef::new_static(Vec2::new(50.0, 5.0), Shape::rect(2.0, 0.5));
+            w.add_body(far).unwrap();
+        }),
+        ("wake", |w| {
+            let id = w
+                .bodies()
+                .find(|b| b.kind == passo_physics::BodyKind::Dynamic)
+                .unwrap()
+                .id;
+            w.wake(id);
+        }),
+    ];
+    for (what, poke) in pokes {
+        let (mut world, boxes) = stack_and_ball(true);
+        // The ball, thrown at the stack, lands in about ten ticks.
+        let bottom = boxes[0];
+        assert_eq!(world.is_asleep(bottom), Some(true), "{what}");
+        assert!(world.is_standing(bottom, 0.7), "{what}");
+        let contacts = world.contacts().count();
+        poke(&mut world);
+        assert_eq!(
+            world.is_asleep(bottom),
+            Some(false),
+            "{what}: awake at once"
+        );
+        assert!(world.is_standing(bottom, 0.7), "{what}: still standing");
+        assert_eq!(world.contacts().count(), contacts, "{what}");
+        assert!(world.contacts_of(bottom).count() >= 2, "{what}");
+        let saved = world.snapshot();
+        let mut restored = World::from_snapshot(saved).unwrap();
+        for tick in 0..30 {
+            world.step(1.0 / 60.0);
+            restored.step(1.0 / 60.0);
+            assert_eq!(
+                world.state_hash(),
+                restored.state_hash(),
+                "{what}, tick {tick}"
+            );
+        }
+    }
+}

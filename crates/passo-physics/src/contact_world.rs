@@ -338,6 +338,13 @@ impl ContactWorld {
         self.revision += 1;
     }
 
+    /// Wakes every body for game code, keeping the stored contacts listed
+    /// until the next step (see `SleepingContacts::wake_all_later`).
+    pub(crate) fn wake_all_later(&mut self, dynamic: &mut DynamicBodies) {
+        self.sleeping.wake_all_later(dynamic);
+        self.revision += 1;
+    }
+
     /// Wakes the islands game code woke since the last step.
     pub(crate) fn flush_wakes(&mut self, dynamic: &mut DynamicBodies) {
         if self.sleeping.has_pending() {

@@ -67,6 +67,11 @@ pub(crate) struct SleepingContacts {
     /// needs them awake), so waking one island costs one lookup, not a
     /// pass over every body. Looked up, never iterated.
     pending: HashSet<u32>,
+    /// Game code woke every body since the last step: the stored contacts
+    /// and the sleep tree go when the next step begins (or a removal or a
+    /// snapshot needs them gone), as a woken island's do; until then
+    /// queries still see the contacts.
+    all_pending: bool,
 }
 
 impl SleepingContacts {
@@ -94,11 +99,13 @@ impl SleepingContacts {
         self.left = 0;
         self.islands.clear();
         self.pending.clear();
+        self.all_pending = false;
     }
 
-    /// Whether any body sleeps or any contact is stored.
+    /// Whether any body sleeps or any contact is stored (and not on its
+    /// way out: every body woken).
     pub(crate) fn any(&self, dynamic: &DynamicBodies) -> bool {
-        !self.list.is_empty() || dynamic.sleep.iter().any(|s| s.is_asleep())
+        (!self.all_pending && !self.list.is_empty()) || dynamic.sleep.iter().any(|s| s.is_asleep())
     }
 
     /// Whether dynamic body `i` sleeps in the tree (it then needs no proxy
@@ -293,33 +300,63 @@ impl SleepingContacts {
 
     /// Whether game code woke `island` since the last step.
     pub(crate) fn is_pending(&self, island: u32) -> bool {
-        self.pending.contains(&island)
+        self.all_pending || self.pending.contains(&island)
     }
 
     /// Whether any island waits to wake.
     pub(crate) fn has_pending(&self) -> bool {
-        !self.pending.is_empty()
+        self.all_pending || !self.pending.is_empty()
     }
 
     /// Wakes the islands game code woke since the last step: one pass
-    /// over the bodies and the stored contacts for all of them.
+    /// over the bodies and the stored contacts for all of them (or, after
+    /// [`wake_all_later`](Self::wake_all_later), lets every stored contact
+    /// go).
     pub(crate) fn flush(&mut self, dynamic: &mut DynamicBodies) {
-        if !self.pending.is_empty() {
+        if std::mem::take(&mut self.all_pending) {
+            self.pending.clear();
+            self.forget_stored();
+        } else if !self.pending.is_empty() {
             self.pending.clear();
             self.wake_marked(dynamic);
         }
     }
 
-    /// Wakes every body. Nothing happens when every body is already awake
-    /// with no rest time and nothing is stored: the step calls this while
-    /// sleeping is off and while the stage is idle.
+    /// Wakes every body now. Nothing happens when every body is already
+    /// awake with no rest time and nothing is stored: the step calls this
+    /// while sleeping is off and while the stage is idle.
     pub(crate) fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
+        if self.wake_every_body(dynamic) {
+            self.all_pending = false;
+            self.forget_stored();
+        }
+    }
+
+    /// Wakes every body, for game code: the bodies report awake at once,
+    /// and their stored contacts stay listed for queries until the next
+    /// [`flush`](Self::flush), as a woken island's do (they vanished at
+    /// once: a sleeping player reported not standing until the next step).
+    pub(crate) fn wake_all_later(&mut self, dynamic: &mut DynamicBodies) {
+        if self.wake_every_body(dynamic) {
+            self.all_pending = true;
+        }
+    }
+
+    /// Every body awake and no island marked or pending; false (and
+    /// nothing done) when every body was awake with no rest time already
+    /// and nothing is stored.
+    fn wake_every_body(&mut self, dynamic: &mut DynamicBodies) -> bool {
         self.pending.clear();
         self.islands.forget_marks();
         if self.list.is_empty() && self.tree.len() == 0 && dynamic.all_fresh() {
-            return;
+            return false;
         }
         dynamic.wake_all();
+        true
+    }
+
+    /// Lets go of every stored contact and empties the sleep tree.
+    fn forget_stored(&mut self) {
         self.list.clear();
         self.tree.rebuild([]);
         self.tree_bodies.clear();

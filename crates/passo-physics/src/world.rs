@@ -278,7 +278,7 @@ impl World {
             return;
         }
         match &mut self.contacts {
-            Some(cw) => cw.wake_all(&mut self.dynamic),
+            Some(cw) => cw.wake_all_later(&mut self.dynamic),
             None => self.dynamic.wake_all(),
         }
     }
