@@ -165,7 +165,7 @@ fn waking_every_body_keeps_the_stored_contacts_for_queries_until_the_next_step()
                 .find(|b| b.kind == passo_physics::BodyKind::Dynamic)
                 .unwrap()
                 .id;
-            w.wake(id);
+            w.wake(id).unwrap();
         }),
     ];
     for (what, poke) in pokes {
