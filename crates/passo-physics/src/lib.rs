@@ -66,6 +66,8 @@ mod kernel;
 
 // Geometry and pairs.
 mod manifold;
+// Rays against one shape.
+mod ray;
 // Which face moving bodies meet at corners and steps.
 mod corners;
 mod static_tree;

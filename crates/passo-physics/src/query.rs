@@ -5,8 +5,9 @@ use crate::bodies::BodyMeta;
 use crate::broad_phase::BroadPhase;
 use crate::cast::cast_shape;
 use crate::constraint::{Constraint, ContactInfo};
-use crate::manifold::{collide, ray_shape, shape_contains};
+use crate::manifold::collide;
 use crate::query_index::QueryIndex;
+use crate::ray::{ray_shape, shape_contains};
 use crate::{Aabb, BodyId, BodyKind, Contact, ContactEvents, SensorPair, Shape, World};
 use glam::Vec2;
 
