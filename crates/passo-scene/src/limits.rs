@@ -85,13 +85,15 @@ impl MapBudget {
     /// Reads a JSON file of a Tiled map as text: [`read`](Self::read), then
     /// its values counted against what is left of [`MAX_JSON_VALUES`].
     pub(crate) fn read_json(&self, path: &Path) -> std::io::Result<String> {
-        let invalid = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
-        let text = String::from_utf8(self.read(path)?).map_err(|e| invalid(e.to_string()))?;
+        let text = text(self.read(path)?)?;
         let left = self.values.get();
         let values = json_values(text.as_bytes(), left).ok_or_else(|| {
-            invalid(format!(
-                "takes the map and its tilesets past {MAX_JSON_VALUES} JSON values together"
-            ))
+            std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "takes the map and its tilesets past {MAX_JSON_VALUES} JSON values together"
+                ),
+            )
         })?;
         self.values.set(left - values);
         Ok(text)
@@ -151,7 +153,12 @@ pub fn read_at_most(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
 
 /// [`read_file`] as text.
 pub(crate) fn read_text(path: &Path) -> std::io::Result<String> {
-    String::from_utf8(read_file(path)?)
+    text(read_file(path)?)
+}
+
+/// `bytes` as UTF-8 text, or an `InvalidData` error.
+fn text(bytes: Vec<u8>) -> std::io::Result<String> {
+    String::from_utf8(bytes)
         .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()))
 }
 

@@ -40,16 +40,22 @@ pub fn load(entry: &Entry) -> Result<Sim> {
     match entry {
         Entry::Integrators => Ok(Sim::new(
             SceneState::integrators(),
-            FixedTimestep::from_hz(60.0).expect("60 Hz is valid"),
+            FixedTimestep::from_hz(own_rate(None)).expect("60 Hz is valid"),
             "integrators".into(),
         )),
         Entry::File(name) => {
             let scene = crate::scenes::load(name)?;
             let state = SceneState::from_scene(&scene, crate::scenes::plot(name))?;
-            let timestep = FixedTimestep::from_hz(scene.file.rate_hz)?;
+            let timestep = FixedTimestep::from_hz(own_rate(Some(&scene.file)))?;
             Ok(Sim::new(state, timestep, name.clone()))
         }
     }
+}
+
+/// A scene's own fixed rate, Hz: its file's, or 60 Hz for the
+/// integrators' comparison (which has no file).
+fn own_rate(file: Option<&SceneFile>) -> f64 {
+    file.map_or(60.0, |f| f.rate_hz)
 }
 
 /// Plays a replay headlessly, one tick after the other, and returns the
@@ -314,7 +320,7 @@ impl Sim {
         let mut settings = Vec::new();
         settings.extend(self.scene.rain_count().map(Command::RainCount));
         // The rate only if it is not the scene's own (as `load` sets it).
-        let own = self.scene.file.as_ref().map_or(60.0, |f| f.rate_hz);
+        let own = own_rate(self.scene.file.as_ref());
         let step = self.session.timestep.step();
         if FixedTimestep::from_hz(own).map(|t| t.step()) != Ok(step) {
             settings.push(Command::Rate(self.session.timestep.hz()));
