@@ -5,6 +5,7 @@
 use crate::Shape;
 use crate::body::{Body, BodyDef, BodyKind};
 use crate::collider::ColliderRef;
+use crate::columns::{Columns, ColumnsMut, ColumnsRef};
 use crate::filter::CollisionFilter;
 use crate::forces::BodyParams;
 use crate::id::BodyId;
@@ -169,14 +170,16 @@ impl SpeedLimits {
 }
 
 /// Dynamic bodies in structure-of-arrays form: the step walks these slices.
+/// Positions, velocities and forces are split further into x and y (see
+/// [`Columns`]).
 ///
 /// Removal swaps the last body into the hole, so the arrays stay packed.
 #[derive(Clone, Debug, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct DynamicBodies {
-    pub pos: Vec<Vec2>,
-    pub vel: Vec<Vec2>,
-    pub force: Vec<Vec2>,
+    pub pos: Columns,
+    pub vel: Columns,
+    pub force: Columns,
     pub inv_mass: Vec<f32>,
     /// `Cd * A` per body, square metres.
     pub drag_area: Vec<f32>,
@@ -186,7 +189,7 @@ pub(crate) struct DynamicBodies {
     pub friction_force: Vec<f32>,
     pub limits: Vec<SpeedLimits>,
     /// Positions at the start of the last step; empty unless interpolation is on.
-    pub prev_pos: Vec<Vec2>,
+    pub prev_pos: Columns,
     /// Rest time and island of each body (see `sleep`).
     pub sleep: Vec<SleepState>,
     pub meta: Vec<BodyMeta>,
@@ -232,7 +235,7 @@ impl PartialEq for DynamicBodies {
 /// The arrays a body's forces are computed from, borrowed apart from the
 /// positions and velocities that a step writes.
 pub(crate) struct BodyArrays<'a> {
-    pub force: &'a [Vec2],
+    pub force: ColumnsRef<'a>,
     pub inv_mass: &'a [f32],
     pub drag_area: &'a [f32],
     pub friction: &'a [f32],
@@ -241,12 +244,26 @@ pub(crate) struct BodyArrays<'a> {
 }
 
 impl BodyArrays<'_> {
+    /// The arrays of the `n` bodies from `offset` on, indexed from 0 (so
+    /// that a loop over `0..n` reads them with no bounds checks).
+    pub(crate) fn run(&self, offset: usize, n: usize) -> BodyArrays<'_> {
+        let r = offset..offset + n;
+        BodyArrays {
+            force: self.force.slice(r.clone()),
+            inv_mass: &self.inv_mass[r.clone()],
+            drag_area: &self.drag_area[r.clone()],
+            friction: &self.friction[r.clone()],
+            friction_force: &self.friction_force[r.clone()],
+            limits: &self.limits[r],
+        }
+    }
+
     /// What the force models read for body `i`.
     #[inline(always)]
     pub(crate) fn params(&self, i: usize) -> BodyParams {
         BodyParams {
             inv_mass: self.inv_mass[i],
-            force: self.force[i],
+            force: self.force.at(i),
             drag_area: self.drag_area[i],
             friction: self.friction[i],
             friction_force: self.friction_force[i],
@@ -260,12 +277,12 @@ impl DynamicBodies {
     }
 
     /// Positions and velocities to write, the rest to read.
-    pub(crate) fn split(&mut self) -> (&mut [Vec2], &mut [Vec2], BodyArrays<'_>) {
+    pub(crate) fn split(&mut self) -> (ColumnsMut<'_>, ColumnsMut<'_>, BodyArrays<'_>) {
         (
-            &mut self.pos,
-            &mut self.vel,
+            self.pos.view_mut(),
+            self.vel.view_mut(),
             BodyArrays {
-                force: &self.force,
+                force: self.force.view(),
                 inv_mass: &self.inv_mass,
                 drag_area: &self.drag_area,
                 friction: &self.friction,
@@ -331,15 +348,15 @@ impl DynamicBodies {
     /// Makes this a copy of `other`, reusing this one's buffers (no
     /// allocation when they are large enough).
     pub(crate) fn copy_from(&mut self, other: &Self) {
-        self.pos.clone_from(&other.pos);
-        self.vel.clone_from(&other.vel);
-        self.force.clone_from(&other.force);
+        self.pos.copy_from(&other.pos);
+        self.vel.copy_from(&other.vel);
+        self.force.copy_from(&other.force);
         self.inv_mass.clone_from(&other.inv_mass);
         self.drag_area.clone_from(&other.drag_area);
         self.friction.clone_from(&other.friction);
         self.friction_force.clone_from(&other.friction_force);
         self.limits.clone_from(&other.limits);
-        self.prev_pos.clone_from(&other.prev_pos);
+        self.prev_pos.copy_from(&other.prev_pos);
         self.sleep.clone_from(&other.sleep);
         self.meta.clone_from(&other.meta);
         self.kinematic.clone_from(&other.kinematic);
@@ -369,9 +386,9 @@ impl DynamicBodies {
         } else {
             BodyKind::Dynamic
         };
-        let mut body = m.view(kind, self.pos[i], self.friction[i]);
-        body.velocity = self.vel[i];
-        body.force = self.force[i];
+        let mut body = m.view(kind, self.pos.at(i), self.friction[i]);
+        body.velocity = self.vel.at(i);
+        body.force = self.force.at(i);
         body.drag_area = self.drag_area[i];
         body.asleep = self.sleep[i].is_asleep();
         body
@@ -447,7 +464,7 @@ impl<'a> Colliders<'a> {
     #[inline(always)]
     pub(crate) fn position(&self, r: ColliderRef) -> Vec2 {
         match r.dynamic_index() {
-            Some(i) => self.dynamic.pos[i],
+            Some(i) => self.dynamic.pos.at(i),
             None => self.statics.pos[r.index()],
         }
     }
@@ -485,15 +502,15 @@ pub(crate) fn heap<T>(v: &Vec<T>) -> usize {
 impl DynamicBodies {
     /// Bytes the arrays hold on the heap.
     pub(crate) fn heap_bytes(&self) -> usize {
-        heap(&self.pos)
-            + heap(&self.vel)
-            + heap(&self.force)
+        self.pos.heap_bytes()
+            + self.vel.heap_bytes()
+            + self.force.heap_bytes()
             + heap(&self.inv_mass)
             + heap(&self.drag_area)
             + heap(&self.friction)
             + heap(&self.friction_force)
             + heap(&self.limits)
-            + heap(&self.prev_pos)
+            + self.prev_pos.heap_bytes()
             + heap(&self.sleep)
             + heap(&self.meta)
             + heap(&self.kinematic)

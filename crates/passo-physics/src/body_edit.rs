@@ -93,9 +93,10 @@ impl World {
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         match location {
             Location::Dynamic(i) => {
-                self.dynamic.pos[i as usize] = position;
-                if let Some(prev) = self.dynamic.prev_pos.get_mut(i as usize) {
-                    *prev = position;
+                let i = i as usize;
+                self.dynamic.pos.set(i, position);
+                if i < self.dynamic.prev_pos.len() {
+                    self.dynamic.prev_pos.set(i, position);
                 }
             }
             Location::Static(i) => {
@@ -120,7 +121,7 @@ impl World {
         finite_vec("velocity", velocity)?;
         if let Some(i) = self.dynamic_index(id)? {
             self.check_velocity(i, velocity, "velocity")?;
-            self.dynamic.vel[i] = velocity;
+            self.dynamic.vel.set(i, velocity);
             self.wake_index(i);
         }
         Ok(())
@@ -169,13 +170,13 @@ impl World {
         if let Some(i) = self.dynamic_index(id)?
             && self.dynamic.meta[i].kinematic
         {
-            let velocity = (target - self.dynamic.pos[i]) / dt;
+            let velocity = (target - self.dynamic.pos.at(i)) / dt;
             finite_vec("velocity to the target", velocity)?;
             self.check_velocity(i, velocity, "velocity to the target")?;
             // A platform held still may sleep with its riders: only a
             // change of velocity wakes them.
-            if self.dynamic.vel[i] != velocity {
-                self.dynamic.vel[i] = velocity;
+            if self.dynamic.vel.at(i) != velocity {
+                self.dynamic.vel.set(i, velocity);
                 self.wake_index(i);
             }
         }
@@ -188,9 +189,9 @@ impl World {
     pub fn try_apply_force(&mut self, id: BodyId, force: Vec2) -> Result<(), PhysicsError> {
         finite_vec("force", force)?;
         if let Some(i) = self.movable_index(id)? {
-            let total = self.dynamic.force[i] + force;
+            let total = self.dynamic.force.at(i) + force;
             finite_vec("accumulated force", total)?;
-            self.dynamic.force[i] = total;
+            self.dynamic.force.set(i, total);
             self.wake_index(i);
         }
         Ok(())
@@ -201,9 +202,9 @@ impl World {
     pub fn try_apply_impulse(&mut self, id: BodyId, impulse: Vec2) -> Result<(), PhysicsError> {
         finite_vec("impulse", impulse)?;
         if let Some(i) = self.movable_index(id)? {
-            let velocity = self.dynamic.vel[i] + impulse * self.dynamic.inv_mass[i];
+            let velocity = self.dynamic.vel.at(i) + impulse * self.dynamic.inv_mass[i];
             self.check_velocity(i, velocity, "velocity after the impulse")?;
-            self.dynamic.vel[i] = velocity;
+            self.dynamic.vel.set(i, velocity);
             self.wake_index(i);
         }
         Ok(())

@@ -400,6 +400,7 @@ impl Pass {
 mod tests {
     use super::*;
     use crate::collider::ColliderRef;
+    use crate::columns::Columns;
     use crate::solver::BodyState;
     use glam::Vec2;
 
@@ -620,24 +621,25 @@ mod tests {
             colouring.build(&rows, 0..rows.len(), 4, &[]);
             // A substep that keeps each body's velocity change.
             let mut motion = Motion::default();
-            motion.begin(&[Vec2::ZERO; 4]);
-            motion.load(&vel0, Start::Track, false, None);
+            let columns = |v: [Vec2; 4]| v.into_iter().collect::<Columns>();
+            motion.begin(columns([Vec2::ZERO; 4]).view());
+            motion.load(columns(vel0).view(), Start::Track, false, None);
             colouring.run(&mut motion.bodies(), &Pass::Begin(params, false));
             for _ in 0..2 {
                 colouring.run(&mut motion.bodies(), &Pass::solve(&params, true));
             }
             colouring.run(&mut motion.bodies(), &Pass::relax(&params));
-            let mut vel = vel0;
-            motion.unload(&mut vel, true, false, None);
+            let mut vel = columns(vel0);
+            motion.unload(vel.view_mut(), true, false, None);
             // The next substep's velocities before its warm start.
-            let next = vel.map(|v| v + Vec2::new(0.0, -0.04));
+            let next: Columns = vel.iter().map(|v| v + Vec2::new(0.0, -0.04)).collect();
             // Warm started by a pass over the contacts...
             let (mut passed, mut replayed) = (motion.clone(), motion);
             let mut passed_colouring = colouring.clone();
-            passed.load(&next, Start::Plain, false, None);
+            passed.load(next.view(), Start::Plain, false, None);
             passed_colouring.run(&mut passed.bodies(), &Pass::Begin(params, false));
             // ...and by the replay, with a pass that only clears the push.
-            replayed.load(&next, Start::Replay, false, None);
+            replayed.load(next.view(), Start::Replay, false, None);
             let (mut fresh, mut fresh_colouring) = (replayed.clone(), colouring.clone());
             let clear = SolverParams {
                 warm_starting: false,
@@ -667,8 +669,8 @@ mod tests {
             }
             let moved: f32 = passed.state[..4]
                 .iter()
-                .zip(&next)
-                .map(|(s, v)| s.vel.distance(*v))
+                .zip(next.iter())
+                .map(|(s, v)| s.vel.distance(v))
                 .sum();
             assert!(moved > 0.1, "the warm start moved the bodies");
             let mut stored = rows.clone();

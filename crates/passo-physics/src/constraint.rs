@@ -125,8 +125,10 @@ impl Constraint {
         // Only a pair that can bounce needs it (the restitution stage skips
         // the others), and only it reads the two velocities.
         let (impact_u, half_an_h) = if restitution > 0.0 {
-            let vel_b = b.dynamic_index().map_or(Vec2::ZERO, |bi| dynamic.vel[bi]);
-            let vn = (vel_b - dynamic.vel[ai]).dot(m.normal);
+            let vel_b = b
+                .dynamic_index()
+                .map_or(Vec2::ZERO, |bi| dynamic.vel.at(bi));
+            let vn = (vel_b - dynamic.vel.at(ai)).dot(m.normal);
             // Relative normal acceleration: gravity moves only the bodies
             // that are free to fall (a static or sleeping body holds).
             let falls = |holds: bool| if holds { Vec2::ZERO } else { gravity };

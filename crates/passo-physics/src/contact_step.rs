@@ -6,6 +6,7 @@
 
 use crate::bodies::{DynamicBodies, SpeedLimits};
 use crate::colouring::Pass;
+use crate::columns::ColumnsMut;
 use crate::constants::DEEP_OVERLAP;
 use crate::contact_world::{ContactWorld, StepParams};
 use crate::integrator::integrate_velocity;
@@ -230,14 +231,15 @@ impl World {
                 (true, _) => Start::Replay,
             };
             let far = cw.regions.far_states();
-            cw.motion.load(&self.dynamic.vel, start, self.parallel, far);
+            cw.motion
+                .load(self.dynamic.vel.view(), start, self.parallel, far);
             self.solve(&mut cw, &plan, moved, start == Start::Replay);
             let far = cw.regions.far_states();
             self.integrate_positions(&mut cw.motion, far, &plan, &correction);
             self.relax(&mut cw, &plan);
             let far = cw.regions.far_states().map(|(homes, far)| (homes, &*far));
             cw.motion
-                .unload(&mut self.dynamic.vel, plan.replay, self.parallel, far);
+                .unload(self.dynamic.vel.view_mut(), plan.replay, self.parallel, far);
         }
         cw.regions.store(&mut cw.solved.rows);
         if plan.substeps > 0 && plan.sweep {
@@ -269,23 +271,37 @@ impl World {
         let integrator = self.settings().integrator;
         let forces = step_forces(&self.settings, &self.custom, self.game_friction);
         let (pos, vel, arrays) = self.dynamic.split();
-        let pos: &[Vec2] = pos;
+        let pos = pos.as_ref();
         let velocity = |i: usize, v: Vec2, resets: &mut u64| {
-            integrate_velocity(integrator, &forces, pos[i], v, &arrays.params(i), h, resets)
+            integrate_velocity(
+                integrator,
+                &forces,
+                pos.at(i),
+                v,
+                &arrays.params(i),
+                h,
+                resets,
+            )
         };
         if plan.corrects {
             for_chunks(parallel, (vel, correction), |offset, (vel, correction)| {
                 let mut resets = 0;
-                for (k, (v, c)) in vel.iter_mut().zip(correction.iter_mut()).enumerate() {
-                    (*v, *c) = velocity(offset + k, *v, &mut resets);
+                let (vx, vy) = vel.into_parts();
+                let correction = &mut correction[..vx.len()];
+                for k in 0..vx.len() {
+                    let v = Vec2::new(vx[k], vy[k]);
+                    let (v, c) = velocity(offset + k, v, &mut resets);
+                    (vx[k], vy[k], correction[k]) = (v.x, v.y, c);
                 }
                 resets
             })
         } else {
             for_chunks(parallel, vel, |offset, vel| {
                 let mut resets = 0;
-                for (k, v) in vel.iter_mut().enumerate() {
-                    *v = velocity(offset + k, *v, &mut resets).0;
+                let (vx, vy) = vel.into_parts();
+                for k in 0..vx.len() {
+                    let v = velocity(offset + k, Vec2::new(vx[k], vy[k]), &mut resets).0;
+                    (vx[k], vy[k]) = (v.x, v.y);
                 }
                 resets
             })
@@ -295,9 +311,9 @@ impl World {
     /// Substep stage: sleeping bodies hold still (no forces, no correction).
     fn hold_sleepers(&mut self, correction: &mut [Vec2], corrects: bool) {
         let b = &mut self.dynamic;
-        for (i, (v, s)) in b.vel.iter_mut().zip(&b.sleep).enumerate() {
+        for (i, s) in b.sleep.iter().enumerate() {
             if s.is_asleep() {
-                *v = Vec2::ZERO;
+                b.vel.set(i, Vec2::ZERO);
                 if corrects {
                     correction[i] = Vec2::ZERO;
                 }
@@ -312,11 +328,12 @@ impl World {
         let b = &mut self.dynamic;
         for (&i, &(_, v)) in b.kinematic.iter().zip(&self.held) {
             let i = i as usize;
-            b.vel[i] = if b.sleep[i].is_asleep() {
+            let v = if b.sleep[i].is_asleep() {
                 Vec2::ZERO
             } else {
                 v
             };
+            b.vel.set(i, v);
             if corrects {
                 correction[i] = Vec2::ZERO;
             }
@@ -417,10 +434,13 @@ impl World {
         if let Some(uniform) = plan.limits {
             for_chunks(
                 parallel,
-                (&mut b.vel[..], &b.limits[..]),
+                (b.vel.view_mut(), &b.limits[..]),
                 |_, (vel, limits)| {
-                    for (v, limits) in vel.iter_mut().zip(limits) {
-                        uniform.unwrap_or(*limits).apply(v);
+                    let (vx, vy) = vel.into_parts();
+                    for (k, limits) in limits[..vx.len()].iter().enumerate() {
+                        let mut v = Vec2::new(vx[k], vy[k]);
+                        uniform.unwrap_or(*limits).apply(&mut v);
+                        (vx[k], vy[k]) = (v.x, v.y);
                     }
                     0
                 },
@@ -439,15 +459,15 @@ impl World {
 fn put_back_non_finite(dynamic: &mut DynamicBodies, cw: &mut ContactWorld) -> u64 {
     let finite = |p: &Vec2, v: &Vec2| p.is_finite() & v.is_finite();
     let all_finite =
-        (dynamic.pos.iter().zip(&dynamic.vel)).fold(true, |ok, (p, v)| ok & finite(p, v));
+        (dynamic.pos.iter().zip(dynamic.vel.iter())).fold(true, |ok, (p, v)| ok & finite(&p, &v));
     if all_finite {
         return 0;
     }
     let mut resets = 0;
     for (i, start) in cw.motion.start.iter().enumerate() {
-        if !finite(&dynamic.pos[i], &dynamic.vel[i]) {
-            dynamic.pos[i] = *start;
-            dynamic.vel[i] = Vec2::ZERO;
+        if !finite(&dynamic.pos.at(i), &dynamic.vel.at(i)) {
+            dynamic.pos.set(i, *start);
+            dynamic.vel.set(i, Vec2::ZERO);
             resets += 1;
         }
     }
@@ -486,7 +506,7 @@ impl Moves<'_> {
     fn run(
         &self,
         parallel: bool,
-        parts: (&mut [Vec2], &mut [BodyState], &mut [Vec2], &mut [Vec2]),
+        parts: (ColumnsMut<'_>, &mut [BodyState], &mut [Vec2], &mut [Vec2]),
         far: Option<(&Homes, &mut [BodyState])>,
         limit: impl Fn(usize) -> Option<SpeedLimits> + Sync,
     ) {
@@ -503,9 +523,9 @@ impl Moves<'_> {
         for_chunks(
             parallel,
             parts,
-            |offset, (pos, state, delta, replay, far)| {
+            |offset, (mut pos, state, delta, replay, far)| {
                 homes.each_state(offset, state, far, |run, states| {
-                    let (pos, delta) = (&mut pos[run.clone()], &mut delta[run.clone()]);
+                    let (pos, delta) = (pos.slice(run.clone()), &mut delta[run.clone()]);
                     let moving = (pos, states, delta, &mut replay[run.clone()]);
                     self.move_run(offset + run.start, moving, &limit);
                 });
@@ -520,12 +540,16 @@ impl Moves<'_> {
     fn move_run(
         &self,
         first: usize,
-        (pos, state, delta, replay): (&mut [Vec2], &mut [BodyState], &mut [Vec2], &mut [Vec2]),
+        (pos, state, delta, replay): (ColumnsMut<'_>, &mut [BodyState], &mut [Vec2], &mut [Vec2]),
         limit: &impl Fn(usize) -> Option<SpeedLimits>,
     ) {
-        let bodies = pos.iter_mut().zip(state.iter_mut()).zip(delta.iter_mut());
-        for (k, ((p, s), d)) in bodies.enumerate() {
-            let i = first + k;
+        // One loop over equal lengths (no bounds checks), with the body's
+        // work written out in it.
+        let (px, py) = pos.into_parts();
+        let n = px.len();
+        let (state, delta, replay) = (&mut state[..n], &mut delta[..n], &mut replay[..n]);
+        for k in 0..n {
+            let (s, i) = (&mut state[k], first + k);
             let mut limited = false;
             if let Some(limits) = limit(i) {
                 let before = s.vel;
@@ -546,8 +570,9 @@ impl Moves<'_> {
                 Some(c) if !limited => c[i],
                 _ => Vec2::ZERO,
             };
-            *p += (s.vel + s.push) * self.h + c;
-            *d = *p - self.start[i];
+            let p = Vec2::new(px[k], py[k]) + ((s.vel + s.push) * self.h + c);
+            (px[k], py[k]) = (p.x, p.y);
+            delta[k] = p - self.start[i];
         }
     }
 }

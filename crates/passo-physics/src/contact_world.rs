@@ -83,7 +83,7 @@ impl ContactWorld {
         step: &StepParams,
     ) {
         self.sleeping.flush(dynamic);
-        self.motion.begin(&dynamic.pos);
+        self.motion.begin(dynamic.pos.view());
         let any_asleep = self.sleeping.any(dynamic);
         let margin = ProxyMargin {
             fall: step.gravity.length() * step.dt,
@@ -119,7 +119,7 @@ impl ContactWorld {
                 let kinematic = |b: ColliderRef| {
                     b.dynamic_index()
                         .filter(|&k| meta[k].kinematic)
-                        .map(|k| vel[k])
+                        .map(|k| vel.at(k))
                 };
                 let rows = &mut self.solved.rows;
                 self.motion.crushes.release(rows, dynamic.len(), kinematic);
@@ -209,7 +209,7 @@ impl ContactWorld {
             };
             let a = c.a as usize;
             let (sa, sb) = (dynamic.sleep[a].is_asleep(), dynamic.sleep[b].is_asleep());
-            let vn = (dynamic.vel[b] - dynamic.vel[a]).dot(c.normal);
+            let vn = (dynamic.vel.at(b) - dynamic.vel.at(a)).dot(c.normal);
             if sa != sb && c.base_separation + vn.min(0.0) * step.dt <= slop {
                 self.sleeping.mark(dynamic, if sa { a } else { b });
                 woke = true;

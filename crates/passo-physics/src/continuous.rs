@@ -197,7 +197,7 @@ impl Sweeps {
         let box_of = |shape: &Shape, at: Vec2| Aabb::from_centre(at, shape.half_extents());
         // The box around dynamic body `i`'s path this step.
         let path_of = |shape: &Shape, i: usize| {
-            let end = box_of(shape, dynamic.pos[i]);
+            let end = box_of(shape, dynamic.pos.at(i));
             start
                 .get(i)
                 .map_or(end, |&from| end.union(&box_of(shape, from)))
@@ -244,7 +244,7 @@ impl Sweeps {
         for &(i, displacement) in &self.stops {
             let i = i as usize;
             motion.delta[i] = displacement;
-            dynamic.pos[i] = motion.start[i] + displacement;
+            dynamic.pos.set(i, motion.start[i] + displacement);
         }
         let n = self.stops.len();
         self.stops.clear();

@@ -28,7 +28,8 @@ impl World {
         };
         let drive = Drive::new(&self.settings().forces, &self.custom);
         let dissipation = Dissipation::new(&self.settings().forces, false);
-        let a = drive.accel(b.pos[i], b.vel[i], &params) + dissipation.accel(b.vel[i], &params);
+        let a = drive.accel(b.pos.at(i), b.vel.at(i), &params)
+            + dissipation.accel(b.vel.at(i), &params);
         Some(a * b.meta[i].mass)
     }
 
@@ -44,7 +45,7 @@ impl World {
         self.movable()
             .map(|i| {
                 0.5 * f64::from(self.dynamic.meta[i].mass)
-                    * f64::from(self.dynamic.vel[i].length_squared())
+                    * f64::from(self.dynamic.vel.at(i).length_squared())
             })
             .sum()
     }
@@ -58,7 +59,7 @@ impl World {
                 potential_energy(
                     &self.settings().forces,
                     &self.custom,
-                    self.dynamic.pos[i],
+                    self.dynamic.pos.at(i),
                     self.dynamic.meta[i].mass,
                 )
             })
@@ -75,8 +76,8 @@ impl World {
         let mut p = [0.0f64; 2];
         for i in self.movable() {
             let m = f64::from(self.dynamic.meta[i].mass);
-            p[0] += m * f64::from(self.dynamic.vel[i].x);
-            p[1] += m * f64::from(self.dynamic.vel[i].y);
+            p[0] += m * f64::from(self.dynamic.vel.at(i).x);
+            p[1] += m * f64::from(self.dynamic.vel.at(i).y);
         }
         p
     }

@@ -94,13 +94,13 @@ impl Islands {
     pub(crate) fn rest(&mut self, bodies: &mut DynamicBodies, moved: &[Vec2], dt: f32) {
         let sleep_sq = SLEEP_SPEED * SLEEP_SPEED;
         let travel_sq = sleep_sq * dt * dt;
-        let states = bodies.sleep.iter_mut().zip(&bodies.vel).zip(moved);
+        let states = bodies.sleep.iter_mut().zip(bodies.vel.iter()).zip(moved);
         for (((s, v), d), &im) in states.zip(&bodies.inv_mass) {
             if !s.is_asleep() {
                 // A kinematic body (inverse mass zero) rests only when game
                 // code stopped it: sleeping would stop a slow platform.
                 let resting = if im == 0.0 {
-                    *v == Vec2::ZERO
+                    v == Vec2::ZERO
                 } else {
                     v.length_squared() < sleep_sq && d.length_squared() < travel_sq
                 };
@@ -160,7 +160,7 @@ impl Islands {
             let root = self.find(i as u32) as usize;
             if self.least_rest[root] >= TIME_TO_SLEEP {
                 bodies.sleep[i].sleep_in(bodies.meta[root].id.index);
-                bodies.vel[i] = Vec2::ZERO;
+                bodies.vel.set(i, Vec2::ZERO);
                 fell = true;
             }
         }

@@ -56,6 +56,9 @@ mod tile_map;
 
 mod forces;
 
+// Vectors split into x and y arrays, which the body arrays hold.
+mod columns;
+
 mod bodies;
 
 // Integration of forces into motion.

@@ -4,6 +4,7 @@
 //! when a large step splits its contacts in two regions (see `regions`),
 //! in which of two arrays each body's state lives ([`Homes`]).
 
+use crate::columns::{ColumnsMut, ColumnsRef};
 use crate::parallel::for_chunks;
 use crate::solver::{BodyState, DeepPiles, SolverBodies};
 use glam::Vec2;
@@ -125,23 +126,23 @@ pub(crate) struct Motion {
 /// The states the passes start from, in `state`, for bodies moving at
 /// `vel`; see [`Start`] (and [`Motion::load`]).
 #[inline(always)]
-fn load_run(state: &mut [BodyState], vel: &[Vec2], replay: &mut [Vec2], start: Start) {
-    let bodies = state.iter_mut().zip(vel).zip(replay);
+fn load_run(state: &mut [BodyState], vel: ColumnsRef<'_>, replay: &mut [Vec2], start: Start) {
+    let bodies = state.iter_mut().zip(vel.iter()).zip(replay);
     match start {
         Start::Replay => {
-            for ((s, &v), replay) in bodies {
+            for ((s, v), replay) in bodies {
                 *s = BodyState::moving(v + *replay);
                 *replay = v;
             }
         }
         Start::Track => {
-            for ((s, &v), replay) in bodies {
+            for ((s, v), replay) in bodies {
                 *s = BodyState::moving(v);
                 *replay = v;
             }
         }
         Start::Plain => {
-            for ((s, &v), _) in bodies {
+            for ((s, v), _) in bodies {
                 *s = BodyState::moving(v);
             }
         }
@@ -152,16 +153,14 @@ fn load_run(state: &mut [BodyState], vel: &[Vec2], replay: &mut [Vec2], start: S
 /// `track`, each body's change in the substep kept in `replay` (see
 /// [`Motion::unload`]).
 #[inline(always)]
-fn unload_run(vel: &mut [Vec2], state: &[BodyState], replay: &mut [Vec2], track: bool) {
-    let bodies = vel.iter_mut().zip(state).zip(replay);
-    if track {
-        for ((v, s), replay) in bodies {
-            *v = s.vel;
-            *replay = s.vel - *replay;
-        }
-    } else {
-        for ((v, s), _) in bodies {
-            *v = s.vel;
+fn unload_run(vel: ColumnsMut<'_>, state: &[BodyState], replay: &mut [Vec2], track: bool) {
+    let (vx, vy) = vel.into_parts();
+    let (state, replay) = (&state[..vx.len()], &mut replay[..vx.len()]);
+    for i in 0..vx.len() {
+        let v = state[i].vel;
+        (vx[i], vy[i]) = (v.x, v.y);
+        if track {
+            replay[i] = v - replay[i];
         }
     }
 }
@@ -187,9 +186,9 @@ pub(crate) enum Start {
 
 impl Motion {
     /// Starts a step at positions `pos`.
-    pub(crate) fn begin(&mut self, pos: &[Vec2]) {
+    pub(crate) fn begin(&mut self, pos: ColumnsRef<'_>) {
         self.start.clear();
-        self.start.extend_from_slice(pos);
+        self.start.extend(pos.iter());
         self.delta.clear();
         self.delta.resize(pos.len(), Vec2::ZERO);
         self.replay.resize(pos.len(), Vec2::ZERO);
@@ -202,7 +201,7 @@ impl Motion {
     /// states, where each body's state is written (see [`Home`]).
     pub(crate) fn load(
         &mut self,
-        vel: &[Vec2],
+        vel: ColumnsRef<'_>,
         start: Start,
         parallel: bool,
         far: Option<(&Homes, &mut [BodyState])>,
@@ -225,7 +224,7 @@ impl Motion {
         let parts = (state, vel, replay, far);
         for_chunks(parallel, parts, |offset, (state, vel, replay, far)| {
             homes.each_state(offset, state, far, |run, states| {
-                load_run(states, &vel[run.clone()], &mut replay[run], start);
+                load_run(states, vel.slice(run.clone()), &mut replay[run], start);
             });
             0
         });
@@ -237,7 +236,7 @@ impl Motion {
     /// each body's home and the second region's states (see [`Home`]).
     pub(crate) fn unload(
         &mut self,
-        vel: &mut [Vec2],
+        vel: ColumnsMut<'_>,
         track: bool,
         parallel: bool,
         far: Option<(&Homes, &[BodyState])>,
@@ -258,8 +257,9 @@ impl Motion {
                 unload_run(vel, state, replay, track);
                 return 0;
             };
+            let mut vel = vel;
             homes.each(offset, vel.len(), |run, home| {
-                let (vel, replay) = (&mut vel[run.clone()], &mut replay[run.clone()]);
+                let (vel, replay) = (vel.slice(run.clone()), &mut replay[run.clone()]);
                 let state = match home {
                     Home::Far => &far[offset + run.start..offset + run.end],
                     Home::Near | Home::Both => &state[run],
@@ -283,6 +283,7 @@ impl Motion {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::columns::Columns;
 
     /// Homes in runs of uneven lengths (1 to 7), cycling through the three.
     fn homes(bodies: usize) -> Vec<Home> {
@@ -324,7 +325,7 @@ mod tests {
         // Enough bodies for the loops to go to the pool in chunks (with
         // the feature), whose edges fall inside runs.
         let n = 3 * crate::constants::PARALLEL_MIN_ITEMS + 17;
-        let vel: Vec<Vec2> = (0..n)
+        let vel: Columns = (0..n)
             .map(|i| Vec2::new(i as f32 * 0.25 - 7.0, 1.0 - i as f32 * 0.125))
             .collect();
         let home = homes(n);
@@ -337,7 +338,7 @@ mod tests {
                 (Start::Replay, true),
             ] {
                 let mut one = Motion::default();
-                one.begin(&vec![Vec2::ZERO; n]);
+                one.begin(vec![Vec2::ZERO; n].into_iter().collect::<Columns>().view());
                 one.replay
                     .iter_mut()
                     .enumerate()
@@ -345,8 +346,8 @@ mod tests {
                 let mut two = one.clone();
                 let mut far = vec![BodyState::default(); n + 1];
 
-                one.load(&vel, start, parallel, None);
-                two.load(&vel, start, parallel, Some((&runs, &mut far)));
+                one.load(vel.view(), start, parallel, None);
+                two.load(vel.view(), start, parallel, Some((&runs, &mut far)));
                 for i in 0..n {
                     let (near, far) = (two.state[i], far[i]);
                     match home[i] {
@@ -371,8 +372,8 @@ mod tests {
                     }
                 }
                 let (mut out_one, mut out_two) = (vel.clone(), vel.clone());
-                one.unload(&mut out_one, track, parallel, None);
-                two.unload(&mut out_two, track, parallel, Some((&runs, &far)));
+                one.unload(out_one.view_mut(), track, parallel, None);
+                two.unload(out_two.view_mut(), track, parallel, Some((&runs, &far)));
                 assert_eq!(out_two, out_one, "{start:?}, parallel {parallel}");
                 assert_eq!(two.replay, one.replay, "{start:?}, parallel {parallel}");
             }

@@ -149,7 +149,9 @@ impl Walker<'_> {
     /// the step (unless the walker looks at now).
     fn place(&self, f: &Found<'_>) -> Vec2 {
         match (self.ahead, f.dynamic) {
-            (Some(dt), Some(i)) if f.meta.kinematic => f.position + self.world.dynamic.vel[i] * dt,
+            (Some(dt), Some(i)) if f.meta.kinematic => {
+                f.position + self.world.dynamic.vel.at(i) * dt
+            }
             _ => f.position,
         }
     }
@@ -331,7 +333,7 @@ impl Walker<'_> {
             else {
                 return;
             };
-            let travel = self.world.dynamic.vel[i] * dt - carried;
+            let travel = self.world.dynamic.vel.at(i) * dt - carried;
             let Some(hit) =
                 crate::cast::cast_shape(&f.shape, f.position, travel, &self.shape, start)
             else {
@@ -518,7 +520,7 @@ impl World {
         let reach = b
             .kinematic
             .iter()
-            .map(|&k| b.vel[k as usize].length() * dt)
+            .map(|&k| b.vel.at(k as usize).length() * dt)
             .fold(0.0, f32::max);
         let mut walker = Walker {
             world: self,

@@ -203,8 +203,8 @@ impl Narrow<'_> {
     /// body's zero.
     fn step_velocity(&self, c: &Collider) -> Vec2 {
         match c.body.dynamic_index() {
-            Some(i) if c.immovable => self.bodies.dynamic.vel[i],
-            Some(i) => self.bodies.dynamic.vel[i] + self.gravity * self.proxies.margin.dt,
+            Some(i) if c.immovable => self.bodies.dynamic.vel.at(i),
+            Some(i) => self.bodies.dynamic.vel.at(i) + self.gravity * self.proxies.margin.dt,
             None => Vec2::ZERO,
         }
     }
@@ -237,7 +237,7 @@ impl Narrow<'_> {
         let vel = |c: &Collider| {
             c.body
                 .dynamic_index()
-                .map_or(Vec2::ZERO, |i| self.bodies.dynamic.vel[i])
+                .map_or(Vec2::ZERO, |i| self.bodies.dynamic.vel.at(i))
         };
         let sank = -(vel(other) - vel(platform)).dot(solid) * self.proxies.margin.dt;
         depth - sank <= ONE_WAY_DEPTH || (self.pressed)(key(a.id, b.id))
@@ -279,7 +279,7 @@ impl Narrow<'_> {
         let vel = |c: &Collider| {
             c.body
                 .dynamic_index()
-                .map_or(Vec2::ZERO, |i| self.bodies.dynamic.vel[i])
+                .map_or(Vec2::ZERO, |i| self.bodies.dynamic.vel.at(i))
         };
         // A body that may travel beyond its reach (fast, or a long step)
         // may be turned far from where it was heading: as far as it

@@ -7,6 +7,8 @@
 //!
 //! [`PARALLEL_CHUNK`]: crate::constants::PARALLEL_CHUNK
 
+use crate::columns::{ColumnsMut, ColumnsRef};
+
 /// Slices walked together, split at the same index: a slice, or a tuple of
 /// slices of equal length.
 // Without the `parallel` feature nothing splits.
@@ -33,6 +35,24 @@ impl<T: Sync> Parts for &[T] {
     }
     fn split_at(self, mid: usize) -> (Self, Self) {
         <[T]>::split_at(self, mid)
+    }
+}
+
+impl Parts for ColumnsMut<'_> {
+    fn len(&self) -> usize {
+        ColumnsMut::len(self)
+    }
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        ColumnsMut::split_at(self, mid)
+    }
+}
+
+impl Parts for ColumnsRef<'_> {
+    fn len(&self) -> usize {
+        ColumnsRef::len(self)
+    }
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        ColumnsRef::split_at(self, mid)
     }
 }
 

@@ -88,7 +88,7 @@ impl ProxyMargin {
     fn proxy(&self, dynamic: &DynamicBodies, i: usize) -> Option<Proxy> {
         let meta = &dynamic.meta[i];
         let shape = meta.shape?;
-        let velocity = dynamic.vel[i];
+        let velocity = dynamic.vel.at(i);
         // The travel once, for the margin and both boxes.
         let travel = self.travel(velocity);
         let reach = if meta.kinematic {
@@ -97,7 +97,7 @@ impl ProxyMargin {
             reach(&shape)
         };
         let margin = Self::within(travel, reach);
-        let aabb = Aabb::from_centre(dynamic.pos[i], shape.half_extents());
+        let aabb = Aabb::from_centre(dynamic.pos.at(i), shape.half_extents());
         Some(Proxy {
             swept: self.swept(aabb, velocity, travel, reach),
             around: aabb.grown(margin),
@@ -316,7 +316,7 @@ impl Proxies {
         self.faces_by_kinematic.clear();
         let box_of = |i: u32| match dynamic.meta[i as usize].shape {
             Some(Shape::Box { half_extents }) => {
-                Some(Aabb::from_centre(dynamic.pos[i as usize], half_extents))
+                Some(Aabb::from_centre(dynamic.pos.at(i as usize), half_extents))
             }
             _ => None,
         };
@@ -325,10 +325,9 @@ impl Proxies {
         }
         // The kinematic boxes in a tree of their own, rebuilt each step
         // (they move): `O(k log k)` for `k` of them.
-        let boxes = dynamic
-            .kinematic
-            .iter()
-            .map(|&k| box_of(k).unwrap_or(Aabb::from_centre(dynamic.pos[k as usize], Vec2::ZERO)));
+        let boxes = dynamic.kinematic.iter().map(|&k| {
+            box_of(k).unwrap_or(Aabb::from_centre(dynamic.pos.at(k as usize), Vec2::ZERO))
+        });
         self.kinematic_tree.rebuild(boxes);
         let (mut neighbours, mut spans) = (
             std::mem::take(&mut self.neighbours),

@@ -406,7 +406,7 @@ impl World {
             (&self.statics.meta[i], self.statics.pos[i], None)
         } else {
             let i = index.moving_item(item);
-            (&self.dynamic.meta[i], self.dynamic.pos[i], Some(i))
+            (&self.dynamic.meta[i], self.dynamic.pos.at(i), Some(i))
         };
         filter.admits(meta).then(|| Found {
             id: meta.id,

@@ -67,7 +67,7 @@ impl QueryIndex {
             let boxes = dynamic.meta.iter().enumerate().filter_map(|(i, m)| {
                 let shape = m.shape?;
                 items.push(i as u32);
-                Some(Aabb::from_centre(dynamic.pos[i], shape.half_extents()))
+                Some(Aabb::from_centre(dynamic.pos.at(i), shape.half_extents()))
             });
             self.moving.rebuild(boxes);
             self.moving_built = Some(version);

@@ -180,7 +180,7 @@ impl SleepingContacts {
         }
         let boxes = self.tree_bodies.iter().map(|&i| {
             let shape = dynamic.meta[i as usize].shape.expect("shaped");
-            Aabb::from_centre(dynamic.pos[i as usize], shape.half_extents())
+            Aabb::from_centre(dynamic.pos.at(i as usize), shape.half_extents())
                 .grown(margin.of(Vec2::ZERO, &shape))
         });
         self.tree.rebuild(boxes);

@@ -193,7 +193,7 @@ impl WorldSnapshot {
                 && (m.mass * d.inv_mass[i] - 1.0).abs() < 1e-3
         };
         let ok = mass_ok
-            && d.force[i].is_finite()
+            && d.force.at(i).is_finite()
             && d.prev_pos.get(i).is_none_or(|p| p.is_finite())
             && d.friction_force[i].is_finite()
             && d.friction_force[i] >= 0.0

@@ -43,6 +43,7 @@
 //! carries on from substep to substep and step to step (see
 //! [`begin_substep`]).
 
+use crate::columns::Columns;
 use crate::constraint::{Constraint, ContactInfo};
 use crate::parallel::{for_chunks, for_chunks_max};
 use glam::Vec2;
@@ -322,21 +323,29 @@ pub(crate) fn solve(
 pub(crate) fn restitution(
     constraints: &mut [Constraint],
     infos: &[ContactInfo],
-    vel: &mut [Vec2],
+    vel: &mut Columns,
     threshold: f32,
 ) {
     for (c, info) in constraints.iter_mut().zip(infos) {
         if info.restitution == 0.0 || info.impact_u > -threshold || c.max_normal_impulse == 0.0 {
             continue;
         }
-        let (va, vb) = of_pair(vel, c, |v| *v);
+        let va = vel.at(c.a as usize);
+        let vb = c.b.dynamic_index().map_or(Vec2::ZERO, |b| vel.at(b));
         let vn = (vb - va).dot(c.normal);
         let target = -info.restitution * info.impact_u - info.half_an_h;
         let new_n = (c.normal_impulse + c.mass * (target - vn)).max(0.0);
         let dn = new_n - c.normal_impulse;
         c.normal_impulse = new_n;
         c.max_normal_impulse = c.max_normal_impulse.max(new_n);
-        apply_impulse(vel, |v| v, c, c.normal * dn);
+        let impulse = c.normal * dn;
+        let (a, b) = c.moved();
+        if let Some(a) = a {
+            vel.set(a, vel.at(a) - impulse * c.inv_mass_a);
+        }
+        if let Some(b) = b {
+            vel.set(b, vel.at(b) + impulse * c.inv_mass_b);
+        }
     }
 }
 

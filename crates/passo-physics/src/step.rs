@@ -142,7 +142,7 @@ impl World {
         );
         let plan = self.plan();
         if plan.store_previous {
-            self.dynamic.prev_pos.copy_from_slice(&self.dynamic.pos);
+            self.dynamic.prev_pos.copy_from(&self.dynamic.pos);
         }
         match plan.contacts {
             Some(contacts) => self.step_with_contacts(dt, &contacts),
@@ -186,11 +186,14 @@ impl World {
         let (pos, vel, arrays) = self.dynamic.split();
         let resets = for_chunks(self.parallel, (pos, vel), |offset, (pos, vel)| {
             let mut resets = 0;
-            for (k, (p, v)) in pos.iter_mut().zip(vel.iter_mut()).enumerate() {
-                let i = offset + k;
-                let params = arrays.params(i);
+            let ((px, py), (vx, vy)) = (pos.into_parts(), vel.into_parts());
+            let arrays = arrays.run(offset, px.len());
+            let bodies = (px.iter_mut().zip(py)).zip(vx.iter_mut().zip(vy));
+            for (k, ((px, py), (vx, vy))) in bodies.enumerate() {
+                let (p, v) = (Vec2::new(*px, *py), Vec2::new(*vx, *vy));
+                let params = arrays.params(k);
                 let (mut nv, mut c) =
-                    integrate_velocity(integrator, &forces, *p, *v, &params, dt, &mut resets);
+                    integrate_velocity(integrator, &forces, p, v, &params, dt, &mut resets);
                 // A limit that changed the velocity leaves out the
                 // integrator's correction, worked out for the velocity
                 // before it: the body moves by its limited velocity, as with
@@ -198,12 +201,13 @@ impl World {
                 // hard push backwards (2.61 m in a step with explicit Euler)
                 // and made one snapped to rest under gravity climb.
                 if let Some(uniform) = limits
-                    && uniform.unwrap_or(arrays.limits[i]).apply(&mut nv)
+                    && uniform.unwrap_or(arrays.limits[k]).apply(&mut nv)
                 {
                     c = Vec2::ZERO;
                 }
-                *v = nv;
-                *p += nv * dt + c;
+                (*vx, *vy) = (nv.x, nv.y);
+                let p = p + (nv * dt + c);
+                (*px, *py) = (p.x, p.y);
             }
             resets
         });
@@ -218,7 +222,7 @@ impl World {
         let held = b
             .kinematic
             .iter()
-            .map(|&i| (b.pos[i as usize], b.vel[i as usize]));
+            .map(|&i| (b.pos.at(i as usize), b.vel.at(i as usize)));
         self.held.extend(held);
     }
 
@@ -227,8 +231,8 @@ impl World {
     fn move_kinematic(&mut self, dt: f32) {
         let b = &mut self.dynamic;
         for (&i, &(p, v)) in b.kinematic.iter().zip(&self.held) {
-            b.pos[i as usize] = p + v * dt;
-            b.vel[i as usize] = v;
+            b.pos.set(i as usize, p + v * dt);
+            b.vel.set(i as usize, v);
         }
     }
 

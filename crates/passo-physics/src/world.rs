@@ -212,10 +212,10 @@ impl World {
         }
         if settings.interpolation {
             if self.dynamic.prev_pos.len() != self.dynamic.len() {
-                self.dynamic.prev_pos.clone_from(&self.dynamic.pos);
+                self.dynamic.prev_pos.copy_from(&self.dynamic.pos);
             }
         } else {
-            self.dynamic.prev_pos = Vec::new();
+            self.dynamic.prev_pos = Default::default();
         }
         Ok(())
     }
@@ -670,7 +670,7 @@ impl World {
     }
 
     pub(crate) fn lerp_dynamic(&self, i: usize, alpha: f32) -> Vec2 {
-        let current = self.dynamic.pos[i];
+        let current = self.dynamic.pos.at(i);
         match self.dynamic.prev_pos.get(i) {
             // A NaN alpha draws the current position.
             Some(prev) if !alpha.is_nan() => prev.lerp(current, alpha.clamp(0.0, 1.0)),
