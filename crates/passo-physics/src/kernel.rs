@@ -58,8 +58,9 @@ impl PointMassKernel {
         })
     }
 
-    /// One step of every dynamic body; returns how many were reset for a
-    /// non-finite velocity.
+    /// One step of every dynamic body, which also clears the force
+    /// accumulators; returns how many were reset for a non-finite
+    /// velocity.
     pub(crate) fn run(&self, b: &mut DynamicBodies, dt: f32, parallel: bool) -> u64 {
         let step: fn(&Self, Slices<'_>, f32) -> u64 =
             match (self.plain(), self.drag.is_some(), self.limits.is_some()) {
@@ -189,7 +190,7 @@ impl PointMassKernel {
         let n = s.vx.len();
         let (px, py) = (&mut s.px[..n], &mut s.py[..n]);
         let (vx, vy) = (s.vx, &mut s.vy[..n]);
-        let (fx, fy) = (&s.fx[..n], &s.fy[..n]);
+        let (fx, fy) = (&mut s.fx[..n], &mut s.fy[..n]);
         let (inv_mass, drag_area) = (&s.inv_mass[..n], &s.drag_area[..n]);
         in_blocks(n, |r| {
             let mut resets = 0u32;
@@ -206,6 +207,9 @@ impl PointMassKernel {
                 // `+ 0` as the general path adds its zero correction: same bits.
                 px[i] += x * dt + 0.0;
                 py[i] += y * dt + 0.0;
+                // The accumulated force is spent: cleared here, in the same
+                // pass, instead of in one of its own after the step.
+                (fx[i], fy[i]) = (0.0, 0.0);
                 resets += u32::from(!finite);
             }
             resets
@@ -235,8 +239,8 @@ struct Slices<'a> {
     py: &'a mut [f32],
     vx: &'a mut [f32],
     vy: &'a mut [f32],
-    fx: &'a [f32],
-    fy: &'a [f32],
+    fx: &'a mut [f32],
+    fy: &'a mut [f32],
     inv_mass: &'a [f32],
     drag_area: &'a [f32],
 }
@@ -251,7 +255,7 @@ fn in_chunks(
     let parts = (
         b.pos.view_mut(),
         b.vel.view_mut(),
-        b.force.view(),
+        b.force.view_mut(),
         &b.inv_mass[..],
         &b.drag_area[..],
     );

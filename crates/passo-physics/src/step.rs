@@ -144,6 +144,7 @@ impl World {
         if plan.store_previous {
             self.dynamic.prev_pos.copy_from(&self.dynamic.pos);
         }
+        let mut forces_cleared = false;
         match plan.contacts {
             Some(contacts) => self.step_with_contacts(dt, &contacts),
             None => {
@@ -157,11 +158,11 @@ impl World {
                     );
                 }
                 self.hold_kinematic();
-                self.step_bodies(dt, plan.limits);
+                forces_cleared = self.step_bodies(dt, plan.limits);
                 self.move_kinematic(dt);
             }
         }
-        self.clear_forces();
+        self.clear_forces(forces_cleared);
         self.count_down_drop_through(dt);
         // Saturates rather than wraps: 2^64 steps at 60 Hz is 10^10 years,
         // but a restored snapshot may start anywhere.
@@ -174,12 +175,13 @@ impl World {
     }
 
     /// Integrates velocities, clamps speeds and moves bodies, one body at a
-    /// time: a single pass over the arrays.
-    fn step_bodies(&mut self, dt: f32, limits: Option<Option<SpeedLimits>>) {
+    /// time: a single pass over the arrays. Returns whether that pass also
+    /// cleared the force accumulators (the point-mass kernel does).
+    fn step_bodies(&mut self, dt: f32, limits: Option<Option<SpeedLimits>>) -> bool {
         if let Some(kernel) = self.kernel(limits) {
             let resets = kernel.run(&mut self.dynamic, dt, self.parallel);
             self.stats.non_finite_resets = self.stats.non_finite_resets.saturating_add(resets);
-            return;
+            return true;
         }
         let integrator = self.settings().integrator;
         let forces = step_forces(&self.settings, &self.custom, self.game_friction);
@@ -212,6 +214,7 @@ impl World {
             resets
         });
         self.stats.non_finite_resets = self.stats.non_finite_resets.saturating_add(resets);
+        false
     }
 
     /// Notes where each kinematic body is and how fast it goes, before
@@ -251,8 +254,12 @@ impl World {
         self.dropping = still;
     }
 
-    fn clear_forces(&mut self) {
-        self.dynamic.force.fill(Vec2::ZERO);
+    /// Clears the force accumulators, unless the step did (`cleared`), and
+    /// the friction forces game code set.
+    fn clear_forces(&mut self, cleared: bool) {
+        if !cleared {
+            self.dynamic.force.fill(Vec2::ZERO);
+        }
         if self.game_friction {
             self.dynamic.friction_force.fill(0.0);
             self.game_friction = false;
@@ -273,27 +280,34 @@ mod tests {
 
     #[test]
     fn forces_accumulate_and_are_cleared_after_each_step() {
-        let mut world = World::new(WorldSettings {
-            forces: ForceModels::none(),
-            min_speed: 0.0,
-            ..Default::default()
-        })
-        .unwrap();
-        let id = world
-            .add_body(BodyDef {
-                mass: 2.0,
+        // The point-mass kernel (which clears the forces in its own pass)
+        // and the general path (which clears them after it).
+        for integrator in [Integrator::SemiImplicitEuler, Integrator::ExplicitEuler] {
+            let mut world = World::new(WorldSettings {
+                forces: ForceModels::none(),
+                integrator,
+                min_speed: 0.0,
                 ..Default::default()
             })
             .unwrap();
-        world.apply_force(id, Vec2::new(1.0, 0.0));
-        world.apply_force(id, Vec2::new(3.0, 2.0));
-        assert_eq!(world.body(id).unwrap().force, Vec2::new(4.0, 2.0));
-        world.step(0.5);
-        // a = F / m = (2, 1); v = a dt.
-        assert_eq!(world.body(id).unwrap().velocity, Vec2::new(1.0, 0.5));
-        assert_eq!(world.body(id).unwrap().force, Vec2::ZERO);
-        world.step(0.5);
-        assert_eq!(world.body(id).unwrap().velocity, Vec2::new(1.0, 0.5));
+            let id = world
+                .add_body(BodyDef {
+                    mass: 2.0,
+                    ..Default::default()
+                })
+                .unwrap();
+            let kernel = world.kernel(world.speed_limits()).is_some();
+            assert_eq!(kernel, integrator == Integrator::SemiImplicitEuler);
+            world.apply_force(id, Vec2::new(1.0, 0.0));
+            world.apply_force(id, Vec2::new(3.0, 2.0));
+            assert_eq!(world.body(id).unwrap().force, Vec2::new(4.0, 2.0));
+            world.step(0.5);
+            // a = F / m = (2, 1); v = a dt.
+            assert_eq!(world.body(id).unwrap().velocity, Vec2::new(1.0, 0.5));
+            assert_eq!(world.body(id).unwrap().force, Vec2::ZERO);
+            world.step(0.5);
+            assert_eq!(world.body(id).unwrap().velocity, Vec2::new(1.0, 0.5));
+        }
     }
 
     #[test]
