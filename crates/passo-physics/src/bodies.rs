@@ -234,6 +234,7 @@ impl PartialEq for DynamicBodies {
 
 /// The arrays a body's forces are computed from, borrowed apart from the
 /// positions and velocities that a step writes.
+#[derive(Clone, Copy)]
 pub(crate) struct BodyArrays<'a> {
     pub force: ColumnsRef<'a>,
     pub inv_mass: &'a [f32],

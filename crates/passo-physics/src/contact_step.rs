@@ -272,7 +272,10 @@ impl World {
         let forces = step_forces(&self.settings, &self.custom, self.game_friction);
         let (pos, vel, arrays) = self.dynamic.split();
         let pos = pos.as_ref();
-        let velocity = |i: usize, v: Vec2, resets: &mut u64| {
+        // Everything it reads is copied in, and each chunk takes a copy of
+        // it: stores to the arrays cannot alias the hoisted constants, which
+        // then stay in registers (see `step_bodies`).
+        let velocity = move |i: usize, v: Vec2, resets: &mut u64| {
             integrate_velocity(
                 integrator,
                 &forces,
@@ -285,7 +288,7 @@ impl World {
         };
         if plan.corrects {
             for_chunks(parallel, (vel, correction), |offset, (vel, correction)| {
-                let mut resets = 0;
+                let (velocity, mut resets) = (velocity, 0);
                 let (vx, vy) = vel.into_parts();
                 let correction = &mut correction[..vx.len()];
                 for k in 0..vx.len() {
@@ -297,7 +300,7 @@ impl World {
             })
         } else {
             for_chunks(parallel, vel, |offset, vel| {
-                let mut resets = 0;
+                let (velocity, mut resets) = (velocity, 0);
                 let (vx, vy) = vel.into_parts();
                 for k in 0..vx.len() {
                     let v = velocity(offset + k, Vec2::new(vx[k], vy[k]), &mut resets).0;

@@ -235,6 +235,7 @@ pub(crate) struct BodyParams {
 
 /// The conservative and game-applied part of the acceleration: everything
 /// but drag and friction. Constants are hoisted out of the body loop.
+#[derive(Clone, Copy)]
 pub(crate) struct Drive<'a> {
     gravity: Vec2,
     field: Vec2,

@@ -75,6 +75,7 @@ impl Integrator {
 }
 
 /// The forces a step evaluates, with the constants hoisted out of the loop.
+#[derive(Clone, Copy)]
 pub(crate) struct Forces<'a> {
     pub drive: Drive<'a>,
     pub dissipation: Dissipation,
