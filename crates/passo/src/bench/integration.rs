@@ -159,8 +159,14 @@ pub(super) fn integration(args: &IntegrationBenchArgs) -> Result<()> {
     );
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for &n in &args.sizes {
-        let ns = integration_ns(n, false);
-        let bare = bare_soa_ns(n);
+        // The step and the bare loop timed in turn, three times each, the
+        // best of each kept: a slow spell of a shared machine then rarely
+        // falls on one of the two alone and skews the ratio.
+        let (ns, bare) = (0..3)
+            .map(|_| (integration_ns(n, false), bare_soa_ns(n)))
+            .fold((f64::INFINITY, f64::INFINITY), |(a, b), (x, y)| {
+                (a.min(x), b.min(y))
+            });
         let kernel = INTEGRATION_BYTES / ns; // bytes per ns = GB/s
         let copy = copy_bandwidth(n * 32) / 1e9;
         let triad = triad_bandwidth(n * 8) / 1e9;
