@@ -64,14 +64,14 @@ impl PointMassKernel {
     pub(crate) fn run(&self, b: &mut DynamicBodies, dt: f32, parallel: bool) -> u64 {
         let step: fn(&Self, Slices<'_>, f32) -> u64 =
             match (self.plain(), self.drag.is_some(), self.limits.is_some()) {
-                (false, false, false) => Self::run_with::<false, false, false>,
-                (false, false, true) => Self::run_with::<false, false, true>,
-                (false, true, false) => Self::run_with::<false, true, false>,
-                (false, true, true) => Self::run_with::<false, true, true>,
-                (true, false, false) => Self::run_with::<true, false, false>,
-                (true, false, true) => Self::run_with::<true, false, true>,
-                (true, true, false) => Self::run_with::<true, true, false>,
-                (true, true, true) => Self::run_with::<true, true, true>,
+                (false, false, false) => Self::run_with::<false, false, false, true>,
+                (false, false, true) => Self::run_with::<false, false, true, true>,
+                (false, true, false) => Self::run_with::<false, true, false, true>,
+                (false, true, true) => Self::run_with::<false, true, true, true>,
+                (true, false, false) => Self::run_with::<true, false, false, true>,
+                (true, false, true) => Self::run_with::<true, false, true, true>,
+                (true, true, false) => Self::run_with::<true, true, false, true>,
+                (true, true, true) => Self::run_with::<true, true, true, true>,
             };
         in_chunks(b, parallel, |s| step(self, s, dt))
     }
@@ -80,10 +80,10 @@ impl PointMassKernel {
     /// returns the number of non-finite resets.
     pub(crate) fn velocities(&self, b: &mut DynamicBodies, dt: f32, parallel: bool) -> u64 {
         let step: fn(&Self, Slices<'_>, f32) -> u64 = match (self.plain(), self.drag.is_some()) {
-            (false, false) => Self::velocities_with::<false, false>,
-            (false, true) => Self::velocities_with::<false, true>,
-            (true, false) => Self::velocities_with::<true, false>,
-            (true, true) => Self::velocities_with::<true, true>,
+            (false, false) => Self::run_with::<false, false, false, false>,
+            (false, true) => Self::run_with::<false, true, false, false>,
+            (true, false) => Self::run_with::<true, false, false, false>,
+            (true, true) => Self::run_with::<true, true, false, false>,
         };
         in_chunks(b, parallel, |s| step(self, s, dt))
     }
@@ -159,30 +159,10 @@ impl PointMassKernel {
         (x, y, finite)
     }
 
-    fn velocities_with<const PLAIN: bool, const DRAG: bool>(&self, s: Slices<'_>, dt: f32) -> u64 {
-        let n = s.vx.len();
-        let (vx, vy) = (s.vx, &mut s.vy[..n]);
-        let (fx, fy) = (&s.fx[..n], &s.fy[..n]);
-        let (inv_mass, drag_area) = (&s.inv_mass[..n], &s.drag_area[..n]);
-        in_blocks(n, |r| {
-            let mut resets = 0u32;
-            for i in r {
-                let v = (vx[i], vy[i]);
-                let (x, y, finite) = self.velocity::<PLAIN, DRAG, false>(
-                    v,
-                    (fx[i], fy[i]),
-                    inv_mass[i],
-                    drag_area[i],
-                    dt,
-                );
-                (vx[i], vy[i]) = (x, y);
-                resets += u32::from(!finite);
-            }
-            resets
-        })
-    }
-
-    fn run_with<const PLAIN: bool, const DRAG: bool, const LIMITS: bool>(
+    /// New velocities over `dt`; with `MOVE`, also the positions moved by
+    /// them and the forces cleared (`run`), else the velocities alone
+    /// (`velocities`). Returns the number of non-finite resets.
+    fn run_with<const PLAIN: bool, const DRAG: bool, const LIMITS: bool, const MOVE: bool>(
         &self,
         s: Slices<'_>,
         dt: f32,
@@ -204,12 +184,15 @@ impl PointMassKernel {
                     dt,
                 );
                 (vx[i], vy[i]) = (x, y);
-                // `+ 0` as the general path adds its zero correction: same bits.
-                px[i] += x * dt + 0.0;
-                py[i] += y * dt + 0.0;
-                // The accumulated force is spent: cleared here, in the same
-                // pass, instead of in one of its own after the step.
-                (fx[i], fy[i]) = (0.0, 0.0);
+                if MOVE {
+                    // `+ 0` as the general path adds its zero correction:
+                    // same bits.
+                    px[i] += x * dt + 0.0;
+                    py[i] += y * dt + 0.0;
+                    // The accumulated force is spent: cleared here, in the
+                    // same pass, instead of in one of its own after the step.
+                    (fx[i], fy[i]) = (0.0, 0.0);
+                }
                 resets += u32::from(!finite);
             }
             resets
