@@ -142,6 +142,7 @@ impl World {
         );
         let plan = self.plan();
         if plan.store_previous {
+            debug_assert_eq!(self.dynamic.prev_pos.len(), self.dynamic.len());
             self.dynamic.prev_pos.copy_from(&self.dynamic.pos);
         }
         let mut forces_cleared = false;
