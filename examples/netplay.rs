@@ -7,12 +7,12 @@
 
 use ggrs::{
     Config, DesyncDetection, GgrsError, GgrsEvent, GgrsRequest, Message, NonBlockingSocket,
-    P2PSession, PlayerType, PredictRepeatLast, SessionBuilder, SessionState, UdpNonBlockingSocket,
+    P2PSession, PlayerType, PredictRepeatLast, SessionBuilder, SessionState,
 };
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyId, StateHasher, World, WorldSnapshot};
 use passo_scene::{BuiltScene, Platform, Scene};
-use std::net::SocketAddr;
+use std::net::{Ipv4Addr, SocketAddr, UdpSocket};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -238,10 +238,69 @@ pub struct Link {
     pub loss_percent: u32,
 }
 
-/// A UDP socket of the loopback interface behind a [`Link`]: packets are
-/// held on arrival until their delay is over, and some are dropped.
+/// A non-blocking UDP socket bound to the loopback interface alone, on a
+/// port the system picks, speaking GGRS's wire format (its messages in
+/// bincode, as `ggrs::UdpNonBlockingSocket` does). That socket binds every
+/// interface (`0.0.0.0`): peers that only talk to each other on this
+/// machine should not listen on the network.
+pub struct LoopbackSocket {
+    socket: UdpSocket,
+    buffer: Box<[u8; LoopbackSocket::BUFFER]>,
+}
+
+impl LoopbackSocket {
+    /// The largest datagram read (GGRS's own buffer size); a longer one is
+    /// cut short, fails to decode and is dropped.
+    const BUFFER: usize = 4096;
+
+    /// Binds `127.0.0.1` on a free port.
+    pub fn bind() -> std::io::Result<Self> {
+        let socket = UdpSocket::bind((Ipv4Addr::LOCALHOST, 0))?;
+        socket.set_nonblocking(true)?;
+        Ok(Self {
+            socket,
+            buffer: Box::new([0; Self::BUFFER]),
+        })
+    }
+
+    /// Where the other peer sends to.
+    pub fn local_addr(&self) -> std::io::Result<SocketAddr> {
+        self.socket.local_addr()
+    }
+}
+
+impl NonBlockingSocket<SocketAddr> for LoopbackSocket {
+    fn send_to(&mut self, msg: &Message, addr: &SocketAddr) {
+        // A message that does not encode, or a send that fails, is a lost
+        // packet: GGRS sends again.
+        if let Ok(bytes) = bincode::serialize(msg) {
+            let _ = self.socket.send_to(&bytes, addr);
+        }
+    }
+
+    fn receive_all_messages(&mut self) -> Vec<(SocketAddr, Message)> {
+        let mut received = Vec::new();
+        loop {
+            match self.socket.recv_from(&mut self.buffer[..]) {
+                Ok((n, from)) => {
+                    // What does not decode (noise, a cut datagram) is dropped.
+                    if let Ok(msg) = bincode::deserialize(&self.buffer[..n]) {
+                        received.push((from, msg));
+                    }
+                }
+                // A send to a peer that is gone reports here on some systems.
+                Err(e) if e.kind() == std::io::ErrorKind::ConnectionReset => {}
+                // Nothing more now (`WouldBlock`), or a failure: try next frame.
+                Err(_) => return received,
+            }
+        }
+    }
+}
+
+/// A [`LoopbackSocket`] behind a [`Link`]: packets are held on arrival
+/// until their delay is over, and some are dropped.
 struct LinkSocket {
-    socket: UdpNonBlockingSocket,
+    socket: LoopbackSocket,
     link: Link,
     /// Packets arrived and not yet delivered, in arrival order.
     held: std::collections::VecDeque<(Instant, SocketAddr, Message)>,
@@ -284,11 +343,14 @@ impl NonBlockingSocket<SocketAddr> for LinkSocket {
 /// first still rolls back). Returns each peer's report once both have
 /// confirmed `frames` frames.
 pub fn p2p_loopback(frames: u64, link: Link) -> Result<[PeerReport; 2], String> {
-    let (ports, sockets) = bind_pair()?;
+    let bind = || LoopbackSocket::bind().map_err(|e| format!("cannot bind a UDP socket: {e}"));
+    let sockets = [bind()?, bind()?];
+    let address = |s: &LoopbackSocket| s.local_addr().map_err(|e| e.to_string());
+    let addresses = [address(&sockets[0])?, address(&sockets[1])?];
     let mut sessions = Vec::new();
     for (me, socket) in sockets.into_iter().enumerate() {
         let other = 1 - me;
-        let remote = SocketAddr::from(([127, 0, 0, 1], ports[other]));
+        let remote = addresses[other];
         let socket = LinkSocket {
             socket,
             link,
@@ -362,27 +424,4 @@ pub fn p2p_loopback(frames: u64, link: Link) -> Result<[PeerReport; 2], String> 
         }
     }
     Ok(reports)
-}
-
-/// Two GGRS sockets on UDP ports that were free, and their ports. A port
-/// found free can be taken by another program (or another test running at
-/// the same time) before it is bound again: then two other ports are
-/// tried, ten times at most.
-fn bind_pair() -> Result<([u16; 2], [UdpNonBlockingSocket; 2]), String> {
-    let mut last = String::new();
-    for _ in 0..10 {
-        let ports = [free_port()?, free_port()?];
-        let bind = |port| UdpNonBlockingSocket::bind_to_port(port).map_err(|e| e.to_string());
-        match (bind(ports[0]), bind(ports[1])) {
-            (Ok(a), Ok(b)) => return Ok((ports, [a, b])),
-            (Err(e), _) | (_, Err(e)) => last = e,
-        }
-    }
-    Err(format!("no two free UDP ports in ten tries: {last}"))
-}
-
-/// A UDP port of the loopback interface that is free now.
-fn free_port() -> Result<u16, String> {
-    let socket = std::net::UdpSocket::bind(("127.0.0.1", 0)).map_err(|e| e.to_string())?;
-    Ok(socket.local_addr().map_err(|e| e.to_string())?.port())
 }

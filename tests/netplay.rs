@@ -5,9 +5,10 @@
 //! loopback interface roll back and agree, tick by tick, with a straight
 //! run, also through a link of 80 ms latency and 5 % packet loss.
 
-use ggrs::GgrsError;
+use ggrs::{GgrsError, NonBlockingSocket};
 use passo_examples::netplay::{
-    Game, Link, p2p_loopback, scripted_input, straight_checksums, straight_run, sync_test,
+    Game, Link, LoopbackSocket, p2p_loopback, scripted_input, straight_checksums, straight_run,
+    sync_test,
 };
 use std::time::Duration;
 
@@ -97,4 +98,28 @@ fn two_peers_80_ms_apart_losing_5_percent_of_packets_agree_for_1000_ticks() {
         loss_percent: 5,
     };
     two_peers_agree_with_a_straight_run_tick_by_tick(1_000, link);
+}
+
+/// The peers listen on the loopback interface alone. Datagrams that do not
+/// decode (noise, one cut short) are dropped; ones that happen to decode
+/// (a run of zeros is a valid message) reach GGRS, which handles only
+/// messages from its peers' addresses and, once synchronised, with their
+/// magic number. Neither panics, nor does a datagram too long for the
+/// buffer.
+#[test]
+fn the_peers_socket_listens_on_loopback_alone_and_drops_what_does_not_decode() {
+    let mut socket = LoopbackSocket::bind().unwrap();
+    let address = socket.local_addr().unwrap();
+    assert!(address.ip().is_loopback(), "bound to {address}");
+    let sender = std::net::UdpSocket::bind(("127.0.0.1", 0)).unwrap();
+    let receive = |socket: &mut LoopbackSocket, datagram: &[u8]| {
+        sender.send_to(datagram, address).unwrap();
+        // Loopback delivery is quick but not instant: give it a moment.
+        std::thread::sleep(Duration::from_millis(20));
+        socket.receive_all_messages().len()
+    };
+    for noise in [&[][..], &[0xff; 3], &[7; 600]] {
+        assert_eq!(receive(&mut socket, noise), 0, "{} bytes", noise.len());
+    }
+    assert!(receive(&mut socket, &[0; 8000]) <= 1);
 }
