@@ -118,8 +118,33 @@ impl serde::Serialize for Columns {
 
 #[cfg(feature = "serde")]
 impl<'de> serde::Deserialize<'de> for Columns {
+    /// Read straight into the two arrays: no `Vec<Vec2>` in between, which
+    /// would double what a large (or damaged) snapshot takes to decode.
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        Vec::<Vec2>::deserialize(d).map(Self::from_iter)
+        struct Vectors;
+        impl<'de> serde::de::Visitor<'de> for Vectors {
+            type Value = Columns;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("a sequence of vectors")
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<Columns, A::Error> {
+                // A length from the file is a hint, not a promise: reserve
+                // at most a few thousand up front, then grow as read.
+                let n = seq.size_hint().unwrap_or(0).min(4096);
+                let mut c = Columns {
+                    x: Vec::with_capacity(n),
+                    y: Vec::with_capacity(n),
+                };
+                while let Some(v) = seq.next_element::<Vec2>()? {
+                    c.push(v);
+                }
+                Ok(c)
+            }
+        }
+        d.deserialize_seq(Vectors)
     }
 }
 
