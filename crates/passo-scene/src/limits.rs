@@ -59,13 +59,10 @@ impl MapBudget {
         let left = self.bytes.get();
         let bytes = read_at_most(path, left.min(MAX_FILE_BYTES)).map_err(|e| {
             if e.kind() == std::io::ErrorKind::InvalidData && left < MAX_FILE_BYTES {
-                std::io::Error::new(
-                    std::io::ErrorKind::InvalidData,
-                    format!(
-                        "takes the map and the files it names past {} MiB together",
-                        MAX_MAP_BYTES >> 20
-                    ),
-                )
+                invalid_data(format!(
+                    "takes the map and the files it names past {} MiB together",
+                    MAX_MAP_BYTES >> 20
+                ))
             } else {
                 e
             }
@@ -78,7 +75,7 @@ impl MapBudget {
     /// then [`check_xml`].
     pub(crate) fn read_tiled_xml(&self, path: &Path) -> std::io::Result<std::io::Cursor<Vec<u8>>> {
         let bytes = self.read(path)?;
-        check_xml(&bytes).map_err(|m| std::io::Error::new(std::io::ErrorKind::InvalidData, m))?;
+        check_xml(&bytes).map_err(invalid_data)?;
         Ok(std::io::Cursor::new(bytes))
     }
 
@@ -88,12 +85,9 @@ impl MapBudget {
         let text = text(self.read(path)?)?;
         let left = self.values.get();
         let values = json_values(text.as_bytes(), left).ok_or_else(|| {
-            std::io::Error::new(
-                std::io::ErrorKind::InvalidData,
-                format!(
-                    "takes the map and its tilesets past {MAX_JSON_VALUES} JSON values together"
-                ),
-            )
+            invalid_data(format!(
+                "takes the map and its tilesets past {MAX_JSON_VALUES} JSON values together"
+            ))
         })?;
         self.values.set(left - values);
         Ok(text)
@@ -143,10 +137,10 @@ pub fn read_at_most(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     let mut bytes = Vec::new();
     file.take(limit.saturating_add(1)).read_to_end(&mut bytes)?;
     if bytes.len() as u64 > limit {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            format!("is larger than a file may be ({} MiB)", limit >> 20),
-        ));
+        return Err(invalid_data(format!(
+            "is larger than a file may be ({} MiB)",
+            limit >> 20
+        )));
     }
     Ok(bytes)
 }
@@ -158,8 +152,12 @@ pub(crate) fn read_text(path: &Path) -> std::io::Result<String> {
 
 /// `bytes` as UTF-8 text, or an `InvalidData` error.
 fn text(bytes: Vec<u8>) -> std::io::Result<String> {
-    String::from_utf8(bytes)
-        .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()))
+    String::from_utf8(bytes).map_err(|e| invalid_data(e.to_string()))
+}
+
+/// An `InvalidData` error: the file is there but past a limit or malformed.
+fn invalid_data(message: String) -> std::io::Error {
+    std::io::Error::new(std::io::ErrorKind::InvalidData, message)
 }
 
 /// Checks a Tiled XML file against [`MAX_XML_DEPTH`] and
