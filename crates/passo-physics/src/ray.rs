@@ -105,36 +105,15 @@ mod tests {
 
     #[test]
     fn rays_hit_circles_and_boxes_at_the_right_distance() {
-        let (t, n) = ray_shape(
-            &Shape::circle(1.0),
-            Vec2::new(5.0, 0.0),
-            Vec2::ZERO,
-            Vec2::X,
-            10.0,
-        )
-        .unwrap();
+        // A unit circle 5 m along x from the origin, the ray along +x.
+        let at_circle = |centre: Vec2, max_t: f32| {
+            ray_shape(&Shape::circle(1.0), centre, Vec2::ZERO, Vec2::X, max_t)
+        };
+        let (t, n) = at_circle(Vec2::new(5.0, 0.0), 10.0).unwrap();
         assert!((t - 4.0).abs() < 1e-6);
         assert_eq!(n, -Vec2::X);
-        assert!(
-            ray_shape(
-                &Shape::circle(1.0),
-                Vec2::new(5.0, 0.0),
-                Vec2::ZERO,
-                Vec2::X,
-                3.0
-            )
-            .is_none()
-        );
-        assert!(
-            ray_shape(
-                &Shape::circle(1.0),
-                Vec2::new(5.0, 2.0),
-                Vec2::ZERO,
-                Vec2::X,
-                10.0
-            )
-            .is_none()
-        );
+        assert!(at_circle(Vec2::new(5.0, 0.0), 3.0).is_none());
+        assert!(at_circle(Vec2::new(5.0, 2.0), 10.0).is_none());
 
         let wall = Shape::rect(1.0, 6.0);
         let dir = Vec2::new(1.0, 1.0).normalize();
