@@ -101,14 +101,6 @@ impl FromIterator<Vec2> for Columns {
     }
 }
 
-impl Extend<Vec2> for Columns {
-    fn extend<I: IntoIterator<Item = Vec2>>(&mut self, iter: I) {
-        for v in iter {
-            self.push(v);
-        }
-    }
-}
-
 #[cfg(feature = "serde")]
 impl serde::Serialize for Columns {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
