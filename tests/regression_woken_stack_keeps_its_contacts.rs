@@ -197,3 +197,71 @@ fn waking_every_body_keeps_the_stored_contacts_for_queries_until_the_next_step()
         }
     }
 }
+
+#[test]
+fn removing_a_body_keeps_its_island_mates_contacts_for_queries_until_the_next_step() {
+    // `remove_body` wakes the removed body's island. Its other stored
+    // contacts were let go at once: a crate whose top crate was removed
+    // reported not standing for that tick. They stay until the next step,
+    // as for `wake`; only the removed body's contacts go.
+    for (what, removed) in [("the top box", 4), ("a middle box", 2)] {
+        let (mut world, boxes) = stack_and_ball(true);
+        if removed == 2 {
+            // Without the ball the top box is the last dynamic body: the
+            // removal moves it, with its stored contacts, into the
+            // removed one's place.
+            let ball = world.bodies().last().unwrap().id;
+            world.remove_body(ball).unwrap();
+        }
+        assert!(boxes.iter().all(|&b| world.is_asleep(b) == Some(true)));
+        let gone = boxes[removed];
+        let pairs =
+            |w: &World| -> Vec<(BodyId, BodyId)> { w.contacts().map(|c| (c.a, c.b)).collect() };
+        let kept: Vec<_> = pairs(&world)
+            .into_iter()
+            .filter(|&(a, b)| a != gone && b != gone)
+            .collect();
+        assert_eq!(
+            kept.len(),
+            pairs(&world).len() - 2 + usize::from(removed == 4),
+            "{what}"
+        );
+        world.remove_body(gone).unwrap();
+        assert_eq!(pairs(&world), kept, "{what}: the other contacts stay");
+        for (k, &b) in boxes.iter().enumerate().filter(|&(k, _)| k != removed) {
+            assert_eq!(
+                world.is_asleep(b),
+                Some(false),
+                "{what}: box {k} awake at once"
+            );
+            // The box that stood on the removed one stands on nothing.
+            let stands = k != removed + 1;
+            assert_eq!(world.is_standing(b, 0.7), stands, "{what}: box {k}");
+        }
+        // A snapshot taken now steps on as the world does.
+        let mut restored = World::from_snapshot(world.snapshot()).unwrap();
+        for tick in 0..90 {
+            world.step(1.0 / 60.0);
+            restored.step(1.0 / 60.0);
+            assert_eq!(
+                world.state_hash(),
+                restored.state_hash(),
+                "{what}, tick {tick}"
+            );
+        }
+        // What stood on the removed box fell onto the one below it and
+        // rests there: each box a metre above the next.
+        let mut heights: Vec<f32> = boxes
+            .iter()
+            .filter(|&&b| b != gone)
+            .map(|&b| world.body(b).unwrap().position.y)
+            .collect();
+        heights.sort_by(f32::total_cmp);
+        for (k, y) in heights.iter().enumerate() {
+            assert!(
+                (y - (0.5 + k as f32)).abs() < 0.01,
+                "{what}: box {k} at {y}"
+            );
+        }
+    }
+}

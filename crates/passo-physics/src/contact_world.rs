@@ -385,7 +385,8 @@ impl ContactWorld {
         }
     }
 
-    /// Dynamic body `from` now sits at index `to` (a removal moved it).
+    /// Dynamic body `to` was removed, and `from` (the last one) now sits at
+    /// its index.
     pub(crate) fn body_moved(&mut self, from: u32, to: u32) {
         self.sleeping.body_moved(from, to);
         self.revision += 1;

@@ -364,9 +364,13 @@ impl SleepingContacts {
         self.left = 0;
     }
 
-    /// Dynamic body `from` (the last one) now sits at index `to`: a removal
-    /// moved it.
+    /// Dynamic body `to` was removed and `from` (the last one) now sits at
+    /// its index. The removed body's stored contacts go; its island mates'
+    /// stay listed for queries until the next [`flush`](Self::flush) wakes
+    /// them, as for any island game code wakes.
     pub(crate) fn body_moved(&mut self, from: u32, to: u32) {
+        let names_removed = |c: &Constraint| c.a == to || c.b.dynamic_index() == Some(to as usize);
+        self.list.retain(|c| !names_removed(c), |_, _| {});
         for body in &mut self.tree_bodies {
             if *body == to {
                 *body = NO_PROXY; // removed

@@ -478,12 +478,11 @@ impl World {
                 if meta.drop_through > 0.0 {
                     self.dropping -= 1;
                 }
-                // What rested on it must fall, now: its stored contacts
-                // are dropped before the indices move.
+                // What rested on it wakes, and falls at the next step; its
+                // island's other stored contacts answer queries until then.
                 self.wake_index(i as usize);
                 let last = self.dynamic.len() as u32 - 1;
                 if let Some(cw) = &mut self.contacts {
-                    cw.flush_wakes(&mut self.dynamic);
                     cw.body_moved(last, i);
                 }
                 self.dynamic.swap_remove(i as usize)
