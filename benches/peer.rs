@@ -14,7 +14,9 @@
 //!
 //! With the `box2d` feature, Box2D v3 (through `boxdd`, built from source)
 //! runs the same rain too, in the same run: fixed rotation, sleeping off
-//! for its main column, 4 substeps, friction 0.6, restitution 0.
+//! for its main column, 4 substeps, friction 0.6, restitution 0, and its
+//! own default contact recycling (`BOX2D_RECYCLE_DISTANCE=0` turns it off,
+//! any other distance in metres sets it).
 //!
 //! With the `parallel` feature, one more column: Passo awake on both cores
 //! (its thread pool), the same ticks as the one-thread columns, so that it
@@ -100,6 +102,18 @@ mod box2d {
         bodies: Vec<(passo_physics::BodyId, boxdd::BodyId)>,
     }
 
+    /// `BOX2D_RECYCLE_DISTANCE` (metres), if set: how far two bodies may
+    /// move relative to each other before Box2D computes their contact's
+    /// manifold again (its default is 10 × its linear slop, 5 cm; 0 turns
+    /// the reuse off).
+    fn recycle_distance() -> Option<f32> {
+        let value = std::env::var("BOX2D_RECYCLE_DISTANCE").ok()?;
+        match value.parse::<f32>() {
+            Ok(d) if d >= 0.0 => Some(d),
+            _ => panic!("BOX2D_RECYCLE_DISTANCE must be a distance in metres, not {value:?}"),
+        }
+    }
+
     /// The same bodies as a Passo world, in Box2D.
     pub fn copy(passo: &World, sleep: bool) -> Box2d {
         let foundation = Foundation::initialize_default().expect("Box2D starts");
@@ -109,6 +123,11 @@ mod box2d {
             .build()
             .expect("a world definition");
         let mut world = foundation.create_world(def).expect("a world");
+        if let Some(distance) = recycle_distance() {
+            world
+                .set_contact_recycle_distance(distance)
+                .expect("a recycle distance");
+        }
         let mut bodies = Vec::new();
         for b in passo.bodies() {
             let kind = match b.kind {
