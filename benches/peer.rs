@@ -106,11 +106,16 @@ mod box2d {
     /// move relative to each other before Box2D computes their contact's
     /// manifold again (its default is 10 × its linear slop, 5 cm; 0 turns
     /// the reuse off).
-    fn recycle_distance() -> Option<f32> {
+    pub fn recycle_distance() -> Option<f32> {
         let value = std::env::var("BOX2D_RECYCLE_DISTANCE").ok()?;
         match value.parse::<f32>() {
             Ok(d) if d >= 0.0 => Some(d),
-            _ => panic!("BOX2D_RECYCLE_DISTANCE must be a distance in metres, not {value:?}"),
+            _ => {
+                eprintln!(
+                    "BOX2D_RECYCLE_DISTANCE must be a distance in metres (0 or more), not {value:?}"
+                );
+                std::process::exit(2)
+            }
         }
     }
 
@@ -196,6 +201,9 @@ mod box2d {
 }
 
 fn main() {
+    // A bad setting is refused before anything runs.
+    #[cfg(feature = "box2d")]
+    box2d::recycle_distance();
     // `N`: a rain of N circles; `pN`: a pyramid of base N.
     let mut scenes: Vec<(String, World)> = std::env::args()
         .skip(1)
@@ -254,6 +262,8 @@ fn main() {
         let (mut p, mut ps, mut r, mut s) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let mut pool = Vec::<f64>::new();
         let (mut passo_pen, mut rapier_pen) = (0.0, 0.0);
+        // Filled only with the Box2D columns.
+        #[cfg_attr(not(feature = "box2d"), allow(unused_mut))]
         let (mut b, mut bs, mut box2d_pen) = (Vec::<f64>::new(), Vec::<f64>::new(), 0.0f32);
         for _ in 0..3 {
             #[cfg(feature = "box2d")]
