@@ -32,6 +32,21 @@ fn stack_and_ball(sleeping: bool) -> (World, Vec<BodyId>) {
     (world, boxes)
 }
 
+/// Steps `world` and a world restored from its snapshot taken now side by
+/// side for `ticks` ticks, checking they stay the same bits.
+fn steps_on_as_its_snapshot(world: &mut World, ticks: u32, what: &str) {
+    let mut restored = World::from_snapshot(world.snapshot()).unwrap();
+    for tick in 0..ticks {
+        world.step(1.0 / 60.0);
+        restored.step(1.0 / 60.0);
+        assert_eq!(
+            world.state_hash(),
+            restored.state_hash(),
+            "{what}, tick {tick}"
+        );
+    }
+}
+
 #[test]
 fn a_stack_woken_by_a_ball_keeps_its_contacts_in_the_step_it_wakes() {
     let (mut world, boxes) = stack_and_ball(true);
@@ -184,17 +199,7 @@ fn waking_every_body_keeps_the_stored_contacts_for_queries_until_the_next_step()
         assert!(world.is_standing(bottom, 0.7), "{what}: still standing");
         assert_eq!(world.contacts().count(), contacts, "{what}");
         assert!(world.contacts_of(bottom).count() >= 2, "{what}");
-        let saved = world.snapshot();
-        let mut restored = World::from_snapshot(saved).unwrap();
-        for tick in 0..30 {
-            world.step(1.0 / 60.0);
-            restored.step(1.0 / 60.0);
-            assert_eq!(
-                world.state_hash(),
-                restored.state_hash(),
-                "{what}, tick {tick}"
-            );
-        }
+        steps_on_as_its_snapshot(&mut world, 30, what);
     }
 }
 
@@ -238,17 +243,7 @@ fn removing_a_body_keeps_its_island_mates_contacts_for_queries_until_the_next_st
             let stands = k != removed + 1;
             assert_eq!(world.is_standing(b, 0.7), stands, "{what}: box {k}");
         }
-        // A snapshot taken now steps on as the world does.
-        let mut restored = World::from_snapshot(world.snapshot()).unwrap();
-        for tick in 0..90 {
-            world.step(1.0 / 60.0);
-            restored.step(1.0 / 60.0);
-            assert_eq!(
-                world.state_hash(),
-                restored.state_hash(),
-                "{what}, tick {tick}"
-            );
-        }
+        steps_on_as_its_snapshot(&mut world, 90, what);
         // What stood on the removed box fell onto the one below it and
         // rests there: each box a metre above the next.
         let mut heights: Vec<f32> = boxes
