@@ -286,14 +286,16 @@ proptest! {
     }
 }
 
-/// Snapshot files of the playground after 200 ticks, written by
-/// `passo simulate playground --ticks 200 --save FILE` before the dynamic
-/// bodies' positions, velocities and forces were split into x and y arrays
-/// (`.ron` and binary). They still load, hold the state a fresh run of 200
-/// ticks reaches, and are written back byte for byte: the layout in memory
-/// does not show in the files.
+/// Snapshot files of the playground after 200 ticks, written by `cargo
+/// run -p passo -- simulate playground --ticks 200 --save FILE` (`.ron` and
+/// binary). They load, hold the state a fresh run of 200 ticks reaches,
+/// and are written back byte for byte: a change to the format or to the
+/// bits fails here until the files are written again (a change to the
+/// bits moves the determinism constants too). The layout in memory does
+/// not show in the files: they were first written before the dynamic
+/// bodies' arrays were split into x and y, and loaded unchanged after.
 #[test]
-fn snapshot_files_from_before_the_split_arrays_load_and_write_back_the_same() {
+fn reference_snapshot_files_load_and_write_back_the_same() {
     let scene = passo::scenes::load("playground").unwrap();
     let mut built = scene.build().unwrap();
     let mut timestep = FixedTimestep::from_hz(scene.file.rate_hz).unwrap();
@@ -316,4 +318,32 @@ fn snapshot_files_from_before_the_split_arrays_load_and_write_back_the_same() {
         assert_eq!(world.snapshot(), fresh);
         assert_eq!(world.state_hash(), built.world.state_hash());
     }
+}
+
+/// The same files written before contacts carried what their reuse needs
+/// (`tests/reference/*_before_reuse.*`). The RON one loads, its contacts
+/// found afresh at the next step, and steps on; the binary one, whose
+/// compact form has no field names to go by, is refused with an error.
+#[test]
+fn snapshot_files_from_before_contact_reuse() {
+    let reference = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference");
+    let text =
+        std::fs::read_to_string(reference.join("playground_200_ticks_before_reuse.ron")).unwrap();
+    let (mut world, _) = GameSnapshot::from_ron(&text).unwrap().restore().unwrap();
+    let saved: Vec<_> = world.bodies().map(|b| b.position).collect();
+    assert!(world.contacts().count() > 0, "its contacts load");
+    for _ in 0..60 {
+        world.step(DT);
+    }
+    assert!(world.bodies().all(|b| b.position.is_finite()));
+    assert_ne!(
+        saved,
+        world.bodies().map(|b| b.position).collect::<Vec<_>>()
+    );
+    let bytes = std::fs::read(reference.join("playground_200_ticks_before_reuse.bin")).unwrap();
+    let refused = GameSnapshot::from_bytes(&bytes).and_then(|s| s.restore().map(|_| ()));
+    assert!(
+        refused.is_err(),
+        "a binary file of the format before is refused"
+    );
 }

@@ -102,6 +102,10 @@ impl World {
             Location::Static(i) => {
                 self.statics.pos[i as usize] = position;
                 self.statics_dirty = true;
+                // A dynamic body moved less than the reuse distance moves
+                // as if it had travelled there; a static body's move
+                // changes what it covers of its neighbours.
+                self.contacts_changed(id, location);
             }
         }
         self.note_edit(matches!(location, Location::Static(_)));
@@ -243,6 +247,7 @@ impl World {
             Location::Dynamic(i) => self.dynamic.friction[i as usize] = mu,
             Location::Static(i) => self.statics.friction[i as usize] = mu,
         }
+        self.contacts_changed(id, location);
         self.wake_after_change(location);
         Ok(())
     }
@@ -255,6 +260,7 @@ impl World {
         let was_bouncy = meta.restitution > 0.0;
         meta.restitution = restitution;
         self.bouncy = self.bouncy - usize::from(was_bouncy) + usize::from(restitution > 0.0);
+        self.contacts_changed(id, location);
         self.wake_after_change(location);
         Ok(())
     }
@@ -284,6 +290,7 @@ impl World {
     pub fn set_friction_mix(&mut self, id: BodyId, mix: FrictionMix) -> Result<(), PhysicsError> {
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         self.meta_mut(location).friction_mix = mix;
+        self.contacts_changed(id, location);
         self.wake_after_change(location);
         Ok(())
     }
@@ -292,6 +299,7 @@ impl World {
     pub fn set_filter(&mut self, id: BodyId, filter: CollisionFilter) -> Result<(), PhysicsError> {
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         self.meta_mut(location).filter = filter;
+        self.contacts_changed(id, location);
         self.static_shape_changed(location);
         self.wake_after_change(location);
         Ok(())
@@ -302,6 +310,7 @@ impl World {
     pub fn set_sensor(&mut self, id: BodyId, sensor: bool) -> Result<(), PhysicsError> {
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         self.meta_mut(location).sensor = sensor;
+        self.contacts_changed(id, location);
         self.static_shape_changed(location);
         self.wake_after_change(location);
         Ok(())
@@ -344,6 +353,7 @@ impl World {
             });
         }
         meta.one_way = normal;
+        self.contacts_changed(id, location);
         self.static_shape_changed(location);
         self.wake_after_change(location);
         Ok(())

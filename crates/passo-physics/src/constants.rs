@@ -94,6 +94,14 @@ pub const DEFAULT_SURFACE_GRAVITY: f32 = 9.81;
 /// make overlap visible. Also the tolerance for "touching".
 pub const LINEAR_SLOP: f32 = 0.005;
 
+/// How far two touching bodies may move relative to each other before
+/// their contact is found afresh, metres: the default of
+/// [`ContactSettings::reuse_distance`](crate::ContactSettings::reuse_distance),
+/// [`LINEAR_SLOP`]. Box2D v3 reuses within ten times its slop; here ten
+/// times saved no more than this (a pyramid of base 50: 0.55–0.60 ms a
+/// step either way, against 0.69–0.76 without reuse).
+pub const REUSE_DISTANCE: f32 = LINEAR_SLOP;
+
 /// Distance below which contacts are kept before bodies touch, metres:
 /// 4 × [`LINEAR_SLOP`] = 2 cm, as in Box2D. Together with each body's
 /// travel this step (up to [`SPECULATIVE_REACH`]) it makes contacts

@@ -3,7 +3,7 @@
 //! manifold at the start of a step.
 
 use crate::BodyId;
-use crate::bodies::Colliders;
+use crate::bodies::{Colliders, DynamicBodies};
 use crate::collider::ColliderRef;
 use crate::manifold::Manifold;
 use glam::Vec2;
@@ -50,9 +50,45 @@ pub(crate) struct ContactInfo {
     pub impact_u: f32,
     /// `a_n h / 2` (zero for a pair that cannot bounce).
     pub half_an_h: f32,
+    /// Where B was relative to A when this contact's manifold was
+    /// computed: a later step keeps the contact while the two bodies stay
+    /// within [`ContactSettings::reuse_distance`] of that (see
+    /// `narrow_phase::Reuse`).
+    ///
+    /// [`ContactSettings::reuse_distance`]: crate::ContactSettings::reuse_distance
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub anchor: Vec2,
+    /// The separation when the manifold was computed.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub anchor_separation: f32,
+    /// Whether a later step may keep the contact: not one with a one-way
+    /// platform, a kinematic body or restitution, and no change by game
+    /// code to what either body collides with since.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub reusable: bool,
 }
 
 const _: () = assert!(std::mem::size_of::<Constraint>() == 52);
+
+/// The inverse masses of bodies `a` (dynamic) and `b` as a contact between
+/// them is solved this step, and the contact's effective mass `1 / (1/m_a +
+/// 1/m_b)`. A sleeping body holds like a static one: it is not solved this
+/// step (an awake body touching it wakes its island for the next). A
+/// kinematic body (inverse mass zero) holds too: contacts do not move it,
+/// and gravity does not pull it.
+#[inline(always)]
+pub(crate) fn solver_masses(dynamic: &DynamicBodies, a: usize, b: ColliderRef) -> (f32, f32, f32) {
+    let free = |i: usize| {
+        if dynamic.sleep[i].is_asleep() {
+            0.0
+        } else {
+            dynamic.inv_mass[i]
+        }
+    };
+    let (inv_mass_a, inv_mass_b) = (free(a), b.dynamic_index().map_or(0.0, free));
+    let k = inv_mass_a + inv_mass_b;
+    (inv_mass_a, inv_mass_b, if k > 0.0 { 1.0 / k } else { 0.0 })
+}
 
 /// A pair's order key: the body with the lower slot index first.
 pub(crate) fn key(a: BodyId, b: BodyId) -> (BodyId, BodyId) {
@@ -67,6 +103,13 @@ impl ContactInfo {
     /// The pair's order key (see [`key`]).
     pub(crate) fn key(&self) -> (BodyId, BodyId) {
         key(self.id_a, self.id_b)
+    }
+
+    /// The pair's order key, as the narrow phase's pairs carry it (see
+    /// `bodies::pair_order`).
+    #[inline(always)]
+    pub(crate) fn order(&self) -> u64 {
+        crate::bodies::pair_order(self.id_a.index, self.id_b.index)
     }
 
     /// Touching: the solver pushed the bodies apart this step, or they overlap.
@@ -90,29 +133,18 @@ impl Constraint {
     ) -> (Self, ContactInfo) {
         let dynamic = bodies.dynamic;
         let ai = a as usize;
-        // A sleeping body holds like a static one: it is not solved this
-        // step (an awake body touching it wakes its island for the next).
-        // A kinematic body (inverse mass zero) holds too: contacts do not
-        // move it, and gravity does not pull it.
-        let holds = |i: usize| dynamic.sleep[i].is_asleep() || dynamic.inv_mass[i] == 0.0;
-        let (a_holds, b_holds) = (holds(ai), b.dynamic_index().is_none_or(holds));
-        let (inv_mass_b, friction_b, restitution_b) = match b.dynamic_index() {
+        let (inv_mass_a, inv_mass_b, mass) = solver_masses(dynamic, ai, b);
+        let (a_holds, b_holds) = (inv_mass_a == 0.0, inv_mass_b == 0.0);
+        let (friction_b, restitution_b) = match b.dynamic_index() {
             None => {
                 let s = b.index();
                 (
-                    0.0,
                     bodies.statics.friction[s],
                     bodies.statics.meta[s].restitution,
                 )
             }
-            Some(bi) => (
-                if b_holds { 0.0 } else { dynamic.inv_mass[bi] },
-                dynamic.friction[bi],
-                dynamic.meta[bi].restitution,
-            ),
+            Some(bi) => (dynamic.friction[bi], dynamic.meta[bi].restitution),
         };
-        let inv_mass_a = if a_holds { 0.0 } else { dynamic.inv_mass[ai] };
-        let k = inv_mass_a + inv_mass_b;
         let restitution = dynamic.meta[ai].restitution.max(restitution_b);
         // Restitution reflects the normal velocity at the moment of impact,
         // in the form the integrator conserves. With a relative normal
@@ -153,7 +185,7 @@ impl Constraint {
             base_separation: m.separation,
             inv_mass_a,
             inv_mass_b,
-            mass: if k > 0.0 { 1.0 / k } else { 0.0 },
+            mass,
             friction: dynamic.meta[ai].friction_mix.combine(
                 bodies.meta(b).friction_mix,
                 dynamic.friction[ai],
@@ -173,6 +205,9 @@ impl Constraint {
             restitution,
             impact_u,
             half_an_h,
+            anchor: Vec2::ZERO,
+            anchor_separation: m.separation,
+            reusable: false,
         };
         (row, info)
     }

@@ -178,6 +178,7 @@ impl World {
             parallel: self.parallel,
             all_shaped: self.shaped_dynamic == self.dynamic.len(),
         };
+        cw.keep_last_contacts(&self.dynamic, &self.statics, |id| self.collider_of(id));
         cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
         if cw.crowded() > 0 {
             self.stats.crowded_steps = self.stats.crowded_steps.saturating_add(1);

@@ -10,7 +10,7 @@ use crate::contact_state::{ContactState, names_bodies};
 use crate::continuous::Sweeps;
 use crate::events::EventTracker;
 use crate::motion::Motion;
-use crate::narrow_phase::{Narrow, NarrowPhase, Outcome};
+use crate::narrow_phase::{Narrow, NarrowPhase, Outcome, Reuse};
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::regions::ContactRegions;
 use crate::sleeping::{SleepingContacts, has_awake_body};
@@ -51,6 +51,9 @@ pub(crate) struct ContactWorld {
     events: EventTracker,
     /// Room for merging contacts found again, kept between steps.
     scratch: ContactList,
+    /// The last step's contacts while the narrow phase runs (see
+    /// [`Reuse`]); otherwise the buffer of the step before.
+    last: ContactList,
     /// Counts changes of the contact lists (a step, a wake that drops
     /// stored contacts, a removal), so what is built from them (the
     /// per-body contact index of queries) knows when it is stale.
@@ -58,6 +61,9 @@ pub(crate) struct ContactWorld {
     /// The revision right after the last step (or restore): while it is
     /// current, every awake contact names the bodies it was found with.
     solved_revision: u64,
+    /// Whether a removal moved bodies to other indices since the last step
+    /// (or restore): the awake contacts' rows may name the wrong bodies.
+    bodies_moved: bool,
 }
 
 impl ContactWorld {
@@ -107,7 +113,12 @@ impl ContactWorld {
             slop: settings.slop,
             pressed: &|key| events.pressed(key),
         };
-        self.narrow.run(&narrow, step.parallel, &mut self.solved);
+        let reuse = Reuse {
+            last: &self.last,
+            distance_sq: settings.reuse_distance * settings.reuse_distance,
+        };
+        self.narrow
+            .run(&narrow, &reuse, step.parallel, &mut self.solved);
         if settings.sleeping && any_asleep {
             self.wake_reached(dynamic, statics, step, settings.slop);
         }
@@ -368,6 +379,7 @@ impl ContactWorld {
     /// removed): what is built from them is stale.
     pub(crate) fn lists_changed(&mut self) {
         self.revision += 1;
+        self.bodies_moved = true;
     }
 
     /// Kinematic body `k` (a dynamic index, of `bodies`) is being removed:
@@ -390,6 +402,7 @@ impl ContactWorld {
     pub(crate) fn body_moved(&mut self, from: u32, to: u32) {
         self.sleeping.body_moved(from, to);
         self.revision += 1;
+        self.bodies_moved = true;
     }
 
     /// Crowded grid buckets in this step's pair search (their pairs were
@@ -467,25 +480,44 @@ impl ContactWorld {
             out.awake_infos.clone_from(&self.solved.infos);
             return;
         }
-        out.awake.clear();
-        out.awake_infos.clear();
-        for (c, info) in self.solved.iter() {
-            // Body A of a row is `id_a`, and dynamic.
-            let (Some(a), Some(b)) = (locate(info.id_a), locate(info.id_b)) else {
-                continue;
-            };
-            let Some(a) = a.dynamic_index() else {
-                continue;
-            };
-            let row = Constraint {
-                a: a as u32,
-                b,
-                ..*c
-            };
-            if names_bodies(&row, info, dynamic, statics) {
-                out.awake.push(row);
-                out.awake_infos.push(*info);
+        let (rows, infos) = (&mut out.awake, &mut out.awake_infos);
+        relocate(&self.solved, dynamic, statics, locate, rows, infos);
+    }
+
+    /// Before a step: the last step's contacts as the narrow phase reuses
+    /// them, each pointing at where its bodies sit now, as a snapshot
+    /// carries them (see [`carry_awake`](Self::carry_awake)), so a world
+    /// restored from one reuses what this one does.
+    pub(crate) fn keep_last_contacts(
+        &mut self,
+        dynamic: &DynamicBodies,
+        statics: &StaticBodies,
+        locate: impl Fn(BodyId) -> Option<ColliderRef>,
+    ) {
+        if !std::mem::take(&mut self.bodies_moved) {
+            std::mem::swap(&mut self.solved, &mut self.last);
+            return;
+        }
+        let (rows, infos) = (&mut self.last.rows, &mut self.last.infos);
+        relocate(&self.solved, dynamic, statics, locate, rows, infos);
+    }
+
+    /// Game code changed what body `id` collides with (friction,
+    /// restitution, filter, sensor, one-way side): the next step finds its
+    /// contacts afresh, not reusing the last step's.
+    pub(crate) fn forget_reuse(&mut self, id: BodyId) {
+        for info in &mut self.solved.infos {
+            if info.id_a == id || info.id_b == id {
+                info.reusable = false;
             }
+        }
+    }
+
+    /// Every contact is found afresh at the next step (the static bodies or
+    /// the settings changed).
+    pub(crate) fn forget_all_reuse(&mut self) {
+        for info in &mut self.solved.infos {
+            info.reusable = false;
         }
     }
 
@@ -508,6 +540,7 @@ impl ContactWorld {
         self.revision += 1;
         // The awake contacts are those of the snapshot's bodies.
         self.solved_revision = self.revision;
+        self.bodies_moved = false;
     }
 
     /// A contact stage resuming from a carried state.
@@ -519,5 +552,37 @@ impl ContactWorld {
         world.events.touching_prev = state.touching;
         world.events.sensors_prev = state.sensors;
         world
+    }
+}
+
+/// `solved`'s contacts into `rows` and `infos`, each pointing at where its
+/// bodies sit now (`locate`), leaving out those of removed bodies.
+fn relocate(
+    solved: &ContactList,
+    dynamic: &DynamicBodies,
+    statics: &StaticBodies,
+    locate: impl Fn(BodyId) -> Option<ColliderRef>,
+    rows: &mut Vec<Constraint>,
+    infos: &mut Vec<ContactInfo>,
+) {
+    rows.clear();
+    infos.clear();
+    for (c, info) in solved.iter() {
+        // Body A of a row is `id_a`, and dynamic.
+        let (Some(a), Some(b)) = (locate(info.id_a), locate(info.id_b)) else {
+            continue;
+        };
+        let Some(a) = a.dynamic_index() else {
+            continue;
+        };
+        let row = Constraint {
+            a: a as u32,
+            b,
+            ..*c
+        };
+        if names_bodies(&row, info, dynamic, statics) {
+            rows.push(row);
+            infos.push(*info);
+        }
     }
 }

@@ -398,6 +398,9 @@ mod tests {
             restitution: 0.0,
             impact_u: 0.0,
             half_an_h: 0.0,
+            anchor: glam::Vec2::ZERO,
+            anchor_separation: 0.01,
+            reusable: false,
         };
         (row, info)
     }

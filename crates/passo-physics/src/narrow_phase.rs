@@ -5,7 +5,7 @@
 use crate::bodies::{Colliders, pair_order};
 use crate::collider::ColliderRef;
 use crate::constants::{ONE_WAY_DEPTH, SPECULATIVE_DISTANCE};
-use crate::constraint::{Constraint, ContactInfo, ContactList, key};
+use crate::constraint::{Constraint, ContactInfo, ContactList, key, solver_masses};
 use crate::corners::{beyond_corner, over_a_step};
 use crate::filter::CollisionFilter;
 use crate::manifold::{Faces, Manifold, collide_seamless};
@@ -177,7 +177,8 @@ impl Narrow<'_> {
                 // there) have no direction between them; each pair gets its
                 // own, so a pile spreads out in every direction, not along
                 // one line.
-                if pa == pb && !cb.immovable {
+                let same_spot = pa == pb && !cb.immovable;
+                if same_spot {
                     m.normal = spread_direction(ca.id, cb.id);
                 }
                 // A body level with a static or kinematic one's centre has
@@ -188,8 +189,18 @@ impl Narrow<'_> {
                     m.normal = Vec2::NEG_Y;
                 }
                 let a = ca.body.index() as u32;
-                let (row, info) =
+                let (row, mut info) =
                     Constraint::new(&m, a, cb.body, self.bodies, self.gravity, self.h);
+                // What a later step may keep as it is: not a pair whose
+                // result hangs on more than where the bodies are (a one-way
+                // platform, a body dropping through one, a kinematic body's
+                // press, a bounce), nor two bodies on one spot.
+                let kinematic = cb.immovable && !cb.body.is_static();
+                info.anchor = pb - pa;
+                info.reusable = info.restitution == 0.0
+                    && !(kinematic || same_spot || ca.dropping || cb.dropping)
+                    && ca.one_way.is_none()
+                    && cb.one_way.is_none();
                 Outcome::Contact(row, info)
             }
             None => Outcome::Skip,
@@ -294,6 +305,88 @@ impl Narrow<'_> {
         let reach =
             travel(vel(a).dot(m.normal), margin_a) + travel(-vel(b).dot(m.normal), margin_b);
         m.separation <= SPECULATIVE_DISTANCE + reach
+    }
+}
+
+/// The last step's contacts, walked beside this step's pairs (both in pair
+/// order): a pair whose bodies moved less than `distance` relative to each
+/// other since its contact's manifold was computed keeps the contact, its
+/// normal, friction and points as they were and its separation moved along
+/// the normal by that motion (exact for two boxes, within the distance's
+/// square over the radius for a circle), instead of going through
+/// [`Narrow::pair`] again. Box2D v3 reuses its contacts the same way.
+pub(crate) struct Reuse<'a> {
+    pub last: &'a ContactList,
+    /// The reuse distance squared (zero: nothing is reused).
+    pub distance_sq: f32,
+}
+
+impl Reuse<'_> {
+    /// Where the walk for the pairs from `key` on starts.
+    #[cfg(feature = "parallel")]
+    fn start(&self, key: u64) -> usize {
+        self.last.infos.partition_point(|info| info.order() < key)
+    }
+
+    /// The pair `key`'s contact kept from the last step, if it may be:
+    /// `next` is the walk's place in the last step's contacts, moved past
+    /// every pair before `key`.
+    #[inline(always)]
+    fn kept(
+        &self,
+        narrow: &Narrow<'_>,
+        next: &mut usize,
+        key: u64,
+    ) -> Option<(Constraint, ContactInfo)> {
+        let infos = &self.last.infos;
+        while infos.get(*next).is_some_and(|info| info.order() < key) {
+            *next += 1;
+        }
+        let info = infos
+            .get(*next)
+            .filter(|info| info.reusable && info.order() == key)?;
+        let row = &self.last.rows[*next];
+        let dynamic = narrow.bodies.dynamic;
+        let relative = narrow.bodies.position(row.b) - dynamic.pos.at(row.a as usize);
+        let moved = relative - info.anchor;
+        // (A NaN is not within.)
+        let within = moved.length_squared() < self.distance_sq;
+        if !within {
+            return None;
+        }
+        let separation = info.anchor_separation + moved.dot(row.normal);
+        // Whether a body sleeps may have changed since.
+        let (inv_mass_a, inv_mass_b, mass) = solver_masses(dynamic, row.a as usize, row.b);
+        let row = Constraint {
+            base_separation: separation,
+            inv_mass_a,
+            inv_mass_b,
+            mass,
+            normal_impulse: 0.0,
+            tangent_impulse: 0.0,
+            push_impulse: 0.0,
+            max_normal_impulse: 0.0,
+            ..*row
+        };
+        Some((
+            row,
+            ContactInfo {
+                separation,
+                ..*info
+            },
+        ))
+    }
+
+    /// The contact of pair `(key, pa, pb)`: kept from the last step, or
+    /// found afresh.
+    #[inline(always)]
+    fn outcome(&self, narrow: &Narrow<'_>, next: &mut usize, (key, pa, pb): KeyedPair) -> Outcome {
+        if self.distance_sq > 0.0
+            && let Some((row, info)) = self.kept(narrow, next, key)
+        {
+            return Outcome::Contact(row, info);
+        }
+        narrow.pair(pa, pb)
     }
 }
 
@@ -447,7 +540,13 @@ impl NarrowPhase {
     /// pairs (not the contacts) keeps this cheap, and the contacts come out
     /// sorted for the warm-start merge. Each pair's outcome depends on that
     /// pair alone, so the pairs can be split across threads.
-    pub(crate) fn run(&mut self, narrow: &Narrow<'_>, parallel: bool, contacts: &mut ContactList) {
+    pub(crate) fn run(
+        &mut self,
+        narrow: &Narrow<'_>,
+        reuse: &Reuse<'_>,
+        parallel: bool,
+        contacts: &mut ContactList,
+    ) {
         let proxies = narrow.proxies;
         // The keys, and the highest slot in them (for the sort).
         let (pairs, statics) = (proxies.pairs.len(), proxies.static_pairs.len());
@@ -475,14 +574,23 @@ impl NarrowPhase {
         #[cfg(feature = "parallel")]
         if crate::parallel::goes_parallel(parallel, self.keyed.len()) {
             let (keyed, tasks) = (&self.keyed, &mut self.tasks);
-            return in_tasks(narrow, keyed, tasks, contacts, &mut self.sensor_candidates);
+            return in_tasks(
+                narrow,
+                reuse,
+                keyed,
+                tasks,
+                contacts,
+                &mut self.sensor_candidates,
+            );
         }
         // On one thread each outcome goes straight to its list: no buffer
         // of outcomes (a hundred bytes a pair) to fill and read back.
         let _ = parallel;
         contacts.clear();
-        for &(_, pa, pb) in &self.keyed {
-            keep(narrow.pair(pa, pb), contacts, &mut self.sensor_candidates);
+        let mut next = 0;
+        for &pair in &self.keyed {
+            let outcome = reuse.outcome(narrow, &mut next, pair);
+            keep(outcome, contacts, &mut self.sensor_candidates);
         }
     }
 }
@@ -534,6 +642,7 @@ struct TaskFound {
 #[cfg(feature = "parallel")]
 fn in_tasks(
     narrow: &Narrow<'_>,
+    reuse: &Reuse<'_>,
     keyed: &[KeyedPair],
     tasks: &mut Vec<TaskFound>,
     contacts: &mut ContactList,
@@ -552,8 +661,10 @@ fn in_tasks(
         .for_each(|(task, pairs)| {
             task.contacts.clear();
             task.sensors.clear();
-            for &(_, pa, pb) in pairs {
-                keep(narrow.pair(pa, pb), &mut task.contacts, &mut task.sensors);
+            let mut next = pairs.first().map_or(0, |&(key, _, _)| reuse.start(key));
+            for &pair in pairs {
+                let outcome = reuse.outcome(narrow, &mut next, pair);
+                keep(outcome, &mut task.contacts, &mut task.sensors);
             }
         });
     for t in tasks.iter() {

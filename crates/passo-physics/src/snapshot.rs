@@ -372,7 +372,7 @@ impl World {
     }
 
     /// Where a live body sits, as a collider reference.
-    fn collider_of(&self, id: BodyId) -> Option<ColliderRef> {
+    pub(crate) fn collider_of(&self, id: BodyId) -> Option<ColliderRef> {
         self.locate(id).map(|l| match l {
             Location::Dynamic(i) => ColliderRef::dynamic(i),
             Location::Static(i) => ColliderRef::fixed(i),

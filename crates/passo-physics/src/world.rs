@@ -204,6 +204,7 @@ impl World {
             }
         }
         self.wake_all();
+        self.forget_all_reuse();
         self.settings = settings;
         if limits_changed {
             for i in 0..self.dynamic.len() {
@@ -339,6 +340,9 @@ impl World {
         self.count_shape(def.kind, def.shape.is_some(), 1);
         self.bouncy += usize::from(def.restitution > 0.0);
         self.note_edit(def.kind == BodyKind::Static);
+        if def.kind == BodyKind::Static {
+            self.forget_all_reuse();
+        }
         let slot = &mut self.slots[index as usize];
         let id = BodyId {
             index,
@@ -489,6 +493,7 @@ impl World {
             }
             Location::Static(i) => {
                 self.statics_dirty = true;
+                self.forget_all_reuse();
                 self.wake_all();
                 if let Some(cw) = &mut self.contacts {
                     // The last static body moves to `i`.
@@ -637,6 +642,27 @@ impl World {
         if is_static {
             self.static_edits += 1;
             self.static_revision += 1;
+        }
+    }
+
+    /// Game code changed what the body at `location` collides with
+    /// (friction, restitution, friction mix, filter, sensor, one-way side):
+    /// its contacts are found afresh at the next step, and all of them
+    /// after a static body's change, which may change what it covers of
+    /// its neighbours.
+    pub(crate) fn contacts_changed(&mut self, id: BodyId, location: Location) {
+        match (location, &mut self.contacts) {
+            (Location::Dynamic(_), Some(cw)) => cw.forget_reuse(id),
+            (Location::Static(_), _) => self.forget_all_reuse(),
+            (_, None) => {}
+        }
+    }
+
+    /// Every contact is found afresh at the next step (a static body or
+    /// the settings changed).
+    fn forget_all_reuse(&mut self) {
+        if let Some(cw) = &mut self.contacts {
+            cw.forget_all_reuse();
         }
     }
 
