@@ -61,7 +61,7 @@ pub struct ContactSettings {
     /// restitution, friction mix, filter, sensor flag or one-way side. A
     /// body moved by `set_position` less than this moves as if it had
     /// travelled there. `0` finds every contact afresh each step. Default
-    /// 0.005 ([`REUSE_DISTANCE`](crate::constants::REUSE_DISTANCE)).
+    /// 0.005 ([`REUSE_DISTANCE`]).
     pub reuse_distance: f32,
 }
 

@@ -132,7 +132,7 @@ impl World {
     ///
     /// # Panics
     /// If `dt` is not in `(0, MAX_STEP]` seconds
-    /// ([`MAX_STEP`](crate::constants::MAX_STEP), an hour): a zero,
+    /// ([`MAX_STEP`], an hour): a zero,
     /// negative, NaN or enormous timestep is a programming error, not a
     /// state the world can be in.
     pub fn step(&mut self, dt: f32) {
