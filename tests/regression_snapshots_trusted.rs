@@ -2,7 +2,9 @@
 //! out of order, which made the warm start differ on one thread and on the
 //! pool), an infinite friction, a sleeping contact naming a shapeless body, a NaN
 //! speed limit or a free list naming a slot twice got past `validate` and
-//! panicked later or produced NaN positions or two bodies with one id.
+//! panicked later or produced NaN positions or two bodies with one id. A
+//! carried contact with a normal of 1e30 (which a reused contact is solved
+//! with as it is) gave thousands of non-finite resets.
 //! Every such edit is now refused with a message, and a step count near
 //! `u64::MAX` steps on without overflowing.
 
@@ -109,6 +111,36 @@ fn each_untrusted_edit_is_refused_with_a_message() {
             &[(
                 "key:((index:3,generation:0),(index:4,generation:0))",
                 "key:((index:4,generation:0),(index:3,generation:0))",
+            )],
+        ),
+        (
+            "a contact normal that is not a unit vector",
+            &[("normal:(0.0,-1.0)", "normal:(0.0,-1e30)")],
+        ),
+        (
+            "a negative contact friction",
+            &[(
+                "friction:0.6,normal_impulse",
+                "friction:-0.6,normal_impulse",
+            )],
+        ),
+        (
+            "a contact of 200 points",
+            &[("point_count:2", "point_count:200")],
+        ),
+        (
+            "a NaN contact point",
+            &[("points:((-0.5,0.0)", "points:((NaN,0.0)")],
+        ),
+        (
+            "a NaN contact anchor",
+            &[("anchor:(0.0,-1.0)", "anchor:(NaN,-1.0)")],
+        ),
+        (
+            "a bouncy contact marked for reuse",
+            &[(
+                "restitution:0.0,impact_u:0.0,half_an_h:0.0,anchor:(0.0,-1.0)",
+                "restitution:0.5,impact_u:0.0,half_an_h:0.0,anchor:(0.0,-1.0)",
             )],
         ),
         (

@@ -93,6 +93,8 @@ impl World {
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
         match location {
             Location::Dynamic(i) => {
+                // Its contacts are kept for now: moved less than the reuse
+                // distance, it moves as if it had travelled there.
                 let i = i as usize;
                 self.dynamic.pos.set(i, position);
                 if i < self.dynamic.prev_pos.len() {
@@ -102,9 +104,7 @@ impl World {
             Location::Static(i) => {
                 self.statics.pos[i as usize] = position;
                 self.statics_dirty = true;
-                // A dynamic body moved less than the reuse distance moves
-                // as if it had travelled there; a static body's move
-                // changes what it covers of its neighbours.
+                // What it covers of its neighbours changed.
                 self.contacts_changed(id, location);
             }
         }

@@ -105,6 +105,25 @@ impl ContactInfo {
         key(self.id_a, self.id_b)
     }
 
+    /// Whether every number is finite, one or two points, and the
+    /// restitution in `[0, 1]` and zero on a contact a step may reuse (for
+    /// snapshots: a reused contact is solved as it is).
+    pub(crate) fn is_valid(&self) -> bool {
+        let numbers = [
+            self.separation,
+            self.restitution,
+            self.impact_u,
+            self.half_an_h,
+            self.anchor_separation,
+        ];
+        numbers.iter().all(|x| x.is_finite())
+            && self.points.iter().all(|p| p.is_finite())
+            && self.anchor.is_finite()
+            && matches!(self.point_count, 1 | 2)
+            && (0.0..=1.0).contains(&self.restitution)
+            && !(self.reusable && self.restitution > 0.0)
+    }
+
     /// The pair's order key, as the narrow phase's pairs carry it (see
     /// `bodies::pair_order`).
     #[inline(always)]
@@ -228,8 +247,8 @@ impl Constraint {
         self.b.is_static()
     }
 
-    /// Whether every number is finite and every mass term >= 0 (for
-    /// snapshots).
+    /// Whether every number is finite, the normal a unit vector, and every
+    /// mass term and the friction >= 0 (for snapshots).
     pub(crate) fn is_valid(&self) -> bool {
         let numbers = [
             self.base_separation,
@@ -242,11 +261,12 @@ impl Constraint {
             self.push_impulse,
             self.max_normal_impulse,
         ];
-        self.normal.is_finite()
-            && numbers.iter().all(|x| x.is_finite())
+        numbers.iter().all(|x| x.is_finite())
+            && (self.normal.length() - 1.0).abs() < 1e-3
             && self.inv_mass_a >= 0.0
             && self.inv_mass_b >= 0.0
             && self.mass >= 0.0
+            && self.friction >= 0.0
     }
 }
 

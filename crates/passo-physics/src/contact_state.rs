@@ -170,8 +170,8 @@ fn check_list(
             .get(c.a as usize)
             .is_some_and(|s| s.is_asleep());
         let sleep_ok = !asleep || a_sleeps && sleeping(c.b);
-        let anchored = info.anchor.is_finite() && info.anchor_separation.is_finite();
-        if !(names_bodies(c, info, dynamic, statics) && sleep_ok && c.is_valid() && anchored) {
+        let valid = c.is_valid() && info.is_valid();
+        if !(names_bodies(c, info, dynamic, statics) && sleep_ok && valid) {
             return Err(format!(
                 "{what} contact {:?}-{:?} is inconsistent with the bodies",
                 info.id_a, info.id_b

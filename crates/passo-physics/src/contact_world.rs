@@ -64,6 +64,9 @@ pub(crate) struct ContactWorld {
     /// Whether a removal moved bodies to other indices since the last step
     /// (or restore): the awake contacts' rows may name the wrong bodies.
     bodies_moved: bool,
+    /// Whether every awake contact is to be found afresh at the next step
+    /// (see [`forget_all_reuse`](Self::forget_all_reuse)), not yet marked.
+    reuse_forgotten: bool,
 }
 
 impl ContactWorld {
@@ -478,10 +481,13 @@ impl ContactWorld {
         if self.revision == self.solved_revision {
             out.awake.clone_from(&self.solved.rows);
             out.awake_infos.clone_from(&self.solved.infos);
-            return;
+        } else {
+            let (rows, infos) = (&mut out.awake, &mut out.awake_infos);
+            relocate(&self.solved, dynamic, statics, locate, rows, infos);
         }
-        let (rows, infos) = (&mut out.awake, &mut out.awake_infos);
-        relocate(&self.solved, dynamic, statics, locate, rows, infos);
+        if self.reuse_forgotten {
+            forget_all(&mut out.awake_infos);
+        }
     }
 
     /// Before a step: the last step's contacts as the narrow phase reuses
@@ -494,18 +500,24 @@ impl ContactWorld {
         statics: &StaticBodies,
         locate: impl Fn(BodyId) -> Option<ColliderRef>,
     ) {
-        if !std::mem::take(&mut self.bodies_moved) {
+        if std::mem::take(&mut self.bodies_moved) {
+            let (rows, infos) = (&mut self.last.rows, &mut self.last.infos);
+            relocate(&self.solved, dynamic, statics, locate, rows, infos);
+        } else {
             std::mem::swap(&mut self.solved, &mut self.last);
-            return;
         }
-        let (rows, infos) = (&mut self.last.rows, &mut self.last.infos);
-        relocate(&self.solved, dynamic, statics, locate, rows, infos);
+        if std::mem::take(&mut self.reuse_forgotten) {
+            forget_all(&mut self.last.infos);
+        }
     }
 
     /// Game code changed what body `id` collides with (friction,
     /// restitution, filter, sensor, one-way side): the next step finds its
     /// contacts afresh, not reusing the last step's.
     pub(crate) fn forget_reuse(&mut self, id: BodyId) {
+        if self.reuse_forgotten {
+            return;
+        }
         for info in &mut self.solved.infos {
             if info.id_a == id || info.id_b == id {
                 info.reusable = false;
@@ -514,11 +526,11 @@ impl ContactWorld {
     }
 
     /// Every contact is found afresh at the next step (the static bodies or
-    /// the settings changed).
+    /// the settings changed): marked there, and in a snapshot taken before
+    /// it, so that adding a tile map's thousand boxes does not walk the
+    /// contacts a thousand times.
     pub(crate) fn forget_all_reuse(&mut self) {
-        for info in &mut self.solved.infos {
-            info.reusable = false;
-        }
+        self.reuse_forgotten = true;
     }
 
     /// Puts this contact stage in the state [`resume`](Self::resume) would
@@ -541,6 +553,7 @@ impl ContactWorld {
         // The awake contacts are those of the snapshot's bodies.
         self.solved_revision = self.revision;
         self.bodies_moved = false;
+        self.reuse_forgotten = false;
     }
 
     /// A contact stage resuming from a carried state.
@@ -584,5 +597,12 @@ fn relocate(
             rows.push(row);
             infos.push(*info);
         }
+    }
+}
+
+/// Marks every contact of `infos` to be found afresh.
+fn forget_all(infos: &mut [ContactInfo]) {
+    for info in infos {
+        info.reusable = false;
     }
 }

@@ -192,9 +192,12 @@ impl Narrow<'_> {
                 let (row, mut info) =
                     Constraint::new(&m, a, cb.body, self.bodies, self.gravity, self.h);
                 // What a later step may keep as it is: not a pair whose
-                // result hangs on more than where the bodies are (a one-way
+                // result hangs on game input or a body's history (a one-way
                 // platform, a body dropping through one, a kinematic body's
-                // press, a bounce), nor two bodies on one spot.
+                // press, a bounce), nor two bodies on one spot. The face a
+                // step or a corner picked by the closing velocity (see
+                // `over_a_step`, `beyond_corner`) is kept with the rest, as
+                // far as the reuse distance.
                 let kinematic = cb.immovable && !cb.body.is_static();
                 info.anchor = pb - pa;
                 info.reusable = info.restitution == 0.0
@@ -347,6 +350,8 @@ impl Reuse<'_> {
             .filter(|info| info.reusable && info.order() == key)?;
         let row = &self.last.rows[*next];
         let dynamic = narrow.bodies.dynamic;
+        // Every removal moved the list to the bodies' new indices.
+        debug_assert_eq!(dynamic.meta[row.a as usize].id, info.id_a);
         let relative = narrow.bodies.position(row.b) - dynamic.pos.at(row.a as usize);
         let moved = relative - info.anchor;
         // (A NaN is not within.)

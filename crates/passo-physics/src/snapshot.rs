@@ -1,11 +1,10 @@
 //! Snapshots: the whole state of a world, to save, send or roll back to.
 
 use crate::bodies::{DynamicBodies, StaticBodies, heap};
-use crate::collider::ColliderRef;
 use crate::contact_state::ContactState;
 use crate::contact_world::ContactWorld;
 use crate::world::{Location, Slot};
-use crate::{BodyDef, BodyId, BodyKind, PhysicsError, StepStats, World, WorldSettings};
+use crate::{BodyDef, BodyKind, PhysicsError, StepStats, World, WorldSettings};
 use glam::Vec2;
 
 /// Everything a world needs to continue exactly where it was: settings,
@@ -369,14 +368,6 @@ impl World {
         }
         self.after_restore();
         self.note_edit(!same_statics);
-    }
-
-    /// Where a live body sits, as a collider reference.
-    pub(crate) fn collider_of(&self, id: BodyId) -> Option<ColliderRef> {
-        self.locate(id).map(|l| match l {
-            Location::Dynamic(i) => ColliderRef::dynamic(i),
-            Location::Static(i) => ColliderRef::fixed(i),
-        })
     }
 
     /// What a world derives from its arrays rather than saving: kinematic

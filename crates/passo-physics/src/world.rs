@@ -4,6 +4,7 @@
 //! and `diagnostics`.
 
 use crate::bodies::{BodyMeta, DynamicBodies, SpeedLimits, StaticBodies};
+use crate::collider::ColliderRef;
 use crate::contact_world::ContactWorld;
 use crate::forces::{Dissipation, Drive};
 use crate::integrator::Forces;
@@ -616,6 +617,14 @@ impl World {
     pub(crate) fn locate(&self, id: BodyId) -> Option<Location> {
         let slot = self.slots.get(id.index as usize)?;
         slot.location.filter(|_| slot.generation == id.generation)
+    }
+
+    /// Where a live body sits, as a collider reference.
+    pub(crate) fn collider_of(&self, id: BodyId) -> Option<ColliderRef> {
+        self.locate(id).map(|l| match l {
+            Location::Dynamic(i) => ColliderRef::dynamic(i),
+            Location::Static(i) => ColliderRef::fixed(i),
+        })
     }
 
     /// The array index of a dynamic body that forces move, `None` for a
