@@ -388,6 +388,27 @@ impl World {
             Location::Static(i) => self.statics.pos[i as usize],
         })
     }
+
+    /// Game code changed what the body at `location` collides with
+    /// (friction, restitution, friction mix, filter, sensor, one-way side):
+    /// its contacts are found afresh at the next step, and all of them
+    /// after a static body's change, which may change what it covers of
+    /// its neighbours.
+    pub(crate) fn contacts_changed(&mut self, id: BodyId, location: Location) {
+        match (location, &mut self.contacts) {
+            (Location::Dynamic(_), Some(cw)) => cw.forget_reuse(id),
+            (Location::Static(_), _) => self.forget_all_reuse(),
+            (_, None) => {}
+        }
+    }
+
+    /// Every contact is found afresh at the next step (a static body or
+    /// the settings changed).
+    pub(crate) fn forget_all_reuse(&mut self) {
+        if let Some(cw) = &mut self.contacts {
+            cw.forget_all_reuse();
+        }
+    }
 }
 
 #[cfg(test)]

@@ -53,7 +53,7 @@ pub(crate) struct ContactInfo {
     /// Where B was relative to A when this contact's manifold was
     /// computed: a later step keeps the contact while the two bodies stay
     /// within [`ContactSettings::reuse_distance`] of that (see
-    /// `narrow_phase::Reuse`).
+    /// `reuse::Reuse`).
     ///
     /// [`ContactSettings::reuse_distance`]: crate::ContactSettings::reuse_distance
     #[cfg_attr(feature = "serde", serde(default))]

@@ -85,6 +85,7 @@ mod proxies;
 mod contact;
 
 mod constraint;
+mod reuse;
 
 mod narrow_phase;
 mod solver;

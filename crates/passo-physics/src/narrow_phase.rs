@@ -5,12 +5,13 @@
 use crate::bodies::{Colliders, pair_order};
 use crate::collider::ColliderRef;
 use crate::constants::{ONE_WAY_DEPTH, SPECULATIVE_DISTANCE};
-use crate::constraint::{Constraint, ContactInfo, ContactList, key, solver_masses};
+use crate::constraint::{Constraint, ContactInfo, ContactList, key};
 use crate::corners::{beyond_corner, over_a_step};
 use crate::filter::CollisionFilter;
 use crate::manifold::{Faces, Manifold, collide_seamless};
 use crate::parallel::for_chunks_max;
 use crate::proxies::{Proxies, ProxyMargin};
+use crate::reuse::Reuse;
 use crate::{BodyId, SensorPair, Shape};
 use glam::Vec2;
 
@@ -311,88 +312,21 @@ impl Narrow<'_> {
     }
 }
 
-/// The last step's contacts, walked beside this step's pairs (both in pair
-/// order): a pair whose bodies moved less than `distance` relative to each
-/// other since its contact's manifold was computed keeps the contact, its
-/// normal, friction and points as they were and its separation moved along
-/// the normal by that motion (exact for two boxes, within the distance's
-/// square over the radius for a circle), instead of going through
-/// [`Narrow::pair`] again. Box2D v3 reuses its contacts the same way.
-pub(crate) struct Reuse<'a> {
-    pub last: &'a ContactList,
-    /// The reuse distance squared (zero: nothing is reused).
-    pub distance_sq: f32,
-}
-
-impl Reuse<'_> {
-    /// Where the walk for the pairs from `key` on starts.
-    #[cfg(feature = "parallel")]
-    fn start(&self, key: u64) -> usize {
-        self.last.infos.partition_point(|info| info.order() < key)
+/// The contact of pair `(key, pa, pb)`: kept from the last step (`reuse`,
+/// walked at `next`), or found afresh.
+#[inline(always)]
+fn outcome(
+    narrow: &Narrow<'_>,
+    reuse: &Reuse<'_>,
+    next: &mut usize,
+    (key, pa, pb): KeyedPair,
+) -> Outcome {
+    if reuse.distance_sq > 0.0
+        && let Some((row, info)) = reuse.kept(narrow.bodies, next, key)
+    {
+        return Outcome::Contact(row, info);
     }
-
-    /// The pair `key`'s contact kept from the last step, if it may be:
-    /// `next` is the walk's place in the last step's contacts, moved past
-    /// every pair before `key`.
-    #[inline(always)]
-    fn kept(
-        &self,
-        narrow: &Narrow<'_>,
-        next: &mut usize,
-        key: u64,
-    ) -> Option<(Constraint, ContactInfo)> {
-        let infos = &self.last.infos;
-        while infos.get(*next).is_some_and(|info| info.order() < key) {
-            *next += 1;
-        }
-        let info = infos
-            .get(*next)
-            .filter(|info| info.reusable && info.order() == key)?;
-        let row = &self.last.rows[*next];
-        let dynamic = narrow.bodies.dynamic;
-        // Every removal moved the list to the bodies' new indices.
-        debug_assert_eq!(dynamic.meta[row.a as usize].id, info.id_a);
-        let relative = narrow.bodies.position(row.b) - dynamic.pos.at(row.a as usize);
-        let moved = relative - info.anchor;
-        // (A NaN is not within.)
-        let within = moved.length_squared() < self.distance_sq;
-        if !within {
-            return None;
-        }
-        let separation = info.anchor_separation + moved.dot(row.normal);
-        // Whether a body sleeps may have changed since.
-        let (inv_mass_a, inv_mass_b, mass) = solver_masses(dynamic, row.a as usize, row.b);
-        let row = Constraint {
-            base_separation: separation,
-            inv_mass_a,
-            inv_mass_b,
-            mass,
-            normal_impulse: 0.0,
-            tangent_impulse: 0.0,
-            push_impulse: 0.0,
-            max_normal_impulse: 0.0,
-            ..*row
-        };
-        Some((
-            row,
-            ContactInfo {
-                separation,
-                ..*info
-            },
-        ))
-    }
-
-    /// The contact of pair `(key, pa, pb)`: kept from the last step, or
-    /// found afresh.
-    #[inline(always)]
-    fn outcome(&self, narrow: &Narrow<'_>, next: &mut usize, (key, pa, pb): KeyedPair) -> Outcome {
-        if self.distance_sq > 0.0
-            && let Some((row, info)) = self.kept(narrow, next, key)
-        {
-            return Outcome::Contact(row, info);
-        }
-        narrow.pair(pa, pb)
-    }
+    narrow.pair(pa, pb)
 }
 
 /// A unit direction of its own for the pair of bodies `a` and `b`, from an
@@ -594,7 +528,7 @@ impl NarrowPhase {
         contacts.clear();
         let mut next = 0;
         for &pair in &self.keyed {
-            let outcome = reuse.outcome(narrow, &mut next, pair);
+            let outcome = outcome(narrow, reuse, &mut next, pair);
             keep(outcome, contacts, &mut self.sensor_candidates);
         }
     }
@@ -668,7 +602,7 @@ fn in_tasks(
             task.sensors.clear();
             let mut next = pairs.first().map_or(0, |&(key, _, _)| reuse.start(key));
             for &pair in pairs {
-                let outcome = reuse.outcome(narrow, &mut next, pair);
+                let outcome = outcome(narrow, reuse, &mut next, pair);
                 keep(outcome, &mut task.contacts, &mut task.sensors);
             }
         });

@@ -654,27 +654,6 @@ impl World {
         }
     }
 
-    /// Game code changed what the body at `location` collides with
-    /// (friction, restitution, friction mix, filter, sensor, one-way side):
-    /// its contacts are found afresh at the next step, and all of them
-    /// after a static body's change, which may change what it covers of
-    /// its neighbours.
-    pub(crate) fn contacts_changed(&mut self, id: BodyId, location: Location) {
-        match (location, &mut self.contacts) {
-            (Location::Dynamic(_), Some(cw)) => cw.forget_reuse(id),
-            (Location::Static(_), _) => self.forget_all_reuse(),
-            (_, None) => {}
-        }
-    }
-
-    /// Every contact is found afresh at the next step (a static body or
-    /// the settings changed).
-    fn forget_all_reuse(&mut self) {
-        if let Some(cw) = &mut self.contacts {
-            cw.forget_all_reuse();
-        }
-    }
-
     /// A static body changed what it covers of its neighbours (filter,
     /// sensor, one-way): the static tree and its covered faces are built
     /// again at the next step.
