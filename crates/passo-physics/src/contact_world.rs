@@ -59,11 +59,11 @@ pub(crate) struct ContactWorld {
     /// stored contacts, a removal), so what is built from them (the
     /// per-body contact index of queries) knows when it is stale.
     revision: u64,
-    /// The revision right after the last step (or restore): while it is
-    /// current, every awake contact names the bodies it was found with.
-    solved_revision: u64,
     /// Whether a removal moved bodies to other indices since the last step
-    /// (or restore): the awake contacts' rows may name the wrong bodies.
+    /// (or restore): until then every awake contact names the bodies it was
+    /// found with; after it a row may name the wrong ones, and the list is
+    /// moved to the bodies' new indices before the next step and in a
+    /// snapshot (see [`relocate`]).
     bodies_moved: bool,
     /// Whether every awake contact is to be found afresh at the next step
     /// (see [`forget_all_reuse`](Self::forget_all_reuse)), not yet marked.
@@ -322,7 +322,7 @@ impl ContactWorld {
         self.events
             .record(&self.solved, &self.sleeping.list, step, parallel);
         self.revision += 1;
-        self.solved_revision = self.revision;
+        self.bodies_moved = false;
     }
 
     /// A step in which the contact stage has nothing to do (its colliders
@@ -468,8 +468,8 @@ impl ContactWorld {
         self.carry_awake(dynamic, statics, locate, out);
     }
 
-    /// The awake contacts into `out`: a plain copy while the lists did not
-    /// change since the step; after a removal, each contact points at
+    /// The awake contacts into `out`: a plain copy while no removal moved
+    /// bodies since the step; after one, each contact points at
     /// where its bodies sit now (`locate`), and those of removed bodies
     /// are left out.
     fn carry_awake(
@@ -479,12 +479,12 @@ impl ContactWorld {
         locate: impl Fn(BodyId) -> Option<ColliderRef>,
         out: &mut ContactState,
     ) {
-        if self.revision == self.solved_revision {
-            out.awake.clone_from(&self.solved.rows);
-            out.awake_infos.clone_from(&self.solved.infos);
-        } else {
+        if self.bodies_moved {
             let (rows, infos) = (&mut out.awake, &mut out.awake_infos);
             relocate(&self.solved, dynamic, statics, locate, rows, infos);
+        } else {
+            out.awake.clone_from(&self.solved.rows);
+            out.awake_infos.clone_from(&self.solved.infos);
         }
         if self.reuse_forgotten {
             forget_all(&mut out.awake_infos);
@@ -513,7 +513,8 @@ impl ContactWorld {
     }
 
     /// Game code changed what body `id` collides with (friction,
-    /// restitution, filter, sensor, one-way side): the next step finds its
+    /// restitution, friction mix, filter, sensor, one-way side): the next
+    /// step finds its
     /// contacts afresh, not reusing the last step's.
     pub(crate) fn forget_reuse(&mut self, id: BodyId) {
         if self.reuse_forgotten {
@@ -552,7 +553,6 @@ impl ContactWorld {
         self.events.events.step = 0;
         self.revision += 1;
         // The awake contacts are those of the snapshot's bodies.
-        self.solved_revision = self.revision;
         self.bodies_moved = false;
         self.reuse_forgotten = false;
     }
