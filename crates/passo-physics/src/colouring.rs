@@ -144,7 +144,15 @@ impl Colouring {
             self.colours.push(start..end);
             start = end;
         }
-        self.blocks.clear();
+        // Colours taken from the last build give its layout: its blocks
+        // are kept, not filled with padding again and then written. Their
+        // padding lanes name no body and have zero masses, so the passes
+        // left their numbers zero (up to sign), and every lane a row
+        // takes is written whole below.
+        let keep_layout = !coloured_now && self.blocks.len() == start;
+        if !keep_layout {
+            self.blocks.clear();
+        }
         // Judged at a fixed width, so that the choice (and the bits, once a
         // chain wraps round) is the same with four lanes or eight.
         let coloured = self.colour_of.len() - self.overflow.len();
@@ -155,6 +163,7 @@ impl Colouring {
             // Mostly padding (a stack: one contact a colour): one by one
             // in the list's order is faster, and gives the same bits while
             // no chain wraps round the colours.
+            self.blocks.clear();
             self.colours.clear();
             self.overflow.clear();
             self.overflow_rows.clear();
@@ -167,7 +176,9 @@ impl Colouring {
             }
             return;
         }
-        self.blocks.resize(start, Block::PADDING);
+        if !keep_layout {
+            self.blocks.resize(start, Block::PADDING);
+        }
         for (i, &colour) in picked.zip(&self.colour_of) {
             let c = &rows[i];
             if coloured_now {
@@ -503,6 +514,21 @@ mod tests {
         let all: Vec<usize> = (0..rows.len()).collect();
         let mut kept = fresh(&rows, &all);
         assert!(!kept.overflow.is_empty() && !kept.blocks.is_empty());
+        let padded = |c: &Colouring| c.blocks.iter().any(|k| k.row.contains(&NONE));
+        assert!(padded(&kept), "some block has padding lanes");
+        // The step's passes, which the next build's blocks are kept from.
+        let params = SolverParams::for_tests();
+        let vel: Vec<_> = (0..300).map(|i| Vec2::new(0.01 * i as f32, -1.0)).collect();
+        let mut state = crate::solver::BodyState::of(&vel);
+        let delta = vec![Vec2::new(0.0, -0.001); 300];
+        let mut bodies = SolverBodies {
+            state: &mut state,
+            delta: &delta,
+            deep: &[],
+        };
+        kept.run(&mut bodies, &Pass::Begin(params, true));
+        kept.run(&mut bodies, &Pass::solve(&params, true));
+        kept.run(&mut bodies, &Pass::relax(&params));
         // The next step: the same bodies, other impulses and normals.
         for (k, r) in rows.iter_mut().enumerate() {
             r.normal_impulse = k as f32;
@@ -519,8 +545,9 @@ mod tests {
         assert_same(&kept, &fresh(&rows, &all));
         assert_ne!(kept.colour_of, again.colour_of);
         // A row gone, at the end (an overflow row) or in the middle (a
-        // coloured one): new colours too.
-        for gone in [rows.len() - 1, 3] {
+        // coloured one), or another one gone instead (as many blocks, other
+        // lanes taken): new colours too.
+        for gone in [rows.len() - 1, 3, 4] {
             let picked: Vec<usize> = all.iter().copied().filter(|&i| i != gone).collect();
             kept.build(&rows, picked.iter().copied(), 300, &[]);
             assert_eq!(kept.reused, 1, "coloured anew");
