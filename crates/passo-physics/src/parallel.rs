@@ -1,5 +1,5 @@
 //! One dispatcher for loops over items whose results do not depend on each
-//! other: in chunks of [`PARALLEL_CHUNK`] on rayon's pool for large worlds
+//! other: in chunks of at most [`PARALLEL_CHUNK`] on rayon's pool for large worlds
 //! (with the `parallel` feature), in one go otherwise. Each item's result
 //! does not depend on the chunking, and the integers the chunks return are
 //! summed (or, for [`for_chunks_max`], their largest taken) in any order,
@@ -141,8 +141,17 @@ fn in_chunks<P: Parts>(
     f(0, parts)
 }
 
-/// Halves `parts` at a chunk boundary until a chunk is left, running the
-/// halves with `rayon::join`.
+/// Where [`for_chunks`] splits `n` items in two: the first half goes to
+/// the caller's side of `rayon::join`, the second to the side another
+/// worker takes. The contact passes' regions split the bodies here too
+/// when they split in storage order (see `regions`), so that each worker
+/// moves the bodies whose contacts it solves.
+pub(crate) fn halfway(n: usize) -> usize {
+    n / 2
+}
+
+/// Halves `parts` (at [`halfway`]) until no part is longer than a chunk,
+/// running the halves with `rayon::join`.
 #[cfg(feature = "parallel")]
 fn split_join<P: Parts>(
     offset: usize,
@@ -155,7 +164,7 @@ fn split_join<P: Parts>(
     if n <= chunk {
         return f(offset, parts);
     }
-    let mid = n.div_ceil(chunk) / 2 * chunk;
+    let mid = halfway(n);
     let (left, right) = parts.split_at(mid);
     let (a, b) = rayon::join(
         || split_join(offset, left, f, combine),
