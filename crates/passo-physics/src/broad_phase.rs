@@ -412,7 +412,7 @@ impl BroadPhase {
         // sort): `starts[c]` counts cell c's proxies, then holds the end of
         // its run and, once the proxies are dealt from the last to the
         // first, its start (`starts[cells]`: the end of the last).
-        self.cell_of.clear();
+        // Every entry is written below: only sized.
         self.cell_of.resize(proxies.len(), 0);
         for_chunks(
             parallel,

@@ -9,7 +9,7 @@ use crate::constraint::{Constraint, ContactInfo, ContactList, key};
 use crate::corners::{beyond_corner, over_a_step};
 use crate::filter::CollisionFilter;
 use crate::manifold::{Faces, Manifold, collide_seamless};
-use crate::parallel::for_chunks_max;
+use crate::parallel::{for_chunks_max, goes_parallel, join};
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::reuse::Reuse;
 use crate::{BodyId, SensorPair, Shape};
@@ -369,6 +369,7 @@ fn sort_by_key(
     slots: usize,
     scratch: &mut Vec<KeyedPair>,
     counts: &mut Vec<u32>,
+    parallel: bool,
 ) {
     if pairs.len() < 64 {
         // No pair can move more places than the list is long: sorted whole.
@@ -377,22 +378,29 @@ fn sort_by_key(
         debug_assert!(sorted);
         return;
     }
-    scratch.clear();
+    let parallel = goes_parallel(parallel, pairs.len());
+    // Each pass deals every pair into it: only sized.
     scratch.resize(pairs.len(), (0, 0, crate::collider::ColliderRef::fixed(0)));
     if slots <= 4 * pairs.len() + 1024 {
         // By the lower slot, then by insertion within each lower slot's
         // run (a body's pairs with higher slots, a few as a rule): one
-        // counting pass instead of two.
+        // counting pass instead of two. No run crosses from the deal's
+        // first half to its second: the halves are sorted side by side.
         let lower = |k: &KeyedPair| (k.0 >> 32) as usize;
-        deal(pairs, scratch, counts, slots, lower);
-        if !insertion_sort_within(pairs, 32) {
+        let half = deal(pairs, scratch, counts, slots, lower, parallel);
+        let (first, second) = pairs.split_at_mut(half);
+        let sorted = join(
+            parallel,
+            || insertion_sort_within(first, 32),
+            || insertion_sort_within(second, 32),
+        );
+        if sorted != (true, true) {
             // A long run out of order: by the higher slot, then by the
             // lower, both stable (and the insertion kept equal keys in
             // their order), so the order is still a stable sort's.
-            deal(pairs, scratch, counts, slots, |k| {
-                (k.0 & 0xFFFF_FFFF) as usize
-            });
-            deal(pairs, scratch, counts, slots, lower);
+            let higher = |k: &KeyedPair| (k.0 & 0xFFFF_FFFF) as usize;
+            deal(pairs, scratch, counts, slots, higher, parallel);
+            deal(pairs, scratch, counts, slots, lower, parallel);
         }
         return;
     }
@@ -407,20 +415,26 @@ fn sort_by_key(
     let packed = |key: u64| (key >> 32) << bits | (key & 0xFFFF_FFFF);
     for shift in (0..2 * bits).step_by(DIGIT as usize) {
         let digit = |k: &KeyedPair| ((packed(k.0) >> shift) & ((1 << DIGIT) - 1)) as usize;
-        deal(pairs, scratch, counts, 1 << DIGIT, digit);
+        deal(pairs, scratch, counts, 1 << DIGIT, digit, parallel);
     }
 }
 
 /// One stable counting pass: deals `pairs` into `buckets` buckets by
 /// `bucket` (through `scratch`, which it leaves in `pairs`' place), keeping
-/// their order within a bucket. `counts` holds the counters.
+/// their order within a bucket, and returns where its second half begins.
+/// `counts` holds the counters. Once counted, the buckets are cut in two
+/// halves of about as many pairs, and each half's pairs are dealt into its
+/// part of `scratch`, side by side when `parallel`: each side reads every
+/// pair and writes those of its own buckets. The halves depend on the pairs
+/// alone: the same order on any number of threads.
 fn deal(
     pairs: &mut Vec<KeyedPair>,
     scratch: &mut Vec<KeyedPair>,
     counts: &mut Vec<u32>,
     buckets: usize,
-    bucket: impl Fn(&KeyedPair) -> usize,
-) {
+    bucket: impl Fn(&KeyedPair) -> usize + Sync,
+    parallel: bool,
+) -> usize {
     counts.clear();
     counts.resize(buckets, 0);
     for k in pairs.iter() {
@@ -430,12 +444,30 @@ fn deal(
     for n in counts.iter_mut() {
         (*n, sum) = (sum, sum + *n);
     }
-    for k in pairs.iter() {
-        let at = &mut counts[bucket(k)];
-        scratch[*at as usize] = *k;
-        *at += 1;
-    }
+    // The first bucket starting at or past the middle, and where it starts.
+    let cut = counts.partition_point(|&start| (start as usize) < pairs.len() / 2);
+    let half = counts.get(cut).map_or(pairs.len(), |&start| start as usize);
+    let (first_starts, second_starts) = counts.split_at_mut(cut);
+    let (first, second) = scratch.split_at_mut(half);
+    let all = &pairs[..];
+    // Deals the pairs of the buckets from `from` on that `starts` covers
+    // into `out`, which begins at `base` of the whole.
+    let deal_part = |out: &mut [KeyedPair], starts: &mut [u32], from: usize, base: usize| {
+        for k in all {
+            let Some(at) = bucket(k).checked_sub(from).and_then(|b| starts.get_mut(b)) else {
+                continue;
+            };
+            out[*at as usize - base] = *k;
+            *at += 1;
+        }
+    };
+    join(
+        parallel,
+        || deal_part(first, first_starts, 0, 0),
+        || deal_part(second, second_starts, cut, half),
+    );
     std::mem::swap(pairs, scratch);
+    half
 }
 
 /// Sorts by key by insertion (stable), `O(n + inversions)`, unless some pair
@@ -489,7 +521,8 @@ impl NarrowPhase {
         let proxies = narrow.proxies;
         // The keys, and the highest slot in them (for the sort).
         let (pairs, statics) = (proxies.pairs.len(), proxies.static_pairs.len());
-        self.keyed.clear();
+        // Every key is written below: the list is only sized (clearing it
+        // first wrote each entry twice, on one thread).
         self.keyed
             .resize(pairs + statics, (0, 0, ColliderRef::fixed(0)));
         let (dynamic_keys, static_keys) = self.keyed.split_at_mut(pairs);
@@ -508,7 +541,13 @@ impl NarrowPhase {
             |(keys, pairs)| key_all(keys, pairs, |&(p, s)| narrow.key(p, ColliderRef::fixed(s))),
         ));
         let slots = highest as usize + 1;
-        sort_by_key(&mut self.keyed, slots, &mut self.scratch, &mut self.counts);
+        sort_by_key(
+            &mut self.keyed,
+            slots,
+            &mut self.scratch,
+            &mut self.counts,
+            parallel,
+        );
         self.sensor_candidates.clear();
         #[cfg(feature = "parallel")]
         if crate::parallel::goes_parallel(parallel, self.keyed.len()) {
@@ -667,8 +706,58 @@ mod tests {
             let mut expected = pairs.clone();
             expected.sort_by_key(|k| (k.0, k.1));
             let highest = pairs.iter().map(|k| k.0 & 0xFFFF_FFFF).max().unwrap_or(0);
-            sort_by_key(&mut pairs, highest as usize + 1, &mut Vec::new(), &mut Vec::new());
+            sort_by_key(&mut pairs, highest as usize + 1, &mut Vec::new(), &mut Vec::new(), false);
             prop_assert_eq!(pairs, expected);
+        }
+    }
+
+    /// On the pool (enough pairs for the deal's halves to go side by
+    /// side), with two workers and four: the order of a comparison sort,
+    /// equal keys in their order, whether the insertion within slots
+    /// holds (slots in order, as the broad phase gives them), fails (a
+    /// slot's pairs far out of order) or the slots are sparse.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn the_sort_on_the_pool_orders_pairs_as_a_comparison_sort_does() {
+        let mut next = crate::testing::uniform(7);
+        let n = 3 * crate::constants::PARALLEL_MIN_ITEMS;
+        for (slots, spread) in [
+            (40u32, 40.0),
+            (5_000, 3.0),
+            (5_000, 5_000.0),
+            (70_000, 70_000.0),
+        ] {
+            let pairs: Vec<KeyedPair> = (0..n)
+                .map(|i| {
+                    let near = (i as u32 * slots / n as u32) as f32;
+                    let x = (near + spread * next()) as u32 % slots;
+                    let y = (near + spread * next()) as u32 % slots;
+                    (pair_order(x, y), i as u32, ColliderRef::fixed(i as u32))
+                })
+                .collect();
+            let mut expected = pairs.clone();
+            expected.sort_by_key(|k| (k.0, k.1));
+            let highest = pairs.iter().map(|k| k.0 & 0xFFFF_FFFF).max().unwrap_or(0);
+            for threads in [2, 4] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let mut sorted = pairs.clone();
+                pool.install(|| {
+                    sort_by_key(
+                        &mut sorted,
+                        highest as usize + 1,
+                        &mut Vec::new(),
+                        &mut Vec::new(),
+                        true,
+                    )
+                });
+                assert_eq!(
+                    sorted, expected,
+                    "{slots} slots, spread {spread}, {threads} threads"
+                );
+            }
         }
     }
 }
