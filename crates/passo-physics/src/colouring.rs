@@ -251,15 +251,21 @@ impl Colouring {
 
     /// Writes the impulses back to the rows they were built from.
     pub(crate) fn store(&self, rows: &mut [Constraint]) {
+        self.store_from(rows, 0);
+    }
+
+    /// [`store`](Self::store) into `rows`, the rows from index `first` on,
+    /// which hold every row this colouring was built from.
+    pub(crate) fn store_from(&self, rows: &mut [Constraint], first: usize) {
         for block in &self.blocks {
             for (l, &row) in block.row.iter().enumerate() {
                 if row != NONE {
-                    block.store(l, &mut rows[row as usize]);
+                    block.store(l, &mut rows[row as usize - first]);
                 }
             }
         }
         for (c, &row) in self.overflow.iter().zip(&self.overflow_rows) {
-            rows[row as usize] = *c;
+            rows[row as usize - first] = *c;
         }
     }
 

@@ -242,7 +242,7 @@ impl World {
             cw.motion
                 .unload(self.dynamic.vel.view_mut(), plan.replay, self.parallel, far);
         }
-        cw.regions.store(&mut cw.solved.rows);
+        cw.regions.store(&mut cw.solved.rows, self.parallel);
         if plan.substeps > 0 && plan.sweep {
             let stops = cw.sweep_fast_bodies(&mut self.dynamic, &self.statics, self.parallel);
             self.stats.swept_stops = self.stats.swept_stops.saturating_add(stops as u64);

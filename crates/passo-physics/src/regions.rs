@@ -263,7 +263,25 @@ impl ContactRegions {
     }
 
     /// Writes the impulses back to the rows.
-    pub(crate) fn store(&self, rows: &mut [Constraint]) {
+    pub(crate) fn store(&self, rows: &mut [Constraint], parallel: bool) {
+        // The rows are in the order of their lower body: after a split in
+        // storage order every row of the second region follows the
+        // others', and the two parts are written side by side.
+        let end = |g: usize| self.picked[g].last().map_or(0, |&r| r as usize + 1);
+        let cut = self.picked[1].first().map(|&r| r as usize);
+        if let Some(cut) = cut.filter(|&cut| self.split && cut >= end(0).max(end(2))) {
+            let [first, second, between] = &self.groups;
+            let (head, tail) = rows.split_at_mut(cut);
+            join(
+                parallel,
+                || {
+                    first.store(head);
+                    between.store(head);
+                },
+                || second.store_from(tail, cut),
+            );
+            return;
+        }
         for g in &self.groups {
             g.store(rows);
         }
@@ -514,7 +532,7 @@ mod tests {
                 }
             }
         }
-        regions.store(&mut rows);
+        regions.store(&mut rows, run == Run::Step(true));
         if run != Run::OneArray {
             regions.gather(&mut state);
         }
@@ -784,19 +802,23 @@ mod tests {
 
     #[test]
     fn every_contact_comes_back_from_its_one_place_whether_split_or_not() {
-        for side in [20, 80] {
-            let (pos, _, mut rows) = lattice(side);
-            let mut regions = ContactRegions::default();
-            regions.build(&rows, &pos, &[], false, true);
-            for g in &mut regions.groups {
-                g.mark_rows();
-            }
-            for r in &mut rows {
-                r.normal_impulse = -1.0;
-            }
-            regions.store(&mut rows);
-            for (i, r) in rows.iter().enumerate() {
-                assert_eq!(r.normal_impulse, i as f32, "row {i} of {side} x {side}");
+        // Not split, split in storage order (the second region's rows
+        // written side by side with the others'), split by place.
+        let scenes = [plain(20), plain(80), scrambled(plain(80))];
+        for (k, (pos, _, mut rows, _, _)) in scenes.into_iter().enumerate() {
+            for parallel in [false, true] {
+                let mut regions = ContactRegions::default();
+                regions.build(&rows, &pos, &[], false, parallel);
+                for g in &mut regions.groups {
+                    g.mark_rows();
+                }
+                for r in &mut rows {
+                    r.normal_impulse = -1.0;
+                }
+                regions.store(&mut rows, parallel);
+                for (i, r) in rows.iter().enumerate() {
+                    assert_eq!(r.normal_impulse, i as f32, "row {i} of scene {k}");
+                }
             }
         }
     }
