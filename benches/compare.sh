@@ -8,6 +8,8 @@
 #   bash benches/compare.sh OLD_COMMIT [NEW_COMMIT (default: the working tree)] [ROUNDS]
 #
 # WHAT picks the probes (default: integration rain pyramid sleep settle rays).
+# The probe uses `passo_benches::busy_world`: OLD_COMMIT must have it
+# (2026-12-02 on); for an older one, build an older `benches/steps.rs`.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 old="${1:?usage: compare.sh OLD_COMMIT [NEW_COMMIT] [ROUNDS]}"

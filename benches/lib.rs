@@ -146,6 +146,44 @@ pub fn pyramid_world(base: usize) -> World {
     world
 }
 
+/// The busy scene of the determinism tests: the rain of `rain.ron` (2 000
+/// circles in a box) with a pyramid of 36 boxes beside it and five fast
+/// balls thrown through, so every stage of the step runs.
+pub fn busy_world() -> World {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
+    let scene = passo_scene::Scene::load(&path).expect("the rain scene loads");
+    let mut world = scene.build().expect("the rain scene builds").world;
+    for row in 0..8 {
+        for col in 0..(8 - row) {
+            let p = Vec2::new(14.0 + col as f32 - (7 - row) as f32 * 0.5, 0.5 + row as f32);
+            let def = BodyDef {
+                position: p,
+                shape: Some(Shape::rect(1.0, 1.0)),
+                ..Default::default()
+            };
+            world.add_body(def).expect("valid box");
+        }
+    }
+    world
+        .add_body(BodyDef::new_static(
+            Vec2::new(14.0, -0.5),
+            Shape::rect(12.0, 1.0),
+        ))
+        .expect("valid ground");
+    for i in 0..5 {
+        let def = BodyDef {
+            position: Vec2::new(30.0, 2.0 + i as f32),
+            velocity: Vec2::new(-40.0, 3.0),
+            shape: Some(Shape::circle(0.3)),
+            restitution: 0.5,
+            mass: 3.0,
+            ..Default::default()
+        };
+        world.add_body(def).expect("valid ball");
+    }
+    world
+}
+
 /// The same bodies as `world`, with its dynamic ones added in a scrambled
 /// order (the same order every run): their storage order and ids no
 /// longer follow their places, as when a game spawns bodies over time

@@ -3,13 +3,64 @@
 //! interleaved, so a change can be compared with the code before it in
 //! the same conditions.
 //!
-//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|shuffled|sleep|settle|integration|rays|tuning`
+//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|shuffled|sleep|settle|integration|rays|tuning|rest`
 //! (and `--features parallel ... -- threads`: one thread against the pool)
 
-use passo_benches::{pyramid_world, rain_world, shuffled, with_sleeping};
+use passo_benches::{busy_world, pyramid_world, rain_world, shuffled, with_sleeping};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, ForceModels, QuadraticDrag, World, WorldSettings};
 use std::time::Instant;
+
+/// Passes of the contact solver: substeps, iterations a substep and relax
+/// passes a substep (`ContactSettings`).
+#[derive(Clone, Copy)]
+struct SolverPasses(u32, u32, u32);
+
+/// The settings `tuning` and `rest` compare: the default first.
+const SOLVER_PASSES: [SolverPasses; 8] = [
+    SolverPasses(4, 2, 1),
+    SolverPasses(4, 1, 1),
+    SolverPasses(4, 1, 2),
+    SolverPasses(4, 1, 3),
+    SolverPasses(5, 1, 1),
+    SolverPasses(6, 1, 1),
+    SolverPasses(8, 1, 1),
+    SolverPasses(8, 2, 1),
+];
+
+impl SolverPasses {
+    fn name(self) -> String {
+        let Self(substeps, iterations, relax) = self;
+        format!("substeps {substeps}, iterations {iterations}, relax {relax}")
+    }
+
+    /// A copy of `world` with these passes.
+    fn applied(self, world: &World) -> World {
+        let mut world = world.clone();
+        let mut settings = *world.settings();
+        if let Some(c) = &mut settings.contacts {
+            (c.substeps, c.iterations, c.relax_iterations) = (self.0, self.1, self.2);
+        }
+        world.set_settings(settings).expect("valid settings");
+        world
+    }
+}
+
+/// The passes named by the second argument (`6,1,1`), or all of
+/// [`SOLVER_PASSES`].
+fn chosen_passes() -> Vec<SolverPasses> {
+    let Some(arg) = std::env::args().nth(2) else {
+        return SOLVER_PASSES.to_vec();
+    };
+    let n: Vec<u32> = arg.split(',').filter_map(|n| n.trim().parse().ok()).collect();
+    match n[..] {
+        [substeps, iterations, relax] => vec![SolverPasses(substeps, iterations, relax)],
+        _ => {
+            eprintln!("passes are three counts: substeps,iterations,relax (such as 6,1,1)");
+            std::process::exit(2);
+        }
+    }
+}
 
 fn ms_per_step(mut world: World, warm: u32, ticks: u32) -> f64 {
     ms_per_step_on(&mut world, false, warm, ticks)
@@ -182,23 +233,16 @@ fn main() {
             );
         }
         "tuning" => {
-            // Substeps against iterations: cost (ticks 60-360 of the
-            // pyramid, 60-300 of the rain) and the deepest overlap at the end.
-            for (substeps, iterations) in [(4, 2), (4, 1), (5, 1), (6, 1), (8, 1), (8, 2)] {
-                let tuned = |world: &World| {
-                    let mut world = with_sleeping(world, false);
-                    let mut settings = *world.settings();
-                    if let Some(c) = &mut settings.contacts {
-                        (c.substeps, c.iterations) = (substeps, iterations);
-                    }
-                    world.set_settings(settings).expect("valid settings");
-                    world
-                };
-                let mut line = format!("substeps {substeps}, iterations {iterations}:");
-                for (name, mut world, ticks) in [
-                    ("pyramid 50", tuned(&pyramid_world(50)), 300),
-                    ("rain 10000", tuned(&rain_world(10_000)), 240),
+            // Substeps, iterations and relax passes: cost (ticks 60-360 of
+            // the pyramid, 60-300 of the rain) and the deepest overlap at
+            // the end. `tuning 6,1,1` runs only those passes.
+            for passes in chosen_passes() {
+                let mut line = format!("{}:", passes.name());
+                for (name, world, ticks) in [
+                    ("pyramid 50", pyramid_world(50), 300),
+                    ("rain 10000", rain_world(10_000), 240),
                 ] {
+                    let mut world = passes.applied(&with_sleeping(&world, false));
                     let ms = ms_per_step_on(&mut world, false, 60, ticks);
                     let overlap = world.max_penetration() * 1e3;
                     line += &format!(" {name} {ms:.3} ms/step, overlap {overlap:.2} mm;");
@@ -206,9 +250,32 @@ fn main() {
                 println!("{line}");
             }
         }
+        "rest" => {
+            // The same settings with sleeping on: the tick at which 99 % of
+            // the dynamic bodies sleep (of 3 000 at most), from the start.
+            for passes in chosen_passes() {
+                let mut line = format!("{}:", passes.name());
+                for (name, world) in [
+                    ("busy scene", busy_world()),
+                    ("pyramid 50", pyramid_world(50)),
+                    ("rain 10000", rain_world(10_000)),
+                ] {
+                    let mut world = passes.applied(&world);
+                    world.set_parallel(false);
+                    let n = world.dynamic_len();
+                    let asleep_at = (1..=3000).find(|_| {
+                        world.step(1.0 / 60.0);
+                        world.sleeping_len() * 100 >= n * 99
+                    });
+                    let at = asleep_at.map_or("never".to_string(), |t| format!("tick {t}"));
+                    line += &format!(" {name} 99 % asleep at {at};");
+                }
+                println!("{line}");
+            }
+        }
         _ => {
             eprintln!(
-                "usage: steps integration|rain|pyramid|shuffled|sleep|settle|rays|threads|tuning"
+                "usage: steps integration|rain|pyramid|shuffled|sleep|settle|rays|threads|pool|tuning|rest"
             );
             std::process::exit(2);
         }

@@ -25,41 +25,10 @@ const EXPECTED_AWAKE: u64 = 0x1b1b_24cb_3066_04f6;
 const EXPECTED_PLATFORMS: u64 = 0x4aeb_811e_261d_e782;
 const TICKS: usize = 300;
 
-/// Rain (2 000 circles in a box) with a pyramid of boxes beside it and a
-/// few fast balls thrown through: every stage of the step runs.
-fn busy() -> World {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
-    let mut world = Scene::load(&path).unwrap().build().unwrap().world;
-    for row in 0..8 {
-        for col in 0..(8 - row) {
-            let p = Vec2::new(14.0 + col as f32 - (7 - row) as f32 * 0.5, 0.5 + row as f32);
-            let def = BodyDef {
-                position: p,
-                shape: Some(Shape::rect(1.0, 1.0)),
-                ..Default::default()
-            };
-            world.add_body(def).unwrap();
-        }
-    }
-    world
-        .add_body(BodyDef::new_static(
-            Vec2::new(14.0, -0.5),
-            Shape::rect(12.0, 1.0),
-        ))
-        .unwrap();
-    for i in 0..5 {
-        let def = BodyDef {
-            position: Vec2::new(30.0, 2.0 + i as f32),
-            velocity: Vec2::new(-40.0, 3.0),
-            shape: Some(Shape::circle(0.3)),
-            restitution: 0.5,
-            mass: 3.0,
-            ..Default::default()
-        };
-        world.add_body(def).unwrap();
-    }
-    world
-}
+// The busy scene: rain (2 000 circles in a box) with a pyramid of boxes
+// beside it and a few fast balls thrown through, so every stage of the
+// step runs (`steps rest` measures it too).
+use passo_benches::busy_world as busy;
 
 fn hash_after_ticks(mut world: World) -> u64 {
     for _ in 0..TICKS {
