@@ -52,7 +52,10 @@ fn chosen_passes() -> Vec<SolverPasses> {
     let Some(arg) = std::env::args().nth(2) else {
         return SOLVER_PASSES.to_vec();
     };
-    let n: Vec<u32> = arg.split(',').filter_map(|n| n.trim().parse().ok()).collect();
+    let n: Vec<u32> = arg
+        .split(',')
+        .filter_map(|n| n.trim().parse().ok())
+        .collect();
     match n[..] {
         [substeps, iterations, relax] => vec![SolverPasses(substeps, iterations, relax)],
         _ => {

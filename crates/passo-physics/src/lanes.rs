@@ -342,15 +342,6 @@ pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool>(
         let (tx, ty) = (-ny, nx);
         let mass = k.mass[l];
 
-        // Coulomb friction: |lambda_t| <= mu lambda_n.
-        let vt = (v.bx[l] - v.ax[l]) * tx + (v.by[l] - v.ay[l]) * ty;
-        let max_friction = k.friction[l] * k.normal_impulse[l];
-        let t = k.tangent_impulse[l];
-        let new_t = clamp(t - mass * vt, -max_friction, max_friction);
-        let dt = new_t - t;
-        k.tangent_impulse[l] = new_t;
-        v.apply(k, l, tx * dt, ty * dt);
-
         // Non-penetration: v_n >= 0, or >= -s / h while still apart.
         let s = k.separation[l];
         let bias = if s > 0.0 { s * r.inv_h } else { 0.0 };
@@ -361,6 +352,16 @@ pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool>(
         k.normal_impulse[l] = new_n;
         k.max_normal_impulse[l] = greater(k.max_normal_impulse[l], new_n);
         v.apply(k, l, nx * dn, ny * dn);
+
+        // Coulomb friction, |lambda_t| <= mu lambda_n, bounded by this
+        // pass's normal impulse.
+        let vt = (v.bx[l] - v.ax[l]) * tx + (v.by[l] - v.ay[l]) * ty;
+        let max_friction = k.friction[l] * new_n;
+        let t = k.tangent_impulse[l];
+        let new_t = clamp(t - mass * vt, -max_friction, max_friction);
+        let dt = new_t - t;
+        k.tangent_impulse[l] = new_t;
+        v.apply(k, l, tx * dt, ty * dt);
 
         // Push out of overlap deeper than the slop.
         if PUSH {

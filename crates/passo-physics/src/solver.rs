@@ -259,19 +259,6 @@ pub(crate) fn solve(
         let (mut va, mut vb) = of_pair(bodies.state, c, |s| s.vel);
         let tangent = c.normal.perp();
 
-        // Coulomb friction: |lambda_t| <= mu lambda_n.
-        let vt = (vb - va).dot(tangent);
-        let max_friction = c.friction * c.normal_impulse;
-        // `greater` then `lesser`, as the wide passes (`f32::clamp` would
-        // pass a NaN through, and panic on bounds the wrong way round).
-        let new_t = clamp(c.tangent_impulse - c.mass * vt, -max_friction, max_friction);
-        let impulse = tangent * (new_t - c.tangent_impulse);
-        c.tangent_impulse = new_t;
-        va -= impulse * c.inv_mass_a;
-        if !b_static {
-            vb += impulse * c.inv_mass_b;
-        }
-
         // Non-penetration: v_n >= 0, or >= -s / h while still apart.
         let s = separation(bodies.delta, c);
         let bias = if s > 0.0 { s * inv_h } else { 0.0 };
@@ -280,6 +267,21 @@ pub(crate) fn solve(
         let impulse = c.normal * (new_n - c.normal_impulse);
         c.normal_impulse = new_n;
         c.max_normal_impulse = greater(c.max_normal_impulse, new_n);
+        va -= impulse * c.inv_mass_a;
+        if !b_static {
+            vb += impulse * c.inv_mass_b;
+        }
+
+        // Coulomb friction, |lambda_t| <= mu lambda_n, bounded by this
+        // pass's normal impulse (as Box2D v3 orders them: friction first
+        // would be bounded by the last pass's, none on a new contact).
+        let vt = (vb - va).dot(tangent);
+        let max_friction = c.friction * c.normal_impulse;
+        // `greater` then `lesser`, as the wide passes (`f32::clamp` would
+        // pass a NaN through, and panic on bounds the wrong way round).
+        let new_t = clamp(c.tangent_impulse - c.mass * vt, -max_friction, max_friction);
+        let impulse = tangent * (new_t - c.tangent_impulse);
+        c.tangent_impulse = new_t;
         va -= impulse * c.inv_mass_a;
         if let Some(a) = moved_a {
             bodies.state[a].vel = va;
