@@ -17,7 +17,7 @@ use glam::Vec2;
 pub struct ContactSettings {
     /// Substeps per step, >= 1. Default 4 ([`DEFAULT_SUBSTEPS`]).
     pub substeps: u32,
-    /// Iterations per substep over every contact (friction, normal, push),
+    /// Iterations per substep over every contact (normal, friction, push),
     /// >= 1. Default 2.
     pub iterations: u32,
     /// Velocity iterations per substep after bodies moved ("relax": they see

@@ -33,7 +33,7 @@ pub enum ContactStage {
     /// the cache in the first substep, then each body's velocity change in
     /// the last substep (the same sum, with no pass over the contacts).
     WarmStart,
-    /// Gauss-Seidel passes over the contacts: friction, normal, push.
+    /// Gauss-Seidel passes over the contacts: normal, friction, push.
     Solve,
     /// Speed limits, then positions moved by velocity plus push.
     IntegratePositions,

@@ -12,7 +12,7 @@
 //!     warm start: apply the last substep's impulses (after the first
 //!         substep, each body's velocity change in the last one, added
 //!         as the substep starts: see `motion::Start::Replay`)
-//!     iterate: friction, normal (velocity), push (position)
+//!     iterate: normal, friction (velocity), push (position)
 //!     integrate positions with velocity + push; forget the push
 //!     relax: more velocity iterations
 //! restitution
