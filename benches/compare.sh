@@ -40,6 +40,10 @@ publish = false
 [dependencies]
 passo-physics = { path = "$tree/crates/passo-physics", features = ["parallel"] }
 passo-benches = { path = "$tree/benches" }
+# The probe asks `cfg!(feature = "parallel")`: passo-physics has it here.
+[features]
+default = ["parallel"]
+parallel = []
 [profile.release]
 debug = "line-tables-only"
 [workspace]
