@@ -34,14 +34,18 @@ impl SolverPasses {
         format!("substeps {substeps}, iterations {iterations}, relax {relax}")
     }
 
-    /// A copy of `world` with these passes.
+    /// A copy of `world` with these passes (out of range: says so and
+    /// exits).
     fn applied(self, world: &World) -> World {
         let mut world = world.clone();
         let mut settings = *world.settings();
         if let Some(c) = &mut settings.contacts {
             (c.substeps, c.iterations, c.relax_iterations) = (self.0, self.1, self.2);
         }
-        world.set_settings(settings).expect("valid settings");
+        if let Err(e) = world.set_settings(settings) {
+            eprintln!("passes {}: {e}", self.name());
+            std::process::exit(2);
+        }
         world
     }
 }
