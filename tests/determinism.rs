@@ -9,6 +9,10 @@
 //! saying in the commit why the bits moved. A change that was not meant to
 //! alter the simulation must leave the constant alone.
 
+// The busy scene: rain (2 000 circles in a box) with a pyramid of boxes
+// beside it and a few fast balls thrown through, so every stage of the
+// step runs (`steps rest` measures it too).
+use passo_benches::busy_world as busy;
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, Shape, World};
 use passo_scene::Scene;
@@ -24,11 +28,6 @@ const EXPECTED_AWAKE: u64 = 0x79ad_519b_5fca_7411;
 /// the two constants above stay valid for scenes without them.
 const EXPECTED_PLATFORMS: u64 = 0xca69_a569_1957_6bbb;
 const TICKS: usize = 300;
-
-// The busy scene: rain (2 000 circles in a box) with a pyramid of boxes
-// beside it and a few fast balls thrown through, so every stage of the
-// step runs (`steps rest` measures it too).
-use passo_benches::busy_world as busy;
 
 fn hash_after_ticks(mut world: World) -> u64 {
     for _ in 0..TICKS {

@@ -40,11 +40,7 @@ fn queries_after_a_load_answer_as_when_the_state_was_saved() {
     let mut saved = None;
     for frame in 0..400 {
         game.advance([scripted_input(0, frame), scripted_input(1, frame)]);
-        let touching = game
-            .players
-            .iter()
-            .any(|&p| game.world.contacts_of(p).next().is_some());
-        if frame >= 300 && touching && saved.is_none() {
+        if frame >= 300 && anyone_touching(&game) && saved.is_none() {
             saved = Some((game.world.snapshot(), game.tick, frame));
         }
     }
@@ -66,11 +62,16 @@ fn queries_after_a_load_answer_as_when_the_state_was_saved() {
         );
     }
     assert!(
-        game.players
-            .iter()
-            .any(|&p| game.world.contacts_of(p).next().is_some()),
+        anyone_touching(&game),
         "a player touches something at frame {at}"
     );
+}
+
+/// Whether some player touches something after the last step.
+fn anyone_touching(game: &Game) -> bool {
+    game.players
+        .iter()
+        .any(|&p| game.world.contacts_of(p).next().is_some())
 }
 
 fn two_peers_agree_with_a_straight_run_tick_by_tick(frames: u64, link: Link) {
