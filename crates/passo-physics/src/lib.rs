@@ -87,6 +87,9 @@ mod contact;
 mod constraint;
 mod reuse;
 
+// The candidate pairs' order, then the narrow phase that walks them.
+mod pair_sort;
+
 mod narrow_phase;
 mod solver;
 // Crushed bodies' impulses let go of after the step.
