@@ -3,7 +3,7 @@
 //! interleaved, so a change can be compared with the code before it in
 //! the same conditions.
 //!
-//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|shuffled|sleep|settle|integration|rays|tuning|rest`
+//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|pyramid50|shuffled|sleep|settle|integration|rays|tuning|rest`
 //! (and `--features parallel ... -- threads`: one thread against the pool)
 
 use passo_benches::{busy_world, pyramid_world, rain_world, shuffled, with_sleeping};
@@ -147,6 +147,12 @@ fn main() {
             let w = with_sleeping(&rain_world(1_000), false);
             println!("rain 1000 awake: {:.3} ms/step", ms_per_step(w, 60, 600));
         }
+        "pyramid50" => {
+            // The pyramid of base 50 alone, short enough for a profiler
+            // that counts instructions (`valgrind --tool=cachegrind`).
+            let w = with_sleeping(&pyramid_world(50), false);
+            println!("pyramid 50 awake: {:.3} ms/step", ms_per_step(w, 60, 200));
+        }
         "pyramid" => {
             let w = with_sleeping(&pyramid_world(50), false);
             println!("pyramid 50 awake: {:.3} ms/step", ms_per_step(w, 60, 300));
@@ -282,7 +288,7 @@ fn main() {
         }
         _ => {
             eprintln!(
-                "usage: steps integration|rain|pyramid|shuffled|sleep|settle|rays|threads|pool|tuning|rest"
+                "usage: steps integration|rain|pyramid|pyramid50|shuffled|sleep|settle|rays|threads|pool|tuning|rest"
             );
             std::process::exit(2);
         }
