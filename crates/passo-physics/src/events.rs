@@ -301,18 +301,27 @@ fn info_order(info: &ContactInfo) -> u64 {
 /// distinct slots), so the merge compares one integer a pair; a slot's
 /// generation must match as well (a body removed and another added in its
 /// slot is another pair).
+///
+/// A pile at rest has the same pairs step after step: the entry where the
+/// walk stands is then the contact's own, taken without working out
+/// either order.
 fn warm_start_from(cache: &[Cached], rows: &mut [Constraint], infos: &[ContactInfo]) {
     let mut j = 0;
     for (c, info) in rows.iter_mut().zip(infos) {
-        let order = info_order(info);
-        while j < cache.len() && cache[j].order() < order {
-            j += 1;
+        let key = info.key();
+        if cache.get(j).is_none_or(|hit| hit.key != key) {
+            let order = info_order(info);
+            while j < cache.len() && cache[j].order() < order {
+                j += 1;
+            }
         }
         let Some(hit) = cache.get(j) else { break };
-        if hit.order() == order && hit.key == info.key() {
+        if hit.key == key {
             c.normal_impulse = hit.normal_impulse;
             c.tangent_impulse = hit.tangent_impulse;
             c.push_impulse = hit.push_impulse;
+            // The next pair's order is higher than this one's.
+            j += 1;
         }
     }
 }
