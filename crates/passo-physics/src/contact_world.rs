@@ -266,7 +266,7 @@ impl ContactWorld {
             };
             (bodies.pair_order(a, c.b), proxies.of_body[c.a as usize], b)
         };
-        let keyed = &mut self.narrow.keyed;
+        let keyed = &mut self.narrow.woken;
         keyed.clear();
         let woken = |c: &Constraint| woke_now(ColliderRef::dynamic(c.a)) || woke_now(c.b);
         self.solved
@@ -407,6 +407,12 @@ impl ContactWorld {
         self.sleeping.body_moved(from, to);
         self.revision += 1;
         self.bodies_moved = true;
+    }
+
+    /// The narrow phase's buffers (for tests).
+    #[cfg(test)]
+    pub(crate) fn narrow(&self) -> &NarrowPhase {
+        &self.narrow
     }
 
     /// Crowded grid buckets in this step's pair search (their pairs were
