@@ -355,7 +355,7 @@ pub(crate) struct NarrowPhase {
     keys: Vec<KeyedPair>,
     /// The last step's, which `keyed` holds sorted: a pile at rest finds
     /// the same pairs in the same order step after step, and skips the
-    /// sort (a twentieth of the pyramid of base 50's instructions).
+    /// sort (the pyramid of base 50: 1 % fewer instructions a step).
     last_keys: Vec<KeyedPair>,
     /// The pairs found again when sleeping bodies wake (see
     /// `ContactWorld::wake_reached`).
