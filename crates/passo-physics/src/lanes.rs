@@ -340,6 +340,7 @@ pub(crate) fn warm_start(k: &mut Block, bodies: &mut Bodies<'_>, warm: bool, car
 /// displacement along the normal since the step began (see
 /// `solver::separation`). The bodies move only between the passes,
 /// so the passes of a substep share it.
+#[inline(always)]
 pub(crate) fn measure(k: &mut Block, bodies: &Bodies<'_>) {
     let mut d = Lanes::default();
     for l in 0..LANES {
