@@ -40,7 +40,7 @@ publish = false
 [dependencies]
 passo-physics = { path = "$tree/crates/passo-physics", features = ["parallel"] }
 passo-benches = { path = "$tree/benches" }
-# The probe asks `cfg!(feature = "parallel")`: passo-physics has it here.
+# The probe asks cfg!(feature = "parallel"): passo-physics has it here.
 [features]
 default = ["parallel"]
 parallel = []
