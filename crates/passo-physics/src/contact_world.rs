@@ -13,7 +13,6 @@ use crate::motion::Motion;
 use crate::narrow_phase::{Narrow, NarrowPhase, Outcome};
 use crate::proxies::{Proxies, ProxyMargin};
 use crate::regions::ContactRegions;
-use crate::reuse::Reuse;
 use crate::sleeping::{SleepingContacts, has_awake_body};
 use crate::{BodyId, ContactEvents, ContactSettings, SensorPair};
 use glam::Vec2;
@@ -117,12 +116,10 @@ impl ContactWorld {
             slop: settings.slop,
             pressed: &|key| events.pressed(key),
         };
-        let reuse = Reuse {
-            last: &self.last,
-            distance_sq: settings.reuse_distance * settings.reuse_distance,
-        };
+        let reuse_distance_sq = settings.reuse_distance * settings.reuse_distance;
+        let (last, solved) = (&mut self.last, &mut self.solved);
         self.narrow
-            .run(&narrow, &reuse, step.parallel, &mut self.solved);
+            .run(&narrow, reuse_distance_sq, last, step.parallel, solved);
         if settings.sleeping && any_asleep {
             self.wake_reached(dynamic, statics, step, settings.slop);
         }
@@ -413,6 +410,12 @@ impl ContactWorld {
     #[cfg(test)]
     pub(crate) fn narrow(&self) -> &NarrowPhase {
         &self.narrow
+    }
+
+    /// The narrow phase's buffers, to change (for tests).
+    #[cfg(test)]
+    pub(crate) fn narrow_mut(&mut self) -> &mut NarrowPhase {
+        &mut self.narrow
     }
 
     /// Crowded grid buckets in this step's pair search (their pairs were

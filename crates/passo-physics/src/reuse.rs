@@ -4,6 +4,7 @@
 
 use crate::bodies::Colliders;
 use crate::constraint::{Constraint, ContactInfo, ContactList, solver_masses};
+use glam::Vec2;
 
 /// The last step's contacts, walked beside this step's pairs (both in pair
 /// order): a pair whose bodies moved less than `distance` relative to each
@@ -43,37 +44,74 @@ impl Reuse<'_> {
         let info = infos
             .get(*next)
             .filter(|info| info.reusable && info.order() == key)?;
-        let row = &self.last.rows[*next];
-        let dynamic = bodies.dynamic;
+        let (mut row, mut info) = (self.last.rows[*next], *info);
         // Every removal moved the list to the bodies' new indices.
-        debug_assert_eq!(dynamic.meta[row.a as usize].id, info.id_a);
-        let relative = bodies.position(row.b) - dynamic.pos.at(row.a as usize);
-        let moved = relative - info.anchor;
+        debug_assert_eq!(bodies.dynamic.meta[row.a as usize].id, info.id_a);
+        let moved = moved(bodies, &row, &info);
         // (A NaN is not within.)
         let within = moved.length_squared() < self.distance_sq;
         if !within {
             return None;
         }
-        let separation = info.anchor_separation + moved.dot(row.normal);
-        // Whether a body sleeps may have changed since.
-        let (inv_mass_a, inv_mass_b, mass) = solver_masses(dynamic, row.a as usize, row.b);
-        let row = Constraint {
-            base_separation: separation,
-            inv_mass_a,
-            inv_mass_b,
-            mass,
-            normal_impulse: 0.0,
-            tangent_impulse: 0.0,
-            push_impulse: 0.0,
-            max_normal_impulse: 0.0,
-            ..*row
-        };
-        Some((
-            row,
-            ContactInfo {
-                separation,
-                ..*info
-            },
-        ))
+        refresh(bodies, &mut row, &mut info, moved);
+        Some((row, info))
     }
+
+    /// Whether the last step's contacts may all be kept, one for each of
+    /// `keys` (this step's pairs, in order): every pair had a contact, so
+    /// the walk would look at no pair afresh, and each may be kept (see
+    /// [`kept`](Self::kept)). Then [`keep_all`] makes this step's list of
+    /// them in place, the list the walk would make.
+    pub(crate) fn keeps_all(
+        &self,
+        bodies: Colliders<'_>,
+        keys: impl ExactSizeIterator<Item = u64>,
+    ) -> bool {
+        let last = self.last;
+        keys.len() == last.len()
+            && keys.zip(last.iter()).all(|(key, (row, info))| {
+                info.order() == key
+                    && info.reusable
+                    && moved(bodies, row, info).length_squared() < self.distance_sq
+            })
+    }
+}
+
+/// The last step's contacts, each kept as [`Reuse::kept`] keeps it, in
+/// place (once [`Reuse::keeps_all`] said they all may be).
+pub(crate) fn keep_all(bodies: Colliders<'_>, contacts: &mut ContactList) {
+    for (row, info) in contacts.rows.iter_mut().zip(&mut contacts.infos) {
+        let moved = moved(bodies, row, info);
+        refresh(bodies, row, info, moved);
+    }
+}
+
+/// How far B moved relative to A since the contact's manifold was
+/// computed.
+#[inline(always)]
+fn moved(bodies: Colliders<'_>, row: &Constraint, info: &ContactInfo) -> Vec2 {
+    let relative = bodies.position(row.b) - bodies.dynamic.pos.at(row.a as usize);
+    relative - info.anchor
+}
+
+/// A kept contact as this step solves it: its separation moved along the
+/// normal by `moved`, the bodies' masses as they are now (whether a body
+/// sleeps may have changed since), and no impulse yet (the warm start
+/// gives them).
+#[inline(always)]
+fn refresh(bodies: Colliders<'_>, row: &mut Constraint, info: &mut ContactInfo, moved: Vec2) {
+    let separation = info.anchor_separation + moved.dot(row.normal);
+    let (inv_mass_a, inv_mass_b, mass) = solver_masses(bodies.dynamic, row.a as usize, row.b);
+    *row = Constraint {
+        base_separation: separation,
+        inv_mass_a,
+        inv_mass_b,
+        mass,
+        normal_impulse: 0.0,
+        tangent_impulse: 0.0,
+        push_impulse: 0.0,
+        max_normal_impulse: 0.0,
+        ..*row
+    };
+    info.separation = separation;
 }
