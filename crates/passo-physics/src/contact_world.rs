@@ -101,7 +101,7 @@ impl ContactWorld {
         };
         self.proxies.begin(dynamic, statics, margin);
         self.sleeping.begin(dynamic, any_asleep, &margin);
-        self.add_proxies(dynamic, any_asleep, step.parallel && step.all_shaped);
+        self.add_proxies(dynamic, any_asleep, step.all_shaped, step.parallel);
         self.proxies.widen_kinematic(dynamic);
         self.proxies.find_pairs(step.parallel);
         if any_asleep {
@@ -166,11 +166,19 @@ impl ContactWorld {
     /// Proxies for the shaped dynamic bodies, swept or grown by their
     /// possible travel. Sleeping bodies in the sleep tree get one only when an awake
     /// proxy reaches them (see [`pair_with_sleepers`](Self::pair_with_sleepers)).
-    fn add_proxies(&mut self, dynamic: &DynamicBodies, any_asleep: bool, parallel: bool) {
-        // Every body awake (and, as far as the world counts them, shaped):
-        // one proxy a body, on the pool if many (unless some body has no
-        // shape after all).
-        if parallel && !any_asleep && self.proxies.add_all(dynamic, parallel) {
+    /// `all_shaped`: every dynamic body has a shape, as far as the world
+    /// counts them.
+    fn add_proxies(
+        &mut self,
+        dynamic: &DynamicBodies,
+        any_asleep: bool,
+        all_shaped: bool,
+        parallel: bool,
+    ) {
+        // Every body awake and shaped: one proxy a body, written into
+        // lists sized once (on the pool if many), not pushed one by one
+        // (unless some body has no shape after all).
+        if all_shaped && !any_asleep && self.proxies.add_all(dynamic, parallel) {
             return;
         }
         for (i, meta) in dynamic.meta.iter().enumerate() {
