@@ -309,20 +309,25 @@ fn warm_start_from(cache: &[Cached], rows: &mut [Constraint], infos: &[ContactIn
     let mut j = 0;
     for (c, info) in rows.iter_mut().zip(infos) {
         let key = info.key();
-        if cache.get(j).is_none_or(|hit| hit.key != key) {
-            let order = info_order(info);
-            while j < cache.len() && cache[j].order() < order {
-                j += 1;
+        let hit = match cache.get(j) {
+            Some(hit) if hit.key == key => hit,
+            _ => {
+                let order = info_order(info);
+                while j < cache.len() && cache[j].order() < order {
+                    j += 1;
+                }
+                match cache.get(j) {
+                    Some(hit) if hit.key == key => hit,
+                    Some(_) => continue,
+                    None => break,
+                }
             }
-        }
-        let Some(hit) = cache.get(j) else { break };
-        if hit.key == key {
-            c.normal_impulse = hit.normal_impulse;
-            c.tangent_impulse = hit.tangent_impulse;
-            c.push_impulse = hit.push_impulse;
-            // The next pair's order is higher than this one's.
-            j += 1;
-        }
+        };
+        c.normal_impulse = hit.normal_impulse;
+        c.tangent_impulse = hit.tangent_impulse;
+        c.push_impulse = hit.push_impulse;
+        // The next pair's order is higher than this one's.
+        j += 1;
     }
 }
 
