@@ -56,6 +56,8 @@ pub(crate) struct Colouring {
     last_moved: Vec<u64>,
     /// Contacts per colour in the last build.
     counts: Vec<usize>,
+    /// Rows the last colouring left over (colour [`OVERFLOW`]).
+    left_over: usize,
     /// Builds that took the last build's colours (for tests).
     #[cfg(test)]
     reused: usize,
@@ -120,10 +122,13 @@ impl Colouring {
             {
                 self.reused += 1;
             }
-            for (i, &colour) in picked.clone().zip(&self.colour_of) {
-                if colour == OVERFLOW {
-                    self.overflow.push(rows[i]);
-                    self.overflow_rows.push(i as u32);
+            // (A pile coloured whole has none to look for.)
+            if self.left_over > 0 {
+                for (i, &colour) in picked.clone().zip(&self.colour_of) {
+                    if colour == OVERFLOW {
+                        self.overflow.push(rows[i]);
+                        self.overflow_rows.push(i as u32);
+                    }
                 }
             }
         }
@@ -213,12 +218,14 @@ impl Colouring {
         self.last_moved.clear();
         self.counts.clear();
         self.counts.resize(COLOURS, 0);
+        self.left_over = 0;
         for i in picked {
             let c = &rows[i];
             self.last_moved.push(moved_key(c));
             let (a, b) = c.moved();
             let used = a.map_or(0, |a| self.masks[a]) | b.map_or(0, |b| self.masks[b]);
             if used == u128::MAX {
+                self.left_over += 1;
                 self.colour_of.push(OVERFLOW);
                 self.overflow.push(*c);
                 self.overflow_rows.push(i as u32);
