@@ -52,7 +52,7 @@ pub(crate) struct ContactWorld {
     /// Room for merging contacts found again, kept between steps.
     scratch: ContactList,
     /// The last step's contacts while the narrow phase runs (see
-    /// [`Reuse`]); otherwise the buffer of the step before.
+    /// [`Reuse`](crate::reuse::Reuse)); otherwise the buffer of the step before.
     last: ContactList,
     /// Counts changes of the contact lists (a step, a wake that drops
     /// stored contacts, a removal), so what is built from them (the
