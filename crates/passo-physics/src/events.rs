@@ -212,14 +212,24 @@ impl EventTracker {
     /// contact after the other. Every pair is written to `touching` and
     /// only those touching are kept: no branch on whether each one touches,
     /// which changes from contact to contact.
+    /// The lists keep their length from the last step, so only their
+    /// growth is initialised.
     fn keep(&mut self, solved: &ContactList, asleep: &ContactList) {
-        self.cache.clear();
-        self.touching.clear();
-        self.touching.resize(solved.len() + asleep.len(), NO_PAIR);
+        let len = solved.len() + asleep.len();
+        self.cache.resize(len, NO_CACHED);
+        self.touching.resize(len, NO_PAIR);
+        let mut slots = self.cache.iter_mut();
+        let pairs = &mut self.touching[..];
         let mut touching = 0;
         let mut keep = |c: &Constraint, info: &ContactInfo| {
-            self.cache.push(cached(c, info));
-            self.touching[touching] = info.key();
+            let key = info.key();
+            if let Some(slot) = slots.next() {
+                *slot = cached(key, c);
+            }
+            // At most one pair a contact so far: in bounds.
+            if let Some(pair) = pairs.get_mut(touching) {
+                *pair = key;
+            }
             touching += usize::from(info.is_touching(c));
         };
         if asleep.is_empty() {
@@ -246,12 +256,9 @@ impl EventTracker {
         );
         for_chunks(true, parts, |_, (cache, touching, rows, infos)| {
             for (k, (c, info)) in rows.iter().zip(infos).enumerate() {
-                cache[k] = cached(c, info);
-                touching[k] = if info.is_touching(c) {
-                    info.key()
-                } else {
-                    NO_PAIR
-                };
+                let key = info.key();
+                cache[k] = cached(key, c);
+                touching[k] = if info.is_touching(c) { key } else { NO_PAIR };
             }
             0
         });
@@ -276,11 +283,11 @@ const NO_CACHED: Cached = Cached {
     push_impulse: 0.0,
 };
 
-/// What contact `c` carries to the next step.
+/// What contact `c` of pair `key` carries to the next step.
 #[inline(always)]
-fn cached(c: &Constraint, info: &ContactInfo) -> Cached {
+fn cached(key: (BodyId, BodyId), c: &Constraint) -> Cached {
     Cached {
-        key: info.key(),
+        key,
         normal_impulse: c.normal_impulse,
         tangent_impulse: c.tangent_impulse,
         push_impulse: c.push_impulse,
@@ -353,7 +360,10 @@ fn merged<'a>(
 /// Walks two sorted lists and reports what is only in `now` (`true`) or
 /// only in `before` (`false`).
 fn diff<T: Ord>(before: &[T], now: &[T], mut f: impl FnMut(&T, bool)) {
-    let (mut i, mut j) = (0, 0);
+    // A pile at rest touches as it did: the common start is passed over
+    // with one comparison an entry.
+    let same = before.iter().zip(now).take_while(|(b, n)| b == n).count();
+    let (mut i, mut j) = (same, same);
     loop {
         match (before.get(i), now.get(j)) {
             (Some(b), Some(n)) if b == n => {
