@@ -426,6 +426,12 @@ impl ContactWorld {
         &mut self.narrow
     }
 
+    /// The proxies and their pairs, to change (for tests).
+    #[cfg(test)]
+    pub(crate) fn proxies_mut(&mut self) -> &mut Proxies {
+        &mut self.proxies
+    }
+
     /// Crowded grid buckets in this step's pair search (their pairs were
     /// bounded: bodies piled on one spot).
     pub(crate) fn crowded(&self) -> usize {

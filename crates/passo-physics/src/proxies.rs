@@ -215,8 +215,17 @@ pub(crate) struct Proxies {
     pub of_body: Vec<u32>,
     /// How far proxies are grown this step.
     pub margin: ProxyMargin,
-    /// Pairs of proxies, lower proxy first.
+    /// Pairs of proxies, lower proxy first: the grid's (the first
+    /// `grid_pairs`), then those with sleeping bodies.
     pub pairs: Vec<(u32, u32)>,
+    /// How many of `pairs` the last grid search found.
+    grid_pairs: usize,
+    /// The boxes of the last grid search, when it had none asleep and no
+    /// kinematic proxy (otherwise empty); see [`find_pairs`](Self::find_pairs).
+    searched: Vec<Aabb>,
+    /// Whether `boxes` are those of the last grid search (set by it,
+    /// cleared when a step begins).
+    boxes_searched: bool,
     /// Pairs of a proxy and a static body (by static index).
     pub static_pairs: Vec<(u32, u32)>,
     /// Proxies of the last pair search that met more than
@@ -225,6 +234,12 @@ pub(crate) struct Proxies {
     /// Static pairs found by each parallel task, concatenated in order.
     #[cfg(feature = "parallel")]
     task_pairs: Vec<Vec<(u32, u32)>>,
+    /// Searches whose pairs were kept from the last one (for tests).
+    #[cfg(test)]
+    pub(crate) kept_grid_pairs: usize,
+    /// Search the grid every step, never keeping its pairs (for tests).
+    #[cfg(test)]
+    pub(crate) search_always: bool,
 }
 
 impl Proxies {
@@ -255,6 +270,14 @@ impl Proxies {
         self.find_faces_covered_by_kinematic(dynamic, statics);
         self.body.clear();
         self.slot.clear();
+        // The last search's boxes are kept to compare with this step's
+        // (the two lists trade places: nothing is copied).
+        if self.boxes_searched {
+            std::mem::swap(&mut self.boxes, &mut self.searched);
+        } else {
+            self.searched.clear();
+        }
+        self.boxes_searched = false;
         self.boxes.clear();
         self.around.clear();
         self.margins.clear();
@@ -534,10 +557,36 @@ impl Proxies {
 
     /// Finds the pairs among the proxies (except pairs of two sleeping
     /// ones) and the static bodies each awake proxy overlaps.
+    ///
+    /// The grid's pairs depend on the boxes alone when no proxy sleeps and
+    /// none is kinematic: when every box is the last search's, bit for bit
+    /// (a pile at rest whose bodies did not move), its pairs are kept
+    /// instead of searched for again.
     pub(crate) fn find_pairs(&mut self, parallel: bool) {
-        self.pairs.clear();
-        self.grid
-            .find_pairs(&self.boxes, &self.asleep, parallel, &mut self.pairs);
+        let plain = self.asleep.is_empty()
+            && self.grid.uncapped.is_empty()
+            && self.grid.immovable.is_empty();
+        let unchanged =
+            plain && !self.searched.is_empty() && same_bits(&self.boxes, &self.searched);
+        #[cfg(test)]
+        let unchanged = unchanged && !self.search_always;
+        if unchanged {
+            self.pairs.truncate(self.grid_pairs);
+        } else {
+            self.pairs.clear();
+            self.grid
+                .find_pairs(&self.boxes, &self.asleep, parallel, &mut self.pairs);
+        }
+        #[cfg(test)]
+        {
+            self.kept_grid_pairs += usize::from(unchanged);
+        }
+        self.grid_pairs = self.pairs.len();
+        // Kept to compare only when the search was a plain one.
+        self.boxes_searched = plain;
+        if !plain {
+            self.searched.clear();
+        }
         self.static_pairs.clear();
         self.static_crowded = 0;
         // The static bodies near the awake proxies, when they are few of a
@@ -627,6 +676,13 @@ impl Proxies {
 /// Whether proxy `p` is marked asleep in `asleep` (empty when no proxy
 /// sleeps).
 #[inline(always)]
+/// Whether two lists of boxes are the same, bit for bit (`0.0` and
+/// `-0.0` differ, a NaN is itself).
+fn same_bits(a: &[Aabb], b: &[Aabb]) -> bool {
+    let bits = |x: &Aabb| [x.min.x, x.min.y, x.max.x, x.max.y].map(f32::to_bits);
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| bits(x) == bits(y))
+}
+
 fn marked_asleep(asleep: &[bool], p: usize) -> bool {
     asleep.get(p) == Some(&true)
 }
@@ -642,6 +698,63 @@ fn can_cover(coverer: &BodyMeta, covered: &BodyMeta) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{BodyDef, Shape, World};
+
+    fn proxies_of(world: &mut World) -> &mut Proxies {
+        world.contacts.as_mut().expect("contacts").proxies_mut()
+    }
+
+    #[test]
+    fn grid_pairs_kept_at_rest_are_those_a_search_finds() {
+        // A stack of boxes three wide and four high, sleeping off: it
+        // comes to rest, and its boxes stop changing.
+        let mut world = World::default();
+        let ground = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(20.0, 1.0));
+        world.add_body(ground).unwrap();
+        let mut boxes = Vec::new();
+        for row in 0..4 {
+            for i in 0..3 {
+                let def = BodyDef {
+                    position: Vec2::new(i as f32 * 1.01 - 1.0, 0.5 + row as f32),
+                    shape: Some(Shape::rect(1.0, 1.0)),
+                    ..Default::default()
+                };
+                boxes.push(world.add_body(def).unwrap());
+            }
+        }
+        let mut settings = *world.settings();
+        settings.contacts.as_mut().unwrap().sleeping = false;
+        world.set_settings(settings).unwrap();
+        world.step(1.0 / 60.0);
+        let mut searched = world.clone();
+        proxies_of(&mut searched).search_always = true;
+        for tick in 0..240 {
+            if tick == 200 {
+                // Knocked: the boxes move, and are searched again.
+                for w in [&mut world, &mut searched] {
+                    w.set_velocity(boxes[11], Vec2::new(2.0, 0.0));
+                }
+            }
+            world.step(1.0 / 60.0);
+            searched.step(1.0 / 60.0);
+            let (a, b) = (
+                proxies_of(&mut world).pairs.clone(),
+                proxies_of(&mut searched).pairs.clone(),
+            );
+            assert_eq!(a, b, "tick {tick}: the same pairs");
+            for &id in &boxes {
+                let (p, q) = (world.body(id).unwrap(), searched.body(id).unwrap());
+                assert_eq!(
+                    [p.position, p.velocity].map(|v| v.to_array().map(f32::to_bits)),
+                    [q.position, q.velocity].map(|v| v.to_array().map(f32::to_bits)),
+                    "tick {tick}: the same bits"
+                );
+            }
+        }
+        assert_eq!(proxies_of(&mut searched).kept_grid_pairs, 0);
+        let kept = proxies_of(&mut world).kept_grid_pairs;
+        assert!((10..239).contains(&kept), "kept {kept} times");
+    }
 
     #[test]
     fn a_proxy_grows_along_its_travel_and_by_the_fall_all_round() {
