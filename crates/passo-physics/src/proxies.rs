@@ -220,11 +220,13 @@ pub(crate) struct Proxies {
     pub pairs: Vec<(u32, u32)>,
     /// How many of `pairs` the last grid search found.
     grid_pairs: usize,
-    /// The boxes of the last grid search, when it had none asleep and no
-    /// kinematic proxy (otherwise empty); see [`find_pairs`](Self::find_pairs).
-    searched: Vec<Aabb>,
-    /// Whether `boxes` are those of the last grid search (set by it,
-    /// cleared when a step begins).
+    /// The boxes and the boxes grown all round of the last search, when
+    /// it had none asleep and no kinematic proxy (otherwise empty); see
+    /// [`find_pairs`](Self::find_pairs).
+    searched_boxes: Vec<Aabb>,
+    searched_around: Vec<Aabb>,
+    /// Whether `boxes` and `around` are those of the last search (set by
+    /// it, cleared when a step begins).
     boxes_searched: bool,
     /// Pairs of a proxy and a static body (by static index).
     pub static_pairs: Vec<(u32, u32)>,
@@ -237,6 +239,9 @@ pub(crate) struct Proxies {
     /// Searches whose pairs were kept from the last one (for tests).
     #[cfg(test)]
     pub(crate) kept_grid_pairs: usize,
+    /// Searches whose pairs with static bodies were kept (for tests).
+    #[cfg(test)]
+    pub(crate) kept_static_pairs: usize,
     /// Search the grid every step, never keeping its pairs (for tests).
     #[cfg(test)]
     pub(crate) search_always: bool,
@@ -264,20 +269,24 @@ impl Proxies {
         margin: ProxyMargin,
     ) {
         let bodies = dynamic.len();
+        // The last search's boxes are kept to compare with this step's
+        // (the lists trade places: nothing is copied).
+        if self.boxes_searched {
+            std::mem::swap(&mut self.boxes, &mut self.searched_boxes);
+            std::mem::swap(&mut self.around, &mut self.searched_around);
+        } else {
+            self.searched_boxes.clear();
+            self.searched_around.clear();
+        }
+        self.boxes_searched = false;
         if self.tree_dirty {
             self.rebuild_tree(statics);
+            // Other static bodies: other pairs with them.
+            self.searched_around.clear();
         }
         self.find_faces_covered_by_kinematic(dynamic, statics);
         self.body.clear();
         self.slot.clear();
-        // The last search's boxes are kept to compare with this step's
-        // (the two lists trade places: nothing is copied).
-        if self.boxes_searched {
-            std::mem::swap(&mut self.boxes, &mut self.searched);
-        } else {
-            self.searched.clear();
-        }
-        self.boxes_searched = false;
         self.boxes.clear();
         self.around.clear();
         self.margins.clear();
@@ -559,17 +568,23 @@ impl Proxies {
     /// ones) and the static bodies each awake proxy overlaps.
     ///
     /// The grid's pairs depend on the boxes alone when no proxy sleeps and
-    /// none is kinematic: when every box is the last search's, bit for bit
-    /// (a pile at rest whose bodies did not move), its pairs are kept
-    /// instead of searched for again.
+    /// none is kinematic, and the pairs with static bodies on the boxes
+    /// grown all round and the static bodies: when every box is the last
+    /// search's, bit for bit (a pile at rest whose bodies did not move),
+    /// its pairs are kept instead of searched for again.
     pub(crate) fn find_pairs(&mut self, parallel: bool) {
         let plain = self.asleep.is_empty()
             && self.grid.uncapped.is_empty()
             && self.grid.immovable.is_empty();
-        let unchanged =
-            plain && !self.searched.is_empty() && same_bits(&self.boxes, &self.searched);
+        #[cfg(not(test))]
+        let kept = plain;
         #[cfg(test)]
-        let unchanged = unchanged && !self.search_always;
+        let kept = plain && !self.search_always;
+        let unchanged =
+            kept && !self.searched_boxes.is_empty() && same_bits(&self.boxes, &self.searched_boxes);
+        let statics_unchanged = kept
+            && !self.searched_around.is_empty()
+            && same_bits(&self.around, &self.searched_around);
         if unchanged {
             self.pairs.truncate(self.grid_pairs);
         } else {
@@ -580,12 +595,13 @@ impl Proxies {
         #[cfg(test)]
         {
             self.kept_grid_pairs += usize::from(unchanged);
+            self.kept_static_pairs += usize::from(statics_unchanged);
         }
         self.grid_pairs = self.pairs.len();
         // Kept to compare only when the search was a plain one.
         self.boxes_searched = plain;
-        if !plain {
-            self.searched.clear();
+        if statics_unchanged {
+            return;
         }
         self.static_pairs.clear();
         self.static_crowded = 0;
@@ -673,9 +689,6 @@ impl Proxies {
     }
 }
 
-/// Whether proxy `p` is marked asleep in `asleep` (empty when no proxy
-/// sleeps).
-#[inline(always)]
 /// Whether two lists of boxes are the same, bit for bit (`0.0` and
 /// `-0.0` differ, a NaN is itself).
 fn same_bits(a: &[Aabb], b: &[Aabb]) -> bool {
@@ -683,6 +696,9 @@ fn same_bits(a: &[Aabb], b: &[Aabb]) -> bool {
     a.len() == b.len() && a.iter().zip(b).all(|(x, y)| bits(x) == bits(y))
 }
 
+/// Whether proxy `p` is marked asleep in `asleep` (empty when no proxy
+/// sleeps).
+#[inline(always)]
 fn marked_asleep(asleep: &[bool], p: usize) -> bool {
     asleep.get(p) == Some(&true)
 }
@@ -737,11 +753,15 @@ mod tests {
             }
             world.step(1.0 / 60.0);
             searched.step(1.0 / 60.0);
-            let (a, b) = (
-                proxies_of(&mut world).pairs.clone(),
-                proxies_of(&mut searched).pairs.clone(),
+            let pairs = |w: &mut World| {
+                let p = proxies_of(w);
+                (p.pairs.clone(), p.static_pairs.clone())
+            };
+            assert_eq!(
+                pairs(&mut world),
+                pairs(&mut searched),
+                "tick {tick}: the same pairs"
             );
-            assert_eq!(a, b, "tick {tick}: the same pairs");
             for &id in &boxes {
                 let (p, q) = (world.body(id).unwrap(), searched.body(id).unwrap());
                 assert_eq!(
@@ -751,9 +771,17 @@ mod tests {
                 );
             }
         }
-        assert_eq!(proxies_of(&mut searched).kept_grid_pairs, 0);
-        let kept = proxies_of(&mut world).kept_grid_pairs;
-        assert!((10..239).contains(&kept), "kept {kept} times");
+        let kept = |w: &mut World| {
+            let p = proxies_of(w);
+            (p.kept_grid_pairs, p.kept_static_pairs)
+        };
+        assert_eq!(kept(&mut searched), (0, 0));
+        let (grid, statics) = kept(&mut world);
+        assert!((10..239).contains(&grid), "grid pairs kept {grid} times");
+        assert!(
+            (10..239).contains(&statics),
+            "static pairs kept {statics} times"
+        );
     }
 
     #[test]
