@@ -162,6 +162,9 @@ pub use world::{StepStats, World};
 /// Helpers shared by the unit tests.
 #[cfg(test)]
 mod testing {
+    use crate::{BodyDef, BodyId, Shape, World};
+    use glam::Vec2;
+
     /// Numbers in `[0, 1)`, the same for the same seed (xorshift; a seed
     /// of zero gives zeros).
     pub(crate) fn uniform(mut seed: u64) -> impl FnMut() -> f32 {
@@ -170,6 +173,60 @@ mod testing {
             seed ^= seed >> 7;
             seed ^= seed << 17;
             (seed >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+
+    /// Two rows of boxes on the ground, sleeping off, and the boxes' ids.
+    pub(crate) fn pile() -> (World, Vec<BodyId>) {
+        let mut world = World::default();
+        let ground = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(20.0, 1.0));
+        world.add_body(ground).unwrap();
+        // Two rows of boxes, the upper one across the joints of the lower,
+        // added right to left so that storage order is not key order.
+        let mut boxes = Vec::new();
+        for (row, count) in [(1, 3), (0, 4)] {
+            for i in (0..count).rev() {
+                let x = i as f32 - (count - 1) as f32 * 0.5;
+                let def = BodyDef {
+                    position: Vec2::new(x, 0.5 + row as f32),
+                    shape: Some(Shape::rect(1.0, 1.0)),
+                    ..Default::default()
+                };
+                boxes.push(world.add_body(def).unwrap());
+            }
+        }
+        let mut settings = *world.settings();
+        settings.contacts.as_mut().unwrap().sleeping = false;
+        world.set_settings(settings).unwrap();
+        (world, boxes)
+    }
+
+    /// Steps `a` and `b` side by side, `ticks` ticks at 60 Hz: `poke`
+    /// changes both before tick `at`, and after each tick `check` compares
+    /// them and bodies `ids` must have the same position and velocity in
+    /// both, bit for bit.
+    pub(crate) fn step_side_by_side(
+        (a, b): (&mut World, &mut World),
+        ids: &[BodyId],
+        (ticks, at): (usize, usize),
+        poke: impl Fn(&mut World),
+        mut check: impl FnMut(usize, &mut World, &mut World),
+    ) {
+        for tick in 0..ticks {
+            if tick == at {
+                poke(a);
+                poke(b);
+            }
+            a.step(1.0 / 60.0);
+            b.step(1.0 / 60.0);
+            check(tick, a, b);
+            for &id in ids {
+                let bits = |w: &World| {
+                    let body = w.body(id).expect("the body");
+                    [body.position, body.velocity].map(|v| v.to_array().map(f32::to_bits))
+                };
+                assert_eq!(bits(a), bits(b), "tick {tick}, {id:?}: the same bits");
+            }
         }
     }
 }

@@ -612,7 +612,7 @@ fn copy_into(tasks: &[TaskFound], rows: &mut [Constraint], infos: &mut [ContactI
 
 #[cfg(test)]
 mod tests {
-    use crate::{BodyDef, BodyId, Shape, World};
+    use crate::World;
     use glam::Vec2;
 
     /// Runs a step of `world` and returns whether its narrow phase sorted
@@ -631,30 +631,7 @@ mod tests {
         world.contacts.as_mut().expect("contacts").narrow_mut()
     }
 
-    /// Two rows of boxes on the ground, sleeping off, and the boxes' ids.
-    fn pile() -> (World, Vec<BodyId>) {
-        let mut world = World::default();
-        let ground = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(20.0, 1.0));
-        world.add_body(ground).unwrap();
-        // Two rows of boxes, the upper one across the joints of the lower,
-        // added right to left so that storage order is not key order.
-        let mut boxes = Vec::new();
-        for (row, count) in [(1, 3), (0, 4)] {
-            for i in (0..count).rev() {
-                let x = i as f32 - (count - 1) as f32 * 0.5;
-                let def = BodyDef {
-                    position: Vec2::new(x, 0.5 + row as f32),
-                    shape: Some(Shape::rect(1.0, 1.0)),
-                    ..Default::default()
-                };
-                boxes.push(world.add_body(def).unwrap());
-            }
-        }
-        let mut settings = *world.settings();
-        settings.contacts.as_mut().unwrap().sleeping = false;
-        world.set_settings(settings).unwrap();
-        (world, boxes)
-    }
+    use crate::testing::pile;
 
     #[test]
     fn a_pile_at_rest_keeps_its_sorted_pairs_until_they_change() {
@@ -676,29 +653,17 @@ mod tests {
         let mut walked = world.clone();
         narrow_of(&mut walked).walk_always = true;
         // A box dropped on the pile halfway: found anew, then kept again.
-        for tick in 0..90 {
-            if tick == 45 {
-                for w in [&mut world, &mut walked] {
-                    w.set_position(boxes[0], Vec2::new(0.0, 4.0));
-                }
-            }
-            world.step(1.0 / 60.0);
-            walked.step(1.0 / 60.0);
-            let (a, b) = (world.contacts.as_ref(), walked.contacts.as_ref());
-            let (a, b) = (&a.unwrap().solved, &b.unwrap().solved);
-            assert_eq!(a, b, "tick {tick}: the same contacts");
-            for &id in &boxes {
-                let (p, q) = (world.body(id).unwrap(), walked.body(id).unwrap());
-                assert_eq!(
-                    p.position.to_array().map(f32::to_bits),
-                    q.position.to_array().map(f32::to_bits)
-                );
-                assert_eq!(
-                    p.velocity.to_array().map(f32::to_bits),
-                    q.velocity.to_array().map(f32::to_bits)
-                );
-            }
-        }
+        crate::testing::step_side_by_side(
+            (&mut world, &mut walked),
+            &boxes,
+            (90, 45),
+            |w| w.set_position(boxes[0], Vec2::new(0.0, 4.0)),
+            |tick, world, walked| {
+                let (a, b) = (world.contacts.as_ref(), walked.contacts.as_ref());
+                let (a, b) = (&a.unwrap().solved, &b.unwrap().solved);
+                assert_eq!(a, b, "tick {tick}: the same contacts");
+            },
+        );
         let kept = |w: &mut World| narrow_of(w).kept_in_place;
         assert_eq!(kept(&mut walked), 0);
         assert!(
