@@ -58,6 +58,10 @@ pub(crate) struct ContactWorld {
     /// stored contacts, a removal), so what is built from them (the
     /// per-body contact index of queries) knows when it is stale.
     revision: u64,
+    /// Warm start every step, never keeping a kept contact's impulses
+    /// (for tests).
+    #[cfg(test)]
+    pub(crate) warm_start_always: bool,
     /// Whether a removal moved bodies to other indices since the last step
     /// (or restore): until then every awake contact names the bodies it was
     /// found with; after it a row may name the wrong ones, and the list is
@@ -117,14 +121,29 @@ impl ContactWorld {
             pressed: &|key| events.pressed(key),
         };
         let reuse_distance_sq = settings.reuse_distance * settings.reuse_distance;
+        // Contacts kept in place keep the impulses they ended the last
+        // step with when those are the cache's: the warm start would give
+        // them the same.
+        let impulses = settings.warm_starting && self.events.fresh;
+        #[cfg(test)]
+        let impulses = impulses && !self.warm_start_always;
         let (last, solved) = (&mut self.last, &mut self.solved);
-        self.narrow
-            .run(&narrow, reuse_distance_sq, last, step.parallel, solved);
-        if settings.sleeping && any_asleep {
+        let kept = self.narrow.run(
+            &narrow,
+            (reuse_distance_sq, impulses),
+            last,
+            step.parallel,
+            solved,
+        );
+        let wakes = settings.sleeping && any_asleep;
+        if wakes {
             self.wake_reached(dynamic, statics, step, settings.slop);
         }
         if settings.warm_starting {
-            self.events.warm_start(&mut self.solved, step.parallel);
+            // (A wake adds contacts, which the warm start gives theirs.)
+            if !(kept && impulses && !wakes) {
+                self.events.warm_start(&mut self.solved, step.parallel);
+            }
             if !dynamic.kinematic.is_empty() {
                 // A press moving off a body it crushed: see `crush`.
                 let (vel, meta) = (&dynamic.vel, &dynamic.meta);
@@ -570,6 +589,7 @@ impl ContactWorld {
         self.narrow.sensor_candidates.clear();
         self.sleeping.restore(&state.asleep, &state.asleep_infos);
         self.events.cache.clone_from(&state.cache);
+        self.events.fresh = false;
         self.events.touching_prev.clone_from(&state.touching);
         self.events.sensors_prev.clone_from(&state.sensors);
         self.events.events.clear();

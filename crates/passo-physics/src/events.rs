@@ -63,6 +63,12 @@ pub(crate) struct EventTracker {
     crossed: Vec<SensorPair>,
     /// Events of the last step.
     pub events: ContactEvents,
+    /// Whether each awake contact's row still carries the impulses its
+    /// entry in `cache` has: set when the cache is recorded from the rows,
+    /// cleared when an entry is changed alone ([`forget_impulses`](Self::forget_impulses))
+    /// or a state is restored. A step that keeps every contact in place
+    /// then keeps their impulses and needs no warm start.
+    pub fresh: bool,
 }
 
 impl EventTracker {
@@ -98,6 +104,7 @@ impl EventTracker {
     /// Sets to zero the impulses the pair `key` warm starts the next step
     /// with (none if it has none).
     pub(crate) fn forget_impulses(&mut self, key: (BodyId, BodyId)) {
+        self.fresh = false;
         if let Some(at) = self.cached_at(key) {
             let c = &mut self.cache[at];
             (c.normal_impulse, c.tangent_impulse, c.push_impulse) = (0.0, 0.0, 0.0);
@@ -174,6 +181,7 @@ impl EventTracker {
         } else {
             self.keep(solved, asleep);
         }
+        self.fresh = true;
         self.events.clear();
         self.events.step = step;
         let events = &mut self.events;

@@ -83,11 +83,18 @@ impl Reuse<'_> {
 }
 
 /// The last step's contacts, each kept as [`Reuse::kept`] keeps it, in
-/// place (once [`Reuse::keeps_all`] said they all may be).
-pub(crate) fn keep_all(bodies: Colliders<'_>, contacts: &mut ContactList) {
+/// place (once [`Reuse::keeps_all`] said they all may be). With
+/// `impulses`, each keeps the impulses it ended the last step with, which
+/// are those the warm start would give it (see
+/// [`EventTracker::fresh`](crate::events::EventTracker::fresh)).
+pub(crate) fn keep_all(bodies: Colliders<'_>, contacts: &mut ContactList, impulses: bool) {
     for (row, info) in contacts.rows.iter_mut().zip(&mut contacts.infos) {
         let kept = Kept::new(bodies, row, info, moved(bodies, row, info));
+        let last = (row.normal_impulse, row.tangent_impulse, row.push_impulse);
         *row = kept.row(row);
+        if impulses {
+            (row.normal_impulse, row.tangent_impulse, row.push_impulse) = last;
+        }
         info.separation = kept.separation;
     }
 }
