@@ -649,47 +649,42 @@ mod tests {
         assert!(!step(&mut world), "and kept while they last");
     }
 
-    #[test]
-    fn impulses_kept_in_place_are_those_the_warm_start_gives() {
+    /// The pile stepped beside a copy changed by `change`, with a box
+    /// dropped on both halfway (found anew, then kept again): the same
+    /// contacts, impulses and bits every tick. Returns both worlds.
+    fn beside_a_dropped_box(change: impl FnOnce(&mut World)) -> (World, World) {
         let (mut world, boxes) = pile();
         world.step(1.0 / 60.0);
-        let mut warmed = world.clone();
-        warmed.contacts.as_mut().unwrap().warm_start_always = true;
-        // A box dropped on the pile halfway: warm started, then kept again.
+        let mut other = world.clone();
+        change(&mut other);
         crate::testing::step_side_by_side(
-            (&mut world, &mut warmed),
+            (&mut world, &mut other),
             &boxes,
             (90, 45),
             |w| w.set_position(boxes[0], Vec2::new(0.0, 4.0)),
-            |tick, world, warmed| {
-                let (a, b) = (world.contacts.as_ref(), warmed.contacts.as_ref());
+            |tick, world, other| {
                 // (The impulses the next step starts from are cached
                 // from these.)
+                let (a, b) = (world.contacts.as_ref(), other.contacts.as_ref());
                 let (a, b) = (&a.unwrap().solved, &b.unwrap().solved);
                 assert_eq!(a, b, "tick {tick}: the same contacts and impulses");
             },
         );
+        (world, other)
+    }
+
+    #[test]
+    fn impulses_kept_in_place_are_those_the_warm_start_gives() {
+        let (mut world, _) = beside_a_dropped_box(|warmed| {
+            warmed.contacts.as_mut().unwrap().warm_start_always = true;
+        });
         assert!(narrow_of(&mut world).kept_in_place > 60);
     }
 
     #[test]
     fn contacts_kept_in_place_are_those_the_walk_keeps() {
-        let (mut world, boxes) = pile();
-        world.step(1.0 / 60.0);
-        let mut walked = world.clone();
-        narrow_of(&mut walked).walk_always = true;
-        // A box dropped on the pile halfway: found anew, then kept again.
-        crate::testing::step_side_by_side(
-            (&mut world, &mut walked),
-            &boxes,
-            (90, 45),
-            |w| w.set_position(boxes[0], Vec2::new(0.0, 4.0)),
-            |tick, world, walked| {
-                let (a, b) = (world.contacts.as_ref(), walked.contacts.as_ref());
-                let (a, b) = (&a.unwrap().solved, &b.unwrap().solved);
-                assert_eq!(a, b, "tick {tick}: the same contacts");
-            },
-        );
+        let (mut world, mut walked) =
+            beside_a_dropped_box(|walked| narrow_of(walked).walk_always = true);
         let kept = |w: &mut World| narrow_of(w).kept_in_place;
         assert_eq!(kept(&mut walked), 0);
         assert!(
