@@ -220,6 +220,7 @@ impl EventTracker {
     /// contact after the other. Every pair is written to `touching` and
     /// only those touching are kept: no branch on whether each one touches,
     /// which changes from contact to contact.
+    ///
     /// The lists keep their length from the last step, so only their
     /// growth is initialised.
     fn keep(&mut self, solved: &ContactList, asleep: &ContactList) {

@@ -576,13 +576,13 @@ impl Proxies {
         let plain = self.asleep.is_empty()
             && self.grid.uncapped.is_empty()
             && self.grid.immovable.is_empty();
-        #[cfg(not(test))]
-        let kept = plain;
+        let may_keep = plain;
         #[cfg(test)]
-        let kept = plain && !self.search_always;
-        let unchanged =
-            kept && !self.searched_boxes.is_empty() && same_bits(&self.boxes, &self.searched_boxes);
-        let statics_unchanged = kept
+        let may_keep = may_keep && !self.search_always;
+        let unchanged = may_keep
+            && !self.searched_boxes.is_empty()
+            && same_bits(&self.boxes, &self.searched_boxes);
+        let statics_unchanged = may_keep
             && !self.searched_around.is_empty()
             && same_bits(&self.around, &self.searched_around);
         if unchanged {
