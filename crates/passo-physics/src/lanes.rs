@@ -358,6 +358,9 @@ pub(crate) fn measure(k: &mut Block, bodies: &Bodies<'_>) {
 /// the same rows in the same arithmetic, lane by lane. With `FRESH` each
 /// lane's push impulse starts from zero (the first pass of a substep whose
 /// warm start pass did not run to clear it).
+///
+/// The push of a block [at rest](at_rest) is left out: it would change
+/// nothing.
 #[inline(always)]
 pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool>(
     k: &mut Block,
@@ -365,6 +368,16 @@ pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool>(
     r: &Rates,
 ) {
     let (mut v, mut p) = gather(k, bodies);
+    // Push out of overlap deeper than the slop: each lane's target speed.
+    let target: [f32; LANES] = std::array::from_fn(|l| {
+        let s = k.separation[l];
+        lesser((r.push_rate * (-s - r.slop)).max(0.0), r.push_out_speed)
+    });
+    let push = PUSH && !at_rest::<FRESH>(k, &p, &target);
+    #[cfg(test)]
+    if PUSH && !push {
+        RESTING.with(|n| n.set(n.get() + 1));
+    }
     for l in 0..LANES {
         let (nx, ny) = (k.nx[l], k.ny[l]);
         let (tx, ty) = (-ny, nx);
@@ -390,21 +403,55 @@ pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool>(
         let dt = new_t - t;
         k.tangent_impulse[l] = new_t;
         v.apply(k, l, tx * dt, ty * dt);
-
-        // Push out of overlap deeper than the slop.
-        if PUSH {
-            let target = lesser((r.push_rate * (-s - r.slop)).max(0.0), r.push_out_speed);
+    }
+    // The push works on the push velocities alone: solved after the
+    // velocities of every lane, it gives the same bits as lane by lane.
+    if push {
+        for (l, &target) in target.iter().enumerate() {
+            let (nx, ny) = (k.nx[l], k.ny[l]);
             let pn = (p.bx[l] - p.ax[l]) * nx + (p.by[l] - p.ay[l]) * ny;
             let q = if FRESH { 0.0 } else { k.push_impulse[l] };
-            let new_q = (q + mass * (target - pn)).max(0.0);
+            let new_q = (q + k.mass[l] * (target - pn)).max(0.0);
             let dq = new_q - q;
             k.push_impulse[l] = new_q;
             p.apply(k, l, nx * dq, ny * dq);
         }
-    }
-    if PUSH {
         scatter(k, bodies, &v, &p);
     } else {
+        if PUSH && FRESH {
+            k.push_impulse = [0.0; LANES];
+        }
         scatter_vel(k, bodies, &v);
     }
+}
+
+/// Whether a pass's push would leave a block as it is: every lane's
+/// target push speed is `+0` (no overlap deeper than the slop), and so is
+/// every lane's push impulse (or it starts from zero, `FRESH`) and each
+/// push velocity of the lanes' bodies. Then each lane's new push impulse
+/// works out to `+0` exactly (`+0 - ±0` is `+0`, and so is `+0 + ±0`),
+/// and each push velocity stays `+0`: the push part of the pass is the
+/// identity, bit for bit, and is left out. In a pile at rest no contact
+/// is deeper than the slop and no body is pushed, so every block is; the
+/// push pass then costs what a pass without it does (see BENCHMARKS.md).
+#[inline(always)]
+fn at_rest<const FRESH: bool>(k: &Block, p: &Lanes, target: &[f32; LANES]) -> bool {
+    let mut bits = 0;
+    for (l, target) in target.iter().enumerate() {
+        let q = if FRESH {
+            0
+        } else {
+            k.push_impulse[l].to_bits()
+        };
+        bits |= target.to_bits() | q;
+        bits |= p.ax[l].to_bits() | p.ay[l].to_bits() | p.bx[l].to_bits() | p.by[l].to_bits();
+    }
+    bits == 0
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Blocks whose push was left out as [`at_rest`], on this thread (for
+    /// tests).
+    pub(crate) static RESTING: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
 }

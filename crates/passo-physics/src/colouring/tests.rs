@@ -3,6 +3,7 @@
 use super::*;
 use crate::collider::ColliderRef;
 use crate::columns::Columns;
+use crate::lanes::RESTING;
 use crate::solver::BodyState;
 use glam::Vec2;
 
@@ -297,6 +298,96 @@ fn a_replayed_warm_start_gives_the_velocities_of_a_pass_over_the_contacts() {
     }
 }
 
+/// A pass of [`wide_and_scalar`], run by the blocks and by the scalar
+/// solver.
+#[derive(Clone, Copy)]
+enum Step {
+    /// The warm start pass (the blocks then measure the separations).
+    Begin,
+    /// A Gauss-Seidel pass, with the push or without.
+    Solve(bool),
+    /// The first pass with the push of a replayed substep: each push
+    /// impulse from zero.
+    Fresh,
+}
+
+/// Runs `steps` over `rows` (bodies starting at `vel0`, displaced by
+/// `delta`, `deep` as for [`Colouring::build`]) in blocks and in the
+/// scalar solver in the list's order, checks that both give the same bits
+/// (velocities, pushes and every impulse) and returns the scalar solver's
+/// velocities and pushes, and rows.
+fn wide_and_scalar(
+    rows: &[Constraint],
+    (vel0, delta, deep): (&[Vec2], &[Vec2], &[bool]),
+    params: &SolverParams,
+    steps: &[Step],
+) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>) {
+    let mut colouring = Colouring {
+        blocks_always: true,
+        ..Colouring::default()
+    };
+    colouring.build(rows, 0..rows.len(), vel0.len(), deep);
+    assert!(colouring.overflow.is_empty(), "every contact in a block");
+    let mut scalar_rows = rows.to_vec();
+    let mut state = BodyState::of(vel0);
+    let mut bodies = SolverBodies {
+        state: &mut state,
+        delta,
+        deep,
+    };
+    for &step in steps {
+        match step {
+            Step::Begin => solver::begin_substep(&mut scalar_rows, &mut bodies, params),
+            Step::Solve(push) => solver::solve(&mut scalar_rows, &mut bodies, params, push),
+            Step::Fresh => {
+                scalar_rows.iter_mut().for_each(|c| c.push_impulse = 0.0);
+                solver::solve(&mut scalar_rows, &mut bodies, params, true);
+            }
+        }
+    }
+    let (vel, push) = BodyState::split(&state);
+    let mut wide_state = BodyState::of(vel0);
+    let mut bodies = SolverBodies {
+        state: &mut wide_state,
+        delta,
+        deep,
+    };
+    for &step in steps {
+        match step {
+            Step::Begin => {
+                colouring.run(&mut bodies, &Pass::Begin(*params, false));
+                colouring.run(&mut bodies, &Pass::Measure);
+            }
+            Step::Solve(push) => colouring.run(&mut bodies, &Pass::solve(params, push)),
+            Step::Fresh => colouring.run(&mut bodies, &Pass::fresh(params)),
+        }
+    }
+    let mut wide_rows = rows.to_vec();
+    colouring.store(&mut wide_rows);
+    let (wide_vel, wide_push) = BodyState::split(&wide_state);
+    // Bit for bit (`==` would let -0 pass for +0).
+    let bits = |v: &[Vec2]| {
+        v.iter()
+            .flat_map(|v| [v.x.to_bits(), v.y.to_bits()])
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&wide_vel), bits(&vel));
+    assert_eq!(bits(&wide_push), bits(&push));
+    for (w, s) in wide_rows.iter().zip(&scalar_rows) {
+        let impulses = |c: &Constraint| {
+            [
+                c.normal_impulse,
+                c.tangent_impulse,
+                c.push_impulse,
+                c.max_normal_impulse,
+            ]
+            .map(f32::to_bits)
+        };
+        assert_eq!(impulses(w), impulses(s));
+    }
+    (vel, push, scalar_rows)
+}
+
 #[test]
 fn lanes_solve_as_the_scalar_solver_does() {
     // One box on the ground, one on top of it, a third beside: the
@@ -329,13 +420,13 @@ fn lanes_solve_as_the_scalar_solver_does() {
             ..row(2, Some(3), 0.0)
         },
     ];
-    let vel0 = vec![
+    let vel0 = [
         Vec2::new(0.3, -2.0),
         Vec2::new(-1.0, 0.5),
         Vec2::new(0.2, 0.1),
         Vec2::new(-0.0, 1.5),
     ];
-    let delta = vec![
+    let delta = [
         Vec2::new(0.0, -0.01),
         Vec2::ZERO,
         Vec2::new(0.001, 0.0),
@@ -346,65 +437,98 @@ fn lanes_solve_as_the_scalar_solver_does() {
         carry_push: true,
         ..SolverParams::for_tests()
     };
-    // The scalar solver in the list's order.
     let mut colouring = Colouring {
         blocks_always: true,
         ..Colouring::default()
     };
     colouring.build(&rows, 0..rows.len(), 4, &deep);
     assert_eq!(colouring.colour_count(), 4, "a chain of four");
-    assert!(colouring.overflow.is_empty(), "every contact in a block");
-    let mut scalar_rows = rows.clone();
-    let mut state = BodyState::of(&vel0);
-    let mut bodies = SolverBodies {
-        state: &mut state,
-        delta: &delta,
-        deep: &deep,
-    };
-    solver::begin_substep(&mut scalar_rows, &mut bodies, &params);
-    for p in [true, true, false] {
-        solver::solve(&mut scalar_rows, &mut bodies, &params, p);
-    }
-    let (vel, push) = BodyState::split(&state);
-    let mut wide_state = BodyState::of(&vel0);
-    let mut bodies = SolverBodies {
-        state: &mut wide_state,
-        delta: &delta,
-        deep: &deep,
-    };
-    colouring.run(&mut bodies, &Pass::Begin(params, false));
-    colouring.run(&mut bodies, &Pass::Measure);
-    for p in [true, true, false] {
-        colouring.run(&mut bodies, &Pass::solve(&params, p));
-    }
-    let mut wide_rows = rows.clone();
-    colouring.store(&mut wide_rows);
-    let (wide_vel, wide_push) = BodyState::split(&wide_state);
+    let steps = [
+        Step::Begin,
+        Step::Solve(true),
+        Step::Solve(true),
+        Step::Solve(false),
+    ];
+    let (vel, push, _) = wide_and_scalar(&rows, (&vel0, &delta, &deep), &params, &steps);
     assert_eq!(
-        wide_vel[3].x.to_bits(),
+        vel[3].x.to_bits(),
         (-0.0f32).to_bits(),
         "held body untouched"
     );
-    // Bit for bit (`==` would let -0 pass for +0).
-    let bits = |v: &[Vec2]| {
-        v.iter()
-            .flat_map(|v| [v.x.to_bits(), v.y.to_bits()])
-            .collect::<Vec<_>>()
-    };
-    assert_eq!(bits(&wide_vel), bits(&vel));
-    assert_eq!(bits(&wide_push), bits(&push));
     assert!(push[0] != Vec2::ZERO, "the carried push moved body 0");
-    assert_eq!(wide_rows[2].push_impulse, scalar_rows[2].push_impulse);
-    for (w, s) in wide_rows.iter().zip(&scalar_rows) {
-        let impulses = |c: &Constraint| {
-            [
-                c.normal_impulse,
-                c.tangent_impulse,
-                c.push_impulse,
-                c.max_normal_impulse,
-            ]
-            .map(f32::to_bits)
-        };
-        assert_eq!(impulses(w), impulses(s));
-    }
+}
+
+#[test]
+fn blocks_at_rest_leave_the_push_out_with_the_scalar_solvers_bits() {
+    // A pile with no contact deeper than the slop (5 mm): its push passes
+    // change nothing, and the blocks leave the push out. Normals with
+    // negative parts and velocities of -0 make the zeros of the push
+    // arithmetic signed both ways; the push impulses the rows bring along
+    // are stale (a replayed substep's first pass starts from zero).
+    let mut rows: Vec<_> = [
+        (0, None, Vec2::Y, -0.004),
+        (0, Some(1), Vec2::new(-0.6, 0.8), -0.001),
+        (1, Some(2), Vec2::new(0.0, -1.0), 0.0),
+        (2, None, Vec2::new(0.8, -0.6), 0.002),
+        (3, Some(2), Vec2::NEG_X, -0.005),
+        (3, Some(4), Vec2::new(-0.6, -0.8), -0.003),
+        (4, None, Vec2::Y, -0.0),
+    ]
+    .into_iter()
+    .map(|(a, b, normal, base_separation)| Constraint {
+        normal,
+        base_separation,
+        push_impulse: 0.4,
+        ..row(a, b, if b.is_some() { 1.0 } else { 0.0 })
+    })
+    .collect();
+    let vel0 = [
+        Vec2::new(-0.0, -0.2),
+        Vec2::new(0.0, -0.0),
+        Vec2::new(0.1, -0.0),
+        Vec2::new(-0.0, -0.0),
+        Vec2::new(0.3, -0.1),
+    ];
+    let delta = [Vec2::ZERO; 5];
+    let params = SolverParams::for_tests();
+    let steps = [
+        Step::Fresh,
+        Step::Solve(true),
+        Step::Begin,
+        Step::Solve(true),
+        Step::Solve(true),
+        Step::Solve(false),
+    ];
+    let resting = || RESTING.with(|n| n.get());
+    let mut colouring = Colouring {
+        blocks_always: true,
+        ..Colouring::default()
+    };
+    colouring.build(&rows, 0..rows.len(), vel0.len(), &[]);
+    let blocks = colouring.blocks.len();
+    let before = resting();
+    let (_, push, scalar) = wide_and_scalar(&rows, (&vel0, &delta, &[]), &params, &steps);
+    assert_eq!(
+        resting() - before,
+        4 * blocks,
+        "every block, every pass with the push"
+    );
+    assert!(push.iter().all(|p| *p == Vec2::ZERO), "nothing pushed");
+    assert!(scalar.iter().all(|c| c.push_impulse.to_bits() == 0));
+
+    // One contact 2 cm deep: its push spreads to the bodies after it in
+    // the list, and only the blocks it does not reach leave it out.
+    rows[2].base_separation = -0.02;
+    let before = resting();
+    let (_, push, _) = wide_and_scalar(&rows, (&vel0, &delta, &[]), &params, &steps);
+    let left_out = resting() - before;
+    assert!(
+        push[1] != Vec2::ZERO && push[2] != Vec2::ZERO,
+        "bodies 1 and 2 pushed"
+    );
+    assert!(
+        0 < left_out && left_out < 4 * blocks,
+        "{left_out} of {}",
+        4 * blocks
+    );
 }
