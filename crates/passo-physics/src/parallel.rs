@@ -109,9 +109,10 @@ pub(crate) fn join<A: Send, B: Send>(
 /// `2 × threads`-th of the whole, whichever is more: two tasks a thread,
 /// enough to even out a thread that starts late, and each hand-over costs
 /// a few microseconds (with two threads, a loop over 10 000 bodies is
-/// four tasks instead of sixteen: the rain of 10 000 on both cores, 2–4 %
-/// off a step). `offset` is the chunk's first item. Returns the sum of
-/// what `f` returns.
+/// four tasks instead of sixteen: the velocity, load and unload stages of
+/// the rain of 10 000 on both cores took 0.068 ms a step, as long as on
+/// one thread, and now 0.055–0.058). `offset` is the chunk's first item.
+/// Returns the sum of what `f` returns.
 pub(crate) fn for_chunks<P: Parts>(
     parallel: bool,
     parts: P,
