@@ -180,7 +180,8 @@ pub const TIME_TO_SLEEP: f32 = 0.5;
 pub const PARALLEL_MIN_ITEMS: usize = 4096;
 
 /// Bodies (or pairs) per parallel task at least: large enough that
-/// handing out a task costs little against the work in it. (The loops
-/// over bodies make larger tasks in large worlds: two a thread.)
+/// handing out a task costs little against the work in it. (The loops of
+/// `parallel::for_chunks`, over bodies, contacts or pairs, make larger
+/// tasks in large worlds: about two a thread.)
 #[doc(hidden)]
 pub const PARALLEL_CHUNK: usize = 1024;

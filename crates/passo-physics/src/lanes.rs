@@ -430,8 +430,9 @@ pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool>(
 /// every lane's push impulse (or it starts from zero, `FRESH`) and each
 /// push velocity of the lanes' bodies. Then each lane's new push impulse
 /// works out to `+0` exactly (`+0 - ±0` is `+0`, and so is `+0 + ±0`),
-/// and each push velocity stays `+0`: the push part of the pass is the
-/// identity, bit for bit, and is left out. In a pile at rest no contact
+/// and each push velocity stays `+0` (the normals and inverse masses are
+/// finite: validated masses, unit normals): the push part of the pass is
+/// the identity, bit for bit, and is left out. In a pile at rest no contact
 /// is deeper than the slop and no body is pushed, so every block is; the
 /// push pass then costs what a pass without it does (see BENCHMARKS.md).
 #[inline(always)]

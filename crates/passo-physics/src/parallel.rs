@@ -1,6 +1,7 @@
 //! One dispatcher for loops over items whose results do not depend on each
-//! other: in chunks of at most [`PARALLEL_CHUNK`] on rayon's pool for large worlds
-//! (with the `parallel` feature), in one go otherwise. Each item's result
+//! other: in chunks on rayon's pool for large worlds (with the `parallel`
+//! feature; about two a thread, of at least [`PARALLEL_CHUNK`] items), in
+//! one go otherwise. Each item's result
 //! does not depend on the chunking, and the integers the chunks return are
 //! summed (or, for [`for_chunks_max`], their largest taken) in any order,
 //! so the bits are the same with any number of threads.
@@ -106,8 +107,8 @@ pub(crate) fn join<A: Send, B: Send>(
 /// when `parallel` is set (and the feature is on) and there are at least
 /// `PARALLEL_MIN_ITEMS`, else once over everything. The items are halved
 /// until each part holds at most `PARALLEL_CHUNK` of them or a
-/// `2 × threads`-th of the whole, whichever is more: two tasks a thread,
-/// enough to even out a thread that starts late, and each hand-over costs
+/// `2 × threads`-th of the whole, whichever is more: about two tasks a
+/// thread, enough to even out a thread that starts late, and each hand-over costs
 /// a few microseconds (with two threads, a loop over 10 000 bodies is
 /// four tasks instead of sixteen: the velocity, load and unload stages of
 /// the rain of 10 000 on both cores took 0.068 ms a step, as long as on
