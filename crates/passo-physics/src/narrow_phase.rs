@@ -616,6 +616,7 @@ fn copy_into(tasks: &[TaskFound], rows: &mut [Constraint], infos: &mut [ContactI
 #[cfg(test)]
 mod tests {
     use crate::World;
+    use crate::testing::pile;
     use glam::Vec2;
 
     /// Runs a step of `world` and returns whether its narrow phase sorted
@@ -633,8 +634,6 @@ mod tests {
     fn narrow_of(world: &mut World) -> &mut super::NarrowPhase {
         world.contacts.as_mut().expect("contacts").narrow_mut()
     }
-
-    use crate::testing::pile;
 
     #[test]
     fn a_pile_at_rest_keeps_its_sorted_pairs_until_they_change() {

@@ -752,9 +752,12 @@ mod tests {
             },
         );
         assert_eq!(kept(&mut searched), (0, 0));
-        let (grid, statics) = kept(&mut world);
-        assert!(before_knock.0 >= 10, "grid pairs kept {grid} times");
-        assert!(before_knock.1 >= 10, "static pairs kept {statics} times");
+        let (grid, statics) = before_knock;
+        assert!(grid >= 10, "grid pairs kept {grid} times before the knock");
+        assert!(
+            statics >= 10,
+            "static pairs kept {statics} times before the knock"
+        );
     }
 
     #[test]
