@@ -3,7 +3,7 @@
 //! interleaved, so a change can be compared with the code before it in
 //! the same conditions.
 //!
-//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|pyramid50|shuffled|sleep|settle|integration|rays|tuning|rest`
+//! `cargo run --release -p passo-benches --bin steps -- rain|pyramid|pyramid50|ticks|still|shuffled|sleep|settle|integration|rays|tuning|rest`
 //! (and `--features parallel ... -- threads`: one thread against the pool)
 
 use passo_benches::{busy_world, pyramid_world, rain_world, shuffled, with_sleeping};
@@ -159,6 +159,36 @@ fn main() {
             let w = with_sleeping(&pyramid_world(20), false);
             println!("pyramid 20 awake: {:.3} ms/step", ms_per_step(w, 60, 600));
         }
+        "still" => {
+            // The pyramid of base 50 once it has come to rest (from tick
+            // 220 on: its boxes no longer move, its pairs are kept).
+            let w = with_sleeping(&pyramid_world(50), false);
+            println!(
+                "pyramid 50 awake, at rest: {:.3} ms/step",
+                ms_per_step(w, 220, 300)
+            );
+        }
+        "ticks" => {
+            // The pyramid of base 50 from its start, as the peer bench
+            // steps it: ms per step in each stretch of 20 ticks (the
+            // fastest of five runs).
+            let start = with_sleeping(&pyramid_world(50), false);
+            let mut best = [f64::INFINITY; 15];
+            for _ in 0..5 {
+                let mut w = start.clone();
+                w.set_parallel(false);
+                for slot in &mut best {
+                    *slot = slot.min(ms_per_step_on(&mut w, false, 0, 20));
+                }
+            }
+            for (i, ms) in best.iter().enumerate() {
+                println!(
+                    "pyramid 50 ticks {}-{}: {ms:.3} ms/step",
+                    i * 20,
+                    i * 20 + 19
+                );
+            }
+        }
         "shuffled" => {
             // The rain of 10 000 in the order of its places, and the same
             // bodies added in a scrambled order (one thread each, and the
@@ -288,7 +318,7 @@ fn main() {
         }
         _ => {
             eprintln!(
-                "usage: steps integration|rain|pyramid|pyramid50|shuffled|sleep|settle|rays|threads|pool|tuning|rest"
+                "usage: steps integration|rain|pyramid|pyramid50|ticks|still|shuffled|sleep|settle|rays|threads|pool|tuning|rest"
             );
             std::process::exit(2);
         }

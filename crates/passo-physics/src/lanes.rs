@@ -386,23 +386,24 @@ pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool>(
         // Non-penetration: v_n >= 0, or >= -s / h while still apart.
         let s = k.separation[l];
         let bias = if s > 0.0 { s * r.inv_h } else { 0.0 };
-        let vn = (v.bx[l] - v.ax[l]) * nx + (v.by[l] - v.ay[l]) * ny;
+        let (dvx, dvy) = (v.bx[l] - v.ax[l], v.by[l] - v.ay[l]);
+        let (vn, vt) = (dvx * nx + dvy * ny, dvx * tx + dvy * ty);
         let n = k.normal_impulse[l];
-        let new_n = (n - mass * (vn + bias)).max(0.0);
+        let new_n = ((n - mass * bias) - mass * vn).max(0.0);
         let dn = new_n - n;
         k.normal_impulse[l] = new_n;
         k.max_normal_impulse[l] = greater(k.max_normal_impulse[l], new_n);
-        v.apply(k, l, nx * dn, ny * dn);
 
         // Coulomb friction, |lambda_t| <= mu lambda_n, bounded by this
-        // pass's normal impulse.
-        let vt = (v.bx[l] - v.ax[l]) * tx + (v.by[l] - v.ay[l]) * ty;
+        // pass's normal impulse; `vt` read before the normal impulse,
+        // which leaves it as it is, and both applied together (see
+        // `solver::solve`).
         let max_friction = k.friction[l] * new_n;
         let t = k.tangent_impulse[l];
         let new_t = clamp(t - mass * vt, -max_friction, max_friction);
         let dt = new_t - t;
         k.tangent_impulse[l] = new_t;
-        v.apply(k, l, tx * dt, ty * dt);
+        v.apply(k, l, nx * dn + tx * dt, ny * dn + ty * dt);
     }
     // The push works on the push velocities alone: solved after the
     // velocities of every lane, it gives the same bits as lane by lane.

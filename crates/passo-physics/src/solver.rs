@@ -262,32 +262,33 @@ pub(crate) fn solve(
         // Non-penetration: v_n >= 0, or >= -s / h while still apart.
         let s = separation(bodies.delta, c);
         let bias = if s > 0.0 { s * inv_h } else { 0.0 };
-        let vn = (vb - va).dot(c.normal);
-        let new_n = (c.normal_impulse - c.mass * (vn + bias)).max(0.0);
-        let impulse = c.normal * (new_n - c.normal_impulse);
+        let dv = vb - va;
+        let (vn, vt) = (dv.dot(c.normal), dv.dot(tangent));
+        let new_n = ((c.normal_impulse - c.mass * bias) - c.mass * vn).max(0.0);
+        let dn = new_n - c.normal_impulse;
         c.normal_impulse = new_n;
         c.max_normal_impulse = greater(c.max_normal_impulse, new_n);
-        va -= impulse * c.inv_mass_a;
-        if !b_static {
-            vb += impulse * c.inv_mass_b;
-        }
 
         // Coulomb friction, |lambda_t| <= mu lambda_n, bounded by this
         // pass's normal impulse (as Box2D v3 orders them: friction first
-        // would be bounded by the last pass's, none on a new contact).
-        let vt = (vb - va).dot(tangent);
-        let max_friction = c.friction * c.normal_impulse;
+        // would be bounded by the last pass's, none on a new contact). The
+        // normal impulse changes the relative velocity along the normal
+        // alone (the bodies do not rotate), so `vt` is read before it, and
+        // the two impulses are applied together: a pass's chain of
+        // dependent operations a third shorter (see BENCHMARKS.md).
+        let max_friction = c.friction * new_n;
         // `greater` then `lesser`, as the wide passes (`f32::clamp` would
         // pass a NaN through, and panic on bounds the wrong way round).
         let new_t = clamp(c.tangent_impulse - c.mass * vt, -max_friction, max_friction);
-        let impulse = tangent * (new_t - c.tangent_impulse);
+        let dt = new_t - c.tangent_impulse;
         c.tangent_impulse = new_t;
+        let impulse = c.normal * dn + tangent * dt;
         va -= impulse * c.inv_mass_a;
-        if let Some(a) = moved_a {
-            bodies.state[a].vel = va;
-        }
         if !b_static {
             vb += impulse * c.inv_mass_b;
+        }
+        if let Some(a) = moved_a {
+            bodies.state[a].vel = va;
         }
         if let Some(b) = moved_b {
             bodies.state[b].vel = vb;
