@@ -36,6 +36,13 @@ const MAX_KINEMATIC_NEIGHBOURS: usize = 64;
 /// ones made 25 million contacts (45 s and 9.6 GB for one step).
 const MAX_STATIC_NEIGHBOURS: usize = 128;
 
+/// How much a settled scene's boxes are grown, all round, for the pairs
+/// kept while each box stays inside its grown one (see
+/// [`Proxies::find_pairs`]): an eighth of each box's smaller side. A pile
+/// that jitters by micrometres stays inside for good, and the grown boxes
+/// meet few more boxes than the boxes do.
+const ENLARGED_FRACTION: f32 = 0.125;
+
 /// How far a body's speculative contacts reach (its *margin*): half the
 /// speculative distance, plus the body's possible travel this step with
 /// continuous collision, up to its reach ([`SPECULATIVE_REACH`] of its
@@ -236,9 +243,22 @@ pub(crate) struct Proxies {
     /// Static pairs found by each parallel task, concatenated in order.
     #[cfg(feature = "parallel")]
     task_pairs: Vec<Vec<(u32, u32)>>,
+    /// The boxes of a settled scene grown all round (see
+    /// [`ENLARGED_FRACTION`]), with every pair of them in
+    /// `enlarged_pairs`; empty when the last search was not of a settled
+    /// scene (see [`find_pairs`](Self::find_pairs)).
+    enlarged: Vec<Aabb>,
+    enlarged_pairs: Vec<(u32, u32)>,
+    /// The grid's pairs of the search before the last, to tell a settled
+    /// scene (one whose searches find the same pairs).
+    earlier_pairs: Vec<(u32, u32)>,
     /// Searches whose pairs were kept from the last one (for tests).
     #[cfg(test)]
     pub(crate) kept_grid_pairs: usize,
+    /// Searches whose pairs were those of the grown boxes that the boxes
+    /// overlap (for tests).
+    #[cfg(test)]
+    pub(crate) kept_enlarged_pairs: usize,
     /// Searches whose pairs with static bodies were kept (for tests).
     #[cfg(test)]
     pub(crate) kept_static_pairs: usize,
@@ -572,6 +592,19 @@ impl Proxies {
     /// grown all round and the static bodies: when every box is the last
     /// search's, bit for bit (a pile at rest whose bodies did not move),
     /// its pairs are kept instead of searched for again.
+    ///
+    /// A settled scene, whose search found the same pairs as the one
+    /// before and crowded no cell (a pile still jittering by micrometres),
+    /// is searched once more with each box grown (see
+    /// [`ENLARGED_FRACTION`]). While each box stays inside its grown one,
+    /// every pair of boxes that overlap is a pair of grown boxes, and the
+    /// grid's pairs are those of the grown boxes' pairs whose boxes
+    /// overlap: the pairs a search would find, in another order (the
+    /// narrow phase sorts them), for a fifth of a search's time (the
+    /// pyramid of base 50: 4 µs instead of 20). Should the boxes crowd a
+    /// cell that the grown ones did not, they are all the pairs that
+    /// overlap, where a search would have capped them; no more than the
+    /// grown boxes' pairs, which their search bounds.
     pub(crate) fn find_pairs(&mut self, parallel: bool) {
         let plain = self.asleep.is_empty()
             && self.grid.uncapped.is_empty()
@@ -585,16 +618,38 @@ impl Proxies {
         let statics_unchanged = may_keep
             && !self.searched_around.is_empty()
             && same_bits(&self.around, &self.searched_around);
+        let within = may_keep
+            && !unchanged
+            && !self.enlarged.is_empty()
+            && all_within(&self.boxes, &self.enlarged);
         if unchanged {
             self.pairs.truncate(self.grid_pairs);
+        } else if within {
+            self.pairs.clear();
+            let boxes = &self.boxes;
+            self.pairs.extend(
+                self.enlarged_pairs
+                    .iter()
+                    .filter(|&&(a, b)| boxes[a as usize].overlaps(&boxes[b as usize])),
+            );
+            self.grid.crowded = 0;
         } else {
+            // The last search's pairs, to compare with this one's.
+            std::mem::swap(&mut self.pairs, &mut self.earlier_pairs);
+            self.earlier_pairs.truncate(self.grid_pairs);
             self.pairs.clear();
             self.grid
                 .find_pairs(&self.boxes, &self.asleep, parallel, &mut self.pairs);
+            self.enlarged.clear();
+            let settled = may_keep && self.grid.crowded == 0 && self.pairs == self.earlier_pairs;
+            if settled {
+                self.enlarge(parallel);
+            }
         }
         #[cfg(test)]
         {
             self.kept_grid_pairs += usize::from(unchanged);
+            self.kept_enlarged_pairs += usize::from(within);
             self.kept_static_pairs += usize::from(statics_unchanged);
         }
         self.grid_pairs = self.pairs.len();
@@ -645,6 +700,27 @@ impl Proxies {
         self.pair_with_statics(narrowed, parallel);
     }
 
+    /// Grows each box (see [`ENLARGED_FRACTION`]) into `enlarged` and
+    /// finds their pairs, kept if the search crowded no cell (otherwise
+    /// `enlarged` is left empty). The grid's counts stay the last search's.
+    fn enlarge(&mut self, parallel: bool) {
+        let crowded = self.grid.crowded;
+        let large_tests = self.grid.large_tests;
+        self.enlarged.clear();
+        self.enlarged.extend(self.boxes.iter().map(|b| {
+            let size = b.max - b.min;
+            b.grown(ENLARGED_FRACTION * size.x.min(size.y))
+        }));
+        self.enlarged_pairs.clear();
+        self.grid
+            .find_pairs(&self.enlarged, &[], parallel, &mut self.enlarged_pairs);
+        if self.grid.crowded > 0 {
+            self.enlarged.clear();
+        }
+        self.grid.crowded = crowded;
+        self.grid.large_tests = large_tests;
+    }
+
     /// Pairs each awake proxy with the static bodies its box grown all
     /// round overlaps (`around`), in
     /// the tree of the nearby ones (`narrowed`) or the whole level's; with
@@ -689,6 +765,18 @@ impl Proxies {
     }
 }
 
+/// Whether each of `boxes` lies inside the one of `enlarged` at its index
+/// (a box with a NaN does not), one for each.
+fn all_within(boxes: &[Aabb], enlarged: &[Aabb]) -> bool {
+    boxes.len() == enlarged.len()
+        && boxes.iter().zip(enlarged).all(|(b, e)| {
+            (b.min.x >= e.min.x)
+                & (b.min.y >= e.min.y)
+                & (b.max.x <= e.max.x)
+                & (b.max.y <= e.max.y)
+        })
+}
+
 /// Whether two lists of boxes are the same, bit for bit (`0.0` and
 /// `-0.0` differ, a NaN is itself).
 fn same_bits(a: &[Aabb], b: &[Aabb]) -> bool {
@@ -714,7 +802,7 @@ fn can_cover(coverer: &BodyMeta, covered: &BodyMeta) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::World;
+    use crate::{BodyDef, World};
 
     fn proxies_of(world: &mut World) -> &mut Proxies {
         world.contacts.as_mut().expect("contacts").proxies_mut()
@@ -739,9 +827,12 @@ mod tests {
             (240, 200),
             |w| w.set_velocity(boxes[0], Vec2::new(2.0, 0.0)),
             |tick, world, searched| {
+                // (The grown boxes' pairs come in their own order.)
                 let pairs = |w: &mut World| {
                     let p = proxies_of(w);
-                    (p.pairs.clone(), p.static_pairs.clone())
+                    let mut grid = p.pairs.clone();
+                    grid.sort_unstable();
+                    (grid, p.static_pairs.clone())
                 };
                 assert_eq!(pairs(world), pairs(searched), "tick {tick}: the same pairs");
                 match tick {
@@ -758,6 +849,62 @@ mod tests {
             statics >= 10,
             "static pairs kept {statics} times before the knock"
         );
+    }
+
+    #[test]
+    fn pairs_kept_through_grown_boxes_are_those_a_search_finds() {
+        // A pyramid of base 12, sleeping off: it settles, its boxes
+        // jittering inside their grown boxes (whose pairs are kept), and
+        // then stops; a box knocked out of its grown box is searched
+        // again, and the pile settles again.
+        let mut world = World::default();
+        let ground = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0));
+        world.add_body(ground).unwrap();
+        let mut boxes = Vec::new();
+        for row in 0..12 {
+            for i in 0..12 - row {
+                let def = BodyDef {
+                    position: Vec2::new(i as f32 - (11 - row) as f32 * 0.5, 0.5 + row as f32),
+                    shape: Some(Shape::rect(1.0, 1.0)),
+                    ..Default::default()
+                };
+                boxes.push(world.add_body(def).unwrap());
+            }
+        }
+        let mut settings = *world.settings();
+        settings.contacts.as_mut().unwrap().sleeping = false;
+        world.set_settings(settings).unwrap();
+        world.step(1.0 / 60.0);
+        let mut searched = world.clone();
+        proxies_of(&mut searched).search_always = true;
+        let mut before_knock = 0;
+        crate::testing::step_side_by_side(
+            (&mut world, &mut searched),
+            &boxes,
+            (200, 60),
+            |w| w.set_velocity(boxes[0], Vec2::new(0.0, 30.0)),
+            |tick, world, searched| {
+                let grid_pairs = |w: &mut World| {
+                    let mut pairs = proxies_of(w).pairs.clone();
+                    pairs.sort_unstable();
+                    pairs
+                };
+                assert_eq!(grid_pairs(world), grid_pairs(searched), "tick {tick}");
+                let kept = proxies_of(world).kept_enlarged_pairs;
+                match tick {
+                    59 => before_knock = kept,
+                    60 => assert_eq!(kept, before_knock, "searched when knocked"),
+                    _ => {}
+                }
+            },
+        );
+        assert_eq!(proxies_of(&mut searched).kept_enlarged_pairs, 0);
+        assert!(
+            before_knock >= 10,
+            "grown boxes' pairs kept {before_knock} times before the knock"
+        );
+        let after = proxies_of(&mut world).kept_enlarged_pairs - before_knock;
+        assert!(after >= 5, "kept {after} times after the knock");
     }
 
     #[test]
