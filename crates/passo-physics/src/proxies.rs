@@ -249,9 +249,18 @@ pub(crate) struct Proxies {
     /// scene (see [`find_pairs`](Self::find_pairs)).
     enlarged: Vec<Aabb>,
     enlarged_pairs: Vec<(u32, u32)>,
-    /// The grid's pairs of the search before the last, to tell a settled
-    /// scene (one whose searches find the same pairs).
+    /// The grid's pairs of the last step, to tell a settled scene (one
+    /// whose searches find the same pairs) and unchanged pairs.
     earlier_pairs: Vec<(u32, u32)>,
+    /// The static pairs of the last step.
+    earlier_static_pairs: Vec<(u32, u32)>,
+    /// Whether this step's pairs, the grid's and the static ones, are the
+    /// last step's, in the same order and with the same static bodies:
+    /// the narrow phase's keys of them are then the last step's too.
+    pub pairs_same: bool,
+    /// Whether the static tree was built again this step (other static
+    /// bodies, or the same ones at other indices).
+    tree_rebuilt: bool,
     /// Searches whose pairs were kept from the last one (for tests).
     #[cfg(test)]
     pub(crate) kept_grid_pairs: usize,
@@ -299,6 +308,7 @@ impl Proxies {
             self.searched_around.clear();
         }
         self.boxes_searched = false;
+        self.tree_rebuilt = self.tree_dirty;
         if self.tree_dirty {
             self.rebuild_tree(statics);
             // Other static bodies: other pairs with them.
@@ -622,30 +632,34 @@ impl Proxies {
             && !unchanged
             && !self.enlarged.is_empty()
             && all_within(&self.boxes, &self.enlarged);
-        if unchanged {
+        let grid_same = if unchanged {
             self.pairs.truncate(self.grid_pairs);
-        } else if within {
-            self.pairs.clear();
-            let boxes = &self.boxes;
-            self.pairs.extend(
-                self.enlarged_pairs
-                    .iter()
-                    .filter(|&&(a, b)| boxes[a as usize].overlaps(&boxes[b as usize])),
-            );
-            self.grid.crowded = 0;
+            true
         } else {
-            // The last search's pairs, to compare with this one's.
+            // The last step's pairs, to compare with this one's.
             std::mem::swap(&mut self.pairs, &mut self.earlier_pairs);
             self.earlier_pairs.truncate(self.grid_pairs);
             self.pairs.clear();
-            self.grid
-                .find_pairs(&self.boxes, &self.asleep, parallel, &mut self.pairs);
-            self.enlarged.clear();
-            let settled = may_keep && self.grid.crowded == 0 && self.pairs == self.earlier_pairs;
-            if settled {
+            if within {
+                let boxes = &self.boxes;
+                self.pairs.extend(
+                    self.enlarged_pairs
+                        .iter()
+                        .filter(|&&(a, b)| boxes[a as usize].overlaps(&boxes[b as usize])),
+                );
+                self.grid.crowded = 0;
+            } else {
+                self.grid
+                    .find_pairs(&self.boxes, &self.asleep, parallel, &mut self.pairs);
+                self.enlarged.clear();
+            }
+            let same = self.pairs == self.earlier_pairs;
+            if !within && may_keep && self.grid.crowded == 0 && same {
+                // Settled.
                 self.enlarge(parallel);
             }
-        }
+            same
+        };
         #[cfg(test)]
         {
             self.kept_grid_pairs += usize::from(unchanged);
@@ -655,9 +669,18 @@ impl Proxies {
         self.grid_pairs = self.pairs.len();
         // Kept to compare only when the search was a plain one.
         self.boxes_searched = plain;
-        if statics_unchanged {
-            return;
-        }
+        let statics_same = statics_unchanged || {
+            std::mem::swap(&mut self.static_pairs, &mut self.earlier_static_pairs);
+            self.find_static_pairs(parallel);
+            self.static_pairs == self.earlier_static_pairs
+        };
+        self.pairs_same = plain && grid_same && statics_same && !self.tree_rebuilt;
+    }
+
+    /// Pairs each awake proxy with the static bodies its box grown all
+    /// round overlaps, in the static tree or in a tree of the static bodies
+    /// near the proxies.
+    fn find_static_pairs(&mut self, parallel: bool) {
         self.static_pairs.clear();
         self.static_crowded = 0;
         // The static bodies near the awake proxies, when they are few of a
