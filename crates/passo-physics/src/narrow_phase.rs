@@ -408,26 +408,22 @@ impl NarrowPhase {
     ) -> bool {
         self.sort_pairs(narrow, parallel);
         self.sensor_candidates.clear();
-        let reuse = Reuse {
-            last,
-            distance_sq: reuse_distance_sq,
-        };
         let keys = self.keyed.iter().map(|k| k.0);
+        let in_place = reuse_distance_sq > 0.0;
         #[cfg(test)]
-        let reuse_distance_sq = if self.walk_always {
-            0.0
-        } else {
-            reuse_distance_sq
-        };
-        if reuse_distance_sq > 0.0 && reuse.keeps_all(narrow.bodies, keys) {
+        let in_place = in_place && !self.walk_always;
+        if in_place && keep_all(narrow.bodies, keys, (reuse_distance_sq, impulses), last) {
             std::mem::swap(contacts, last);
-            keep_all(narrow.bodies, contacts, impulses);
             #[cfg(test)]
             {
                 self.kept_in_place += 1;
             }
             return true;
         }
+        let reuse = Reuse {
+            last,
+            distance_sq: reuse_distance_sq,
+        };
         self.find_contacts(narrow, &reuse, parallel, contacts);
         false
     }
@@ -721,5 +717,49 @@ mod tests {
             kept(&mut world)
         );
         assert!(kept(&mut world) < 89, "the drop was found anew");
+    }
+
+    #[test]
+    fn contacts_found_after_a_keep_that_stopped_halfway_are_those_the_walk_finds() {
+        // The pile at rest; then the body of the last contact (in key
+        // order) is moved beyond the reuse distance, so the keep in place
+        // checks and keeps the contacts before its, and stops there.
+        let (mut world, boxes) = pile();
+        for _ in 0..60 {
+            world.step(1.0 / 60.0);
+        }
+        let mut walked = world.clone();
+        narrow_of(&mut walked).walk_always = true;
+        let last = world
+            .contacts
+            .as_ref()
+            .unwrap()
+            .solved
+            .infos
+            .last()
+            .unwrap();
+        let moved = if boxes.contains(&last.id_b) {
+            last.id_b
+        } else {
+            last.id_a
+        };
+        let kept_before = narrow_of(&mut world).kept_in_place;
+        crate::testing::step_side_by_side(
+            (&mut world, &mut walked),
+            &boxes,
+            (30, 0),
+            |w| {
+                let p = w.body(moved).unwrap().position;
+                w.set_position(moved, p + Vec2::new(0.02, 0.0));
+            },
+            |tick, world, walked| {
+                let (a, b) = (world.contacts.as_ref(), walked.contacts.as_ref());
+                let (a, b) = (&a.unwrap().solved, &b.unwrap().solved);
+                assert_eq!(a, b, "tick {tick}: the same contacts and impulses");
+                if tick == 0 {
+                    assert_eq!(narrow_of(world).kept_in_place, kept_before, "not kept");
+                }
+            },
+        );
     }
 }

@@ -58,45 +58,52 @@ impl Reuse<'_> {
         let kept = Kept::new(bodies, row, info, moved);
         Some((kept.row(row), kept.info(info)))
     }
-
-    /// Whether the last step's contacts may all be kept, one for each of
-    /// `keys` (this step's pairs, in order): every pair had a contact, so
-    /// the walk would look at no pair afresh, and each may be kept (see
-    /// [`kept`](Self::kept)). Then [`keep_all`] makes this step's list of
-    /// them in place, the list the walk would make.
-    ///
-    /// The pairs are matched first, all of them, and only then are the
-    /// bodies' motions looked at: in a rain, where some pair changes each
-    /// step, the check stops at the first change having read little.
-    pub(crate) fn keeps_all(
-        &self,
-        bodies: Colliders<'_>,
-        keys: impl ExactSizeIterator<Item = u64>,
-    ) -> bool {
-        let last = self.last;
-        keys.len() == last.len()
-            && keys.zip(&last.infos).all(|(key, info)| info.order() == key)
-            && last.iter().all(|(row, info)| {
-                info.reusable && moved(bodies, row, info).length_squared() < self.distance_sq
-            })
-    }
 }
 
-/// The last step's contacts, each kept as [`Reuse::kept`] keeps it, in
-/// place (once [`Reuse::keeps_all`] said they all may be). With
-/// `impulses`, each keeps the impulses it ended the last step with, which
-/// are those the warm start would give it (see
+/// Keeps the last step's contacts (`last`) in place, if they may all be
+/// kept, one for each of `keys` (this step's pairs, in order): every pair
+/// had a contact, so the walk of [`Reuse`] would look at no pair afresh,
+/// and each may be kept (see [`Reuse::kept`]): their bodies moved less
+/// than the reuse distance (`distance_sq`, squared) relative to each
+/// other. Then `last` holds the list the walk would make, and `true` is
+/// returned. With `impulses`, each keeps the impulses it ended the last
+/// step with, which are those the warm start would give it (see
 /// [`EventTracker::fresh`](crate::events::EventTracker::fresh)).
-pub(crate) fn keep_all(bodies: Colliders<'_>, contacts: &mut ContactList, impulses: bool) {
-    for (row, info) in contacts.rows.iter_mut().zip(&mut contacts.infos) {
-        let kept = Kept::new(bodies, row, info, moved(bodies, row, info));
-        let last = (row.normal_impulse, row.tangent_impulse, row.push_impulse);
+///
+/// The pairs are matched first, all of them, and only then are the
+/// bodies' motions looked at: in a rain, where some pair changes each
+/// step, the check stops at the first change having read little. Each
+/// contact is then checked and kept in one go (one walk over the list
+/// instead of two). Should one of them not be kept, those before it were
+/// changed only in what keeping a contact gives afresh (its separation,
+/// masses and impulses, see `Kept`), which the walk over `last` does not
+/// read: it finds the same contacts.
+pub(crate) fn keep_all(
+    bodies: Colliders<'_>,
+    keys: impl ExactSizeIterator<Item = u64>,
+    (distance_sq, impulses): (f32, bool),
+    last: &mut ContactList,
+) -> bool {
+    let matched =
+        keys.len() == last.len() && keys.zip(&last.infos).all(|(key, info)| info.order() == key);
+    if !matched {
+        return false;
+    }
+    for (row, info) in last.rows.iter_mut().zip(&mut last.infos) {
+        let moved = moved(bodies, row, info);
+        // (A NaN is not within.)
+        if !(info.reusable && moved.length_squared() < distance_sq) {
+            return false;
+        }
+        let kept = Kept::new(bodies, row, info, moved);
+        let ended = (row.normal_impulse, row.tangent_impulse, row.push_impulse);
         *row = kept.row(row);
         if impulses {
-            (row.normal_impulse, row.tangent_impulse, row.push_impulse) = last;
+            (row.normal_impulse, row.tangent_impulse, row.push_impulse) = ended;
         }
         info.separation = kept.separation;
     }
+    true
 }
 
 /// How far B moved relative to A since the contact's manifold was
