@@ -381,7 +381,9 @@ pub(crate) enum Pass {
     /// The first pass after the bodies moved: measure each block's
     /// separations, then a pass without the push, block by block (one walk
     /// over the blocks instead of two; the same bits, since solving does
-    /// not move the bodies).
+    /// not move the bodies). The states' push slots must hold the bodies'
+    /// displacements, as the position stage leaves them (see
+    /// `BodyState`): the blocks measure from those.
     Relax(SolverParams, Rates),
 }
 
@@ -409,13 +411,10 @@ impl Pass {
             }
             #[cfg(test)]
             Pass::Measure => measure(k, view),
-            Pass::Solve(_, ref rates, true) => solve_block::<true, false>(k, view, rates),
-            Pass::Solve(_, ref rates, false) => solve_block::<false, false>(k, view, rates),
-            Pass::Fresh(_, ref rates) => solve_block::<true, true>(k, view, rates),
-            Pass::Relax(_, ref rates) => {
-                measure(k, view);
-                solve_block::<false, false>(k, view, rates);
-            }
+            Pass::Solve(_, ref rates, true) => solve_block::<true, false, false>(k, view, rates),
+            Pass::Solve(_, ref rates, false) => solve_block::<false, false, false>(k, view, rates),
+            Pass::Fresh(_, ref rates) => solve_block::<true, true, false>(k, view, rates),
+            Pass::Relax(_, ref rates) => solve_block::<false, false, true>(k, view, rates),
         }
     }
 }

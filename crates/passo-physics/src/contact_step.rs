@@ -577,6 +577,10 @@ impl Moves<'_> {
             let p = Vec2::new(px[k], py[k]) + ((s.vel + s.push) * self.h + c);
             (px[k], py[k]) = (p.x, p.y);
             delta[k] = p - self.start[i];
+            // The push is spent: until the next substep's load its slot
+            // holds the displacement, which the relax stage's first pass
+            // reads with the velocity (see `BodyState`).
+            s.push = delta[k];
         }
     }
 }

@@ -346,6 +346,13 @@ pub(crate) fn measure(k: &mut Block, bodies: &Bodies<'_>) {
     for l in 0..LANES {
         d.set(l, bodies.delta(k.a[l]), bodies.delta(k.b[l]));
     }
+    separations(k, &d);
+}
+
+/// Each lane's separation now, from the lanes' bodies' displacements `d`
+/// (see [`measure`]).
+#[inline(always)]
+fn separations(k: &mut Block, d: &Lanes) {
     for l in 0..LANES {
         let (nx, ny) = (k.nx[l], k.ny[l]);
         k.separation[l] =
@@ -362,12 +369,19 @@ pub(crate) fn measure(k: &mut Block, bodies: &Bodies<'_>) {
 /// The push of a block [at rest](at_rest) is left out: it would change
 /// nothing.
 #[inline(always)]
-pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool>(
+pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool, const MEASURE: bool>(
     k: &mut Block,
     bodies: &mut Bodies<'_>,
     r: &Rates,
 ) {
     let (mut v, mut p) = gather(k, bodies);
+    if MEASURE {
+        // After the positions moved the push slots hold the displacements
+        // (see `BodyState`): [`measure`]'s numbers, read with the
+        // velocities.
+        debug_assert!(!PUSH);
+        separations(k, &p);
+    }
     // Push out of overlap deeper than the slop: each lane's target speed.
     let target: [f32; LANES] = std::array::from_fn(|l| {
         let s = k.separation[l];

@@ -95,6 +95,12 @@ impl SolverParams {
 /// its push velocity of this substep (split impulses). Sixteen bytes, one
 /// aligned load; a pass that kept the two in separate arrays gathered and
 /// scattered each body twice.
+///
+/// Once the positions have moved (the push spent), `push` holds the
+/// body's displacement since the step began instead, until the next
+/// substep loads the states: the relax stage's first pass measures the
+/// separations from it, read with the velocity (its own walk over the
+/// displacements took 5 % of a step of the pyramid of base 50).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C, align(16))]
 pub(crate) struct BodyState {

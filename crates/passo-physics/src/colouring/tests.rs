@@ -309,6 +309,19 @@ enum Step {
     /// The first pass with the push of a replayed substep: each push
     /// impulse from zero.
     Fresh,
+    /// The bodies moved on (to twice their displacement and 1 mm by 2 mm
+    /// more; each push slot then holds the displacement, as the position
+    /// stage leaves it), then the relax stage's first pass.
+    Relax,
+}
+
+/// What the position stage leaves in the states: each push slot holding
+/// the body's displacement (`delta`), the rest state after the bodies
+/// untouched.
+fn moved(state: &mut [BodyState], delta: &[Vec2]) {
+    for (s, &d) in state.iter_mut().zip(delta) {
+        s.push = d;
+    }
 }
 
 /// Runs `steps` over `rows` (bodies starting at `vel0`, displaced by
@@ -328,6 +341,10 @@ fn wide_and_scalar(
     };
     colouring.build(rows, 0..rows.len(), vel0.len(), deep);
     assert!(colouring.overflow.is_empty(), "every contact in a block");
+    let moved_on: Vec<Vec2> = delta
+        .iter()
+        .map(|&d| d * 2.0 + Vec2::new(0.001, -0.002))
+        .collect();
     let mut scalar_rows = rows.to_vec();
     let mut state = BodyState::of(vel0);
     let mut bodies = SolverBodies {
@@ -342,6 +359,11 @@ fn wide_and_scalar(
             Step::Fresh => {
                 scalar_rows.iter_mut().for_each(|c| c.push_impulse = 0.0);
                 solver::solve(&mut scalar_rows, &mut bodies, params, true);
+            }
+            Step::Relax => {
+                moved(bodies.state, &moved_on);
+                bodies.delta = &moved_on;
+                solver::solve(&mut scalar_rows, &mut bodies, params, false);
             }
         }
     }
@@ -360,6 +382,11 @@ fn wide_and_scalar(
             }
             Step::Solve(push) => colouring.run(&mut bodies, &Pass::solve(params, push)),
             Step::Fresh => colouring.run(&mut bodies, &Pass::fresh(params)),
+            Step::Relax => {
+                moved(bodies.state, &moved_on);
+                bodies.delta = &moved_on;
+                colouring.run(&mut bodies, &Pass::relax(params));
+            }
         }
     }
     let mut wide_rows = rows.to_vec();
@@ -456,6 +483,22 @@ fn lanes_solve_as_the_scalar_solver_does() {
         "held body untouched"
     );
     assert!(push[0] != Vec2::ZERO, "the carried push moved body 0");
+    // On through the substep: the bodies move (the kinematic body 3 too),
+    // and the relax pass measures from the displacements in the states.
+    let moved_by = [
+        Vec2::new(0.0, -0.01),
+        Vec2::new(0.002, 0.003),
+        Vec2::new(0.001, 0.0),
+        Vec2::new(0.004, 0.0),
+    ];
+    let steps = [
+        Step::Begin,
+        Step::Solve(true),
+        Step::Solve(true),
+        Step::Relax,
+        Step::Solve(false),
+    ];
+    wide_and_scalar(&rows, (&vel0, &moved_by, &deep), &params, &steps);
 }
 
 #[test]
