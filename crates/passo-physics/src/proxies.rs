@@ -254,6 +254,8 @@ pub(crate) struct Proxies {
     earlier_pairs: Vec<(u32, u32)>,
     /// The static pairs of the last step.
     earlier_static_pairs: Vec<(u32, u32)>,
+    /// [`order_free_sum`] of the grid's pairs of the last search.
+    pairs_sum: u64,
     /// Whether this step's pairs, the grid's and the static ones, are the
     /// last step's, in the same order and with the same static bodies:
     /// the narrow phase's keys of them are then the last step's too.
@@ -603,8 +605,9 @@ impl Proxies {
     /// search's, bit for bit (a pile at rest whose bodies did not move),
     /// its pairs are kept instead of searched for again.
     ///
-    /// A settled scene, whose search found the same pairs as the one
-    /// before and crowded no cell (a pile still jittering by micrometres),
+    /// A settled scene, whose search found the same pairs as the search
+    /// before (in any order) and crowded no cell (a pile still jittering by
+    /// micrometres),
     /// is searched once more with each box grown (see
     /// [`ENLARGED_FRACTION`]). While each box stays inside its grown one,
     /// every pair of boxes that overlap is a pair of grown boxes, and the
@@ -654,9 +657,18 @@ impl Proxies {
                 self.enlarged.clear();
             }
             let same = self.pairs == self.earlier_pairs;
-            if !within && may_keep && self.grid.crowded == 0 && same {
-                // Settled.
-                self.enlarge(parallel);
+            if !within {
+                // Settled: the same pairs as the last search's, perhaps in
+                // another order (a corner on a cell's edge moves between
+                // cells as the boxes jitter), told by their number and a
+                // sum that does not depend on the order.
+                let sum = order_free_sum(&self.pairs);
+                let settled =
+                    same || (self.pairs.len() == self.earlier_pairs.len() && sum == self.pairs_sum);
+                self.pairs_sum = sum;
+                if may_keep && self.grid.crowded == 0 && settled {
+                    self.enlarge(parallel);
+                }
             }
             same
         };
@@ -788,6 +800,17 @@ impl Proxies {
     }
 }
 
+/// A sum over `pairs` that does not depend on their order: a pair's two
+/// proxies mixed into 64 bits, added up. Two lists of the same pairs in
+/// other orders give the same sum; other pairs almost never do (and when
+/// they do, a settled scene is only searched once more, for nothing).
+fn order_free_sum(pairs: &[(u32, u32)]) -> u64 {
+    pairs.iter().fold(0u64, |sum, &(a, b)| {
+        let x = (u64::from(a) << 32 | u64::from(b)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        sum.wrapping_add(x ^ (x >> 29))
+    })
+}
+
 /// Whether each of `boxes` lies inside the one of `enlarged` at its index
 /// (a box with a NaN does not), one for each.
 fn all_within(boxes: &[Aabb], enlarged: &[Aabb]) -> bool {
@@ -872,6 +895,21 @@ mod tests {
             statics >= 10,
             "static pairs kept {statics} times before the knock"
         );
+    }
+
+    #[test]
+    fn the_order_free_sum_tells_the_same_pairs_in_another_order() {
+        let pairs: Vec<(u32, u32)> = (0..100).map(|i| (i, i + 1 + i % 3)).collect();
+        let mut shuffled = pairs.clone();
+        shuffled.reverse();
+        shuffled.swap(3, 70);
+        assert_eq!(order_free_sum(&pairs), order_free_sum(&shuffled));
+        let mut other = pairs.clone();
+        other[40] = (40, 45);
+        assert_ne!(order_free_sum(&pairs), order_free_sum(&other));
+        // (1, 2) and (2, 1) are not the same pair to it: a pair is always
+        // written lower proxy first.
+        assert_ne!(order_free_sum(&[(1, 2)]), order_free_sum(&[(2, 1)]));
     }
 
     #[test]
