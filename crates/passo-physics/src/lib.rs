@@ -176,29 +176,49 @@ mod testing {
         }
     }
 
-    /// Two rows of boxes on the ground, sleeping off, and the boxes' ids.
-    pub(crate) fn pile() -> (World, Vec<BodyId>) {
+    /// Unit boxes centred at `centres` (in that order) on a ground `width`
+    /// wide, sleeping off, and the boxes' ids.
+    fn boxes_on_ground(width: f32, centres: impl Iterator<Item = Vec2>) -> (World, Vec<BodyId>) {
         let mut world = World::default();
-        let ground = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(20.0, 1.0));
+        let ground = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(width, 1.0));
         world.add_body(ground).unwrap();
-        // Two rows of boxes, the upper one across the joints of the lower,
-        // added right to left so that storage order is not key order.
-        let mut boxes = Vec::new();
-        for (row, count) in [(1, 3), (0, 4)] {
-            for i in (0..count).rev() {
-                let x = i as f32 - (count - 1) as f32 * 0.5;
+        let boxes = centres
+            .map(|position| {
                 let def = BodyDef {
-                    position: Vec2::new(x, 0.5 + row as f32),
+                    position,
                     shape: Some(Shape::rect(1.0, 1.0)),
                     ..Default::default()
                 };
-                boxes.push(world.add_body(def).unwrap());
-            }
-        }
+                world.add_body(def).unwrap()
+            })
+            .collect();
         let mut settings = *world.settings();
         settings.contacts.as_mut().unwrap().sleeping = false;
         world.set_settings(settings).unwrap();
         (world, boxes)
+    }
+
+    /// Rows of boxes on the ground, `count` boxes centred in row `row`.
+    fn rows(rows: &[(usize, usize)]) -> impl Iterator<Item = Vec2> + '_ {
+        rows.iter().flat_map(|&(row, count)| {
+            (0..count)
+                .rev()
+                .map(move |i| Vec2::new(i as f32 - (count - 1) as f32 * 0.5, 0.5 + row as f32))
+        })
+    }
+
+    /// Two rows of boxes on the ground, sleeping off, and the boxes' ids.
+    /// The upper row lies across the joints of the lower; each row is
+    /// added right to left, the upper first, so that storage order is not
+    /// key order.
+    pub(crate) fn pile() -> (World, Vec<BodyId>) {
+        boxes_on_ground(20.0, rows(&[(1, 3), (0, 4)]))
+    }
+
+    /// A pyramid of boxes, `base` wide, sleeping off, and the boxes' ids.
+    pub(crate) fn pyramid(base: usize) -> (World, Vec<BodyId>) {
+        let rows: Vec<_> = (0..base).map(|row| (row, base - row)).collect();
+        boxes_on_ground(2.0 * base as f32 + 10.0, self::rows(&rows))
     }
 
     /// Steps `a` and `b` side by side, `ticks` ticks at 60 Hz: `poke`

@@ -848,7 +848,7 @@ fn can_cover(coverer: &BodyMeta, covered: &BodyMeta) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{BodyDef, World};
+    use crate::World;
 
     fn proxies_of(world: &mut World) -> &mut Proxies {
         world.contacts.as_mut().expect("contacts").proxies_mut()
@@ -918,23 +918,7 @@ mod tests {
         // jittering inside their grown boxes (whose pairs are kept), and
         // then stops; a box knocked out of its grown box is searched
         // again, and the pile settles again.
-        let mut world = World::default();
-        let ground = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0));
-        world.add_body(ground).unwrap();
-        let mut boxes = Vec::new();
-        for row in 0..12 {
-            for i in 0..12 - row {
-                let def = BodyDef {
-                    position: Vec2::new(i as f32 - (11 - row) as f32 * 0.5, 0.5 + row as f32),
-                    shape: Some(Shape::rect(1.0, 1.0)),
-                    ..Default::default()
-                };
-                boxes.push(world.add_body(def).unwrap());
-            }
-        }
-        let mut settings = *world.settings();
-        settings.contacts.as_mut().unwrap().sleeping = false;
-        world.set_settings(settings).unwrap();
+        let (mut world, boxes) = crate::testing::pyramid(12);
         world.step(1.0 / 60.0);
         let mut searched = world.clone();
         proxies_of(&mut searched).search_always = true;
