@@ -607,8 +607,7 @@ impl Proxies {
     ///
     /// A settled scene, whose search found the same pairs as the search
     /// before (in any order) and crowded no cell (a pile still jittering by
-    /// micrometres),
-    /// is searched once more with each box grown (see
+    /// micrometres), is searched once more with each box grown (see
     /// [`ENLARGED_FRACTION`]). While each box stays inside its grown one,
     /// every pair of boxes that overlap is a pair of grown boxes, and the
     /// grid's pairs are those of the grown boxes' pairs whose boxes
