@@ -364,7 +364,10 @@ fn separations(k: &mut Block, d: &Lanes) {
 /// [`solver::solve`](crate::solver::solve)):
 /// the same rows in the same arithmetic, lane by lane. With `FRESH` each
 /// lane's push impulse starts from zero (the first pass of a substep whose
-/// warm start pass did not run to clear it).
+/// warm start pass did not run to clear it). With `MEASURE` (a pass
+/// without the push, right after the positions moved) each lane's
+/// separation is measured first, from the displacements the states' push
+/// slots then hold.
 ///
 /// The push of a block [at rest](at_rest) is left out: it would change
 /// nothing.
