@@ -315,13 +315,14 @@ enum Step {
     Relax,
 }
 
-/// What the position stage leaves in the states: each push slot holding
-/// the body's displacement (`delta`), the rest state after the bodies
-/// untouched.
-fn moved(state: &mut [BodyState], delta: &[Vec2]) {
-    for (s, &d) in state.iter_mut().zip(delta) {
+/// What the position stage leaves: the bodies displaced by `delta`, and
+/// each state's push slot holding the displacement (the rest state after
+/// the bodies untouched).
+fn move_on<'a>(bodies: &mut SolverBodies<'a>, delta: &'a [Vec2]) {
+    for (s, &d) in bodies.state.iter_mut().zip(delta) {
         s.push = d;
     }
+    bodies.delta = delta;
 }
 
 /// Runs `steps` over `rows` (bodies starting at `vel0`, displaced by
@@ -361,8 +362,7 @@ fn wide_and_scalar(
                 solver::solve(&mut scalar_rows, &mut bodies, params, true);
             }
             Step::Relax => {
-                moved(bodies.state, &moved_on);
-                bodies.delta = &moved_on;
+                move_on(&mut bodies, &moved_on);
                 solver::solve(&mut scalar_rows, &mut bodies, params, false);
             }
         }
@@ -383,8 +383,7 @@ fn wide_and_scalar(
             Step::Solve(push) => colouring.run(&mut bodies, &Pass::solve(params, push)),
             Step::Fresh => colouring.run(&mut bodies, &Pass::fresh(params)),
             Step::Relax => {
-                moved(bodies.state, &moved_on);
-                bodies.delta = &moved_on;
+                move_on(&mut bodies, &moved_on);
                 colouring.run(&mut bodies, &Pass::relax(params));
             }
         }
