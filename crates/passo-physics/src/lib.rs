@@ -32,131 +32,56 @@
 #![warn(missing_docs, unreachable_pub)]
 #![forbid(unsafe_code)]
 
-// The modules in the order data flows through them: each imports only
-// modules of the groups above it or earlier in its own group (checked by
-// `tests/module_graph.rs`).
+// The modules are folders that are layers, in the order data flows
+// through them: a folder imports only the root's modules and the folders
+// declared above it, and inside a folder each file imports only the files
+// declared above it (checked by `tests/module_graph.rs`).
 
-// Data: ids, errors, tuning constants, shapes, filters, bodies.
+// The root: ids, tuning constants, errors, split vectors, the thread pool.
 mod id;
 
 pub mod constants;
 
 mod error;
 
-mod aabb;
-mod collider;
-mod filter;
-mod shape;
-
-mod material;
-
-mod body;
-
-mod tile_map;
-
-mod forces;
-
-// Vectors split into x and y arrays, which the body arrays hold.
 mod columns;
-
-mod bodies;
-
-// Integration of forces into motion.
-mod integrator;
 mod parallel;
 
-mod kernel;
-
-// Geometry and pairs.
-mod manifold;
-// Rays against one shape.
-mod ray;
-// Which face moving bodies meet at corners and steps.
-mod corners;
-mod static_tree;
-
-mod cast;
-
-mod broad_phase;
-
-mod proxies;
-
-// Contacts: public types, rows, narrow phase, solver, sleeping, events.
+mod geometry;
+mod body;
+mod forces;
 mod contact;
-
-mod constraint;
-mod reuse;
-
-// The candidate pairs' order, then the narrow phase that walks them.
-mod pair_sort;
-
-mod narrow_phase;
+mod collision;
 mod solver;
-// Crushed bodies' impulses let go of after the step.
-mod crush;
-// The per-body buffers of the substeps.
-mod motion;
-// The wide (lane by lane) contact passes.
-mod lanes;
-// The contacts in colours, passed over a colour at a time.
-mod colouring;
-mod regions;
-
-mod continuous;
-
-mod island;
-
-mod sleeping;
-
-mod events;
-
-mod contact_state;
-
 mod contact_world;
-
-mod query_index;
-
-// The world and its step.
-mod settings;
-
 mod world;
-
-mod body_edit;
-mod contact_step;
-
 mod step;
-
-// What a game asks and saves.
-mod diagnostics;
 mod query;
 
-mod mover;
-mod snapshot;
-
-pub use aabb::Aabb;
-pub use body::{Body, BodyDef, BodyKind};
+pub use body::def::{Body, BodyDef, BodyKind};
+pub use body::filter::CollisionFilter;
+pub use body::material::FrictionMix;
+pub use body::tile_map::{ASCII_LEGEND, MAX_TILE_CELLS, TileKind, TileMap, TileRect};
 pub use contact::{Contact, ContactEvents, ContactPair, ContactSettings, SensorPair};
-pub use contact_step::ContactStage;
-pub use diagnostics::StateHasher;
 pub use error::PhysicsError;
-pub use filter::CollisionFilter;
-pub use forces::{
+pub use forces::integrator::Integrator;
+pub use forces::models::{
     CentralGravity, ForceForm, ForceModel, ForceModels, LinearDrag, QuadraticDrag, Spring,
     SurfaceFriction,
 };
+pub use geometry::aabb::Aabb;
+#[doc(hidden)]
+pub use geometry::manifold::{Manifold, collide};
+pub use geometry::shape::Shape;
 pub use glam;
 pub use id::BodyId;
-pub use integrator::Integrator;
-#[doc(hidden)]
-pub use manifold::{Manifold, collide};
-pub use material::FrictionMix;
-pub use mover::{CharacterMover, MoveOutcome};
+pub use query::diagnostics::StateHasher;
+pub use query::mover::{CharacterMover, MoveOutcome};
 pub use query::{QueryFilter, RayHit, ShapeHit};
-pub use settings::WorldSettings;
-pub use shape::Shape;
-pub use snapshot::WorldSnapshot;
 pub use step::Stage;
-pub use tile_map::{ASCII_LEGEND, MAX_TILE_CELLS, TileKind, TileMap, TileRect};
+pub use step::contacts::ContactStage;
+pub use world::settings::WorldSettings;
+pub use world::snapshot::WorldSnapshot;
 pub use world::{StepStats, World};
 
 /// Helpers shared by the unit tests.

@@ -1,0 +1,586 @@
+//! The contact step: find the contacts, then in each substep integrate
+//! velocities, hold sleepers, warm start, solve, integrate positions and
+//! relax; after the substeps restitution, the final separations and speed
+//! limits; then record events and sleep. Each stage is a function, and
+//! each is skipped when the plan does not need it.
+
+use crate::body::store::{DynamicBodies, SpeedLimits};
+use crate::columns::ColumnsMut;
+use crate::constants::DEEP_OVERLAP;
+use crate::contact_world::{ContactWorld, StepParams};
+use crate::forces::integrator::integrate_velocity;
+use crate::forces::kernel::PointMassKernel;
+use crate::parallel::for_chunks;
+use crate::solver::colouring::Pass;
+use crate::solver::motion::{Homes, Motion, Start};
+use crate::solver::scalar::{self, BodyState, SolverParams};
+use crate::world::{World, step_forces};
+use crate::{ContactSettings, Integrator};
+use glam::Vec2;
+
+/// One stage of the contact step, in the order [`World::contact_stages`]
+/// lists them: the first seven run in every substep, the last four once
+/// after the substeps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ContactStage {
+    /// Forces turned into new velocities over the substep.
+    IntegrateVelocities,
+    /// Sleeping bodies keep zero velocity (only while some body sleeps).
+    HoldSleepers,
+    /// Kinematic bodies keep their own velocity (only with some).
+    HoldKinematic,
+    /// The last substep's impulses applied again (warm starting): from
+    /// the cache in the first substep, then each body's velocity change in
+    /// the last substep (the same sum, with no pass over the contacts).
+    WarmStart,
+    /// Gauss-Seidel passes over the contacts: normal, friction, push.
+    Solve,
+    /// Speed limits, then positions moved by velocity plus push.
+    IntegratePositions,
+    /// Velocity passes at the new positions.
+    Relax,
+    /// Bodies that moved farther than their speculative contacts reach
+    /// swept along their paths and stopped at their first impact (only
+    /// with continuous collision).
+    SweepFastBodies,
+    /// Contacts hit fast enough bounce (only while some body bounces).
+    Restitution,
+    /// Each contact's separation at the end of the step, for queries.
+    StoreSeparations,
+    /// Minimum-speed snap and maximum-speed clamp of the final velocities.
+    ClampSpeeds,
+}
+
+/// What the substeps of a contact step run.
+struct SubstepPlan {
+    /// Substeps to run: none when every body sleeps (nothing would move).
+    substeps: u32,
+    /// The velocity kernel of the common case (no speed limits: they are
+    /// applied with the positions).
+    kernel: Option<PointMassKernel>,
+    /// Some body sleeps: sleeping bodies are held still.
+    hold_sleepers: bool,
+    /// Some body is kinematic: it keeps its own velocity.
+    hold_kinematic: bool,
+    /// The integrator makes position corrections (all but semi-implicit
+    /// Euler), kept per body between the velocity and position stages.
+    corrects: bool,
+    limits: Option<Option<SpeedLimits>>,
+    solver: SolverParams,
+    /// Some body bounces.
+    restitution: bool,
+    /// Continuous collision: fast bodies are swept.
+    sweep: bool,
+    /// The substeps after the first warm start by replaying each body's
+    /// velocity change of the last substep (see [`Start::Replay`]).
+    replay: bool,
+}
+
+impl SubstepPlan {
+    fn new(world: &World, settings: &ContactSettings, dt: f32, any_asleep: bool) -> Self {
+        let all_asleep = any_asleep && world.dynamic.sleep.iter().all(|s| s.is_asleep());
+        Self {
+            substeps: if all_asleep { 0 } else { settings.substeps },
+            kernel: world.kernel(None),
+            hold_sleepers: any_asleep,
+            hold_kinematic: !world.dynamic.kinematic.is_empty(),
+            corrects: world.settings().integrator != Integrator::SemiImplicitEuler,
+            limits: world.speed_limits(),
+            solver: SolverParams {
+                h: dt / settings.substeps as f32,
+                warm_starting: settings.warm_starting,
+                iterations: settings.iterations,
+                relax_iterations: settings.relax_iterations,
+                position_correction: settings.position_correction,
+                push_out_speed: settings.push_out_speed,
+                slop: settings.slop,
+                restitution_threshold: settings.restitution_threshold,
+                carry_push: false,
+            },
+            restitution: world.bouncy > 0,
+            sweep: settings.continuous,
+            replay: false,
+        }
+    }
+
+    fn stages(&self) -> Vec<ContactStage> {
+        use ContactStage::*;
+        let s = &self.solver;
+        let steps = [
+            (self.substeps > 0, IntegrateVelocities),
+            (self.substeps > 0 && self.hold_sleepers, HoldSleepers),
+            (self.substeps > 0 && self.hold_kinematic, HoldKinematic),
+            (self.substeps > 0 && s.warm_starting, WarmStart),
+            (self.substeps > 0, Solve),
+            (self.substeps > 0, IntegratePositions),
+            (self.substeps > 0 && s.relax_iterations > 0, Relax),
+            (self.substeps > 0 && self.sweep, SweepFastBodies),
+            (self.restitution, Restitution),
+            (true, StoreSeparations),
+            (self.limits.is_some(), ClampSpeeds),
+        ];
+        steps
+            .iter()
+            .filter(|(on, _)| *on)
+            .map(|(_, s)| *s)
+            .collect()
+    }
+}
+
+impl World {
+    /// The stages of the contact step with the current settings and
+    /// bodies, in order (see [`ContactStage`]); empty when the contact
+    /// stage does not run.
+    pub fn contact_stages(&self) -> Vec<ContactStage> {
+        let Some(settings) = self.contact_settings() else {
+            return Vec::new();
+        };
+        let any_asleep = match &self.contacts {
+            Some(cw) => cw.sleeping.any(&self.dynamic),
+            None => false,
+        };
+        SubstepPlan::new(self, &settings, 1.0, any_asleep).stages()
+    }
+
+    /// The contact step: find the contacts, run the substeps, finish, and
+    /// record what happened.
+    pub(crate) fn step_with_contacts(&mut self, dt: f32, settings: &ContactSettings) {
+        // A large world steps on a worker of the thread pool: the stages hand
+        // work to the other workers dozens of times a step (the regions'
+        // passes, the chunks), which costs a few microseconds from a worker
+        // and ten times that from a thread outside the pool. (Rain of
+        // 10 000, two threads: 2.25 ms per step on a worker, 2.96 ms from
+        // outside, 2.98 ms on one thread.)
+        #[cfg(feature = "parallel")]
+        if self.parallel && self.dynamic.len() >= crate::constants::PARALLEL_MIN_ITEMS {
+            crate::parallel::on_pool(|| self.step_with_contacts_here(dt, settings));
+            return;
+        }
+        self.step_with_contacts_here(dt, settings);
+    }
+
+    /// [`step_with_contacts`](Self::step_with_contacts) on this thread.
+    fn step_with_contacts_here(&mut self, dt: f32, settings: &ContactSettings) {
+        let mut cw = self
+            .contacts
+            .take()
+            .unwrap_or_else(|| Box::new(ContactWorld::new()));
+        if std::mem::take(&mut self.statics_dirty) {
+            cw.statics_changed();
+        }
+        if !settings.sleeping {
+            cw.wake_all(&mut self.dynamic);
+        }
+        let params = StepParams {
+            gravity: self.settings().forces.gravity.unwrap_or(Vec2::ZERO),
+            dt,
+            h: dt / settings.substeps as f32,
+            parallel: self.parallel,
+            all_shaped: self.shaped_dynamic == self.dynamic.len(),
+        };
+        cw.keep_last_contacts(&self.dynamic, &self.statics, |id| self.collider_of(id));
+        cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
+        if cw.crowded() > 0 {
+            self.stats.crowded_steps = self.stats.crowded_steps.saturating_add(1);
+        }
+        let mut plan = SubstepPlan::new(self, settings, dt, cw.sleeping.any(&self.dynamic));
+        plan.solver.carry_push = settings.warm_starting
+            && cw.motion.piles.find(
+                &cw.solved.rows,
+                self.dynamic.len(),
+                DEEP_OVERLAP,
+                self.parallel,
+            );
+        // The substeps after the first warm start by replaying each body's
+        // velocity change (see `Start::Replay`), unless no relax pass
+        // measures the separations (the warm start pass does then), or
+        // there is no substep after the first.
+        plan.replay =
+            settings.warm_starting && plan.solver.relax_iterations > 0 && plan.substeps > 1;
+        cw.regions.build(
+            &cw.solved.rows,
+            &cw.motion.start,
+            &cw.motion.piles.deep,
+            plan.hold_sleepers || plan.hold_kinematic,
+            self.parallel,
+        );
+        if plan.hold_kinematic {
+            self.hold_kinematic();
+        }
+        let mut correction = std::mem::take(&mut self.correction);
+        if plan.corrects {
+            correction.clear();
+            correction.resize(self.dynamic.len(), Vec2::ZERO);
+        }
+        let mut resets = 0;
+        for substep in 0..plan.substeps {
+            resets += self.integrate_velocities(&plan, &mut correction);
+            if plan.hold_sleepers {
+                self.hold_sleepers(&mut correction, plan.corrects);
+            }
+            if plan.hold_kinematic {
+                self.keep_kinematic_velocity(&mut correction, plan.corrects);
+            }
+            // The bodies moved since the separations were last measured
+            // unless this is the first substep or the relax stage measured.
+            let moved = substep > 0 && plan.solver.relax_iterations == 0;
+            // From here to the end of the relax stage the passes work on
+            // the solver's copy of the velocities (see `Motion::load`).
+            let start = match (plan.replay, substep) {
+                (false, _) => Start::Plain,
+                (true, 0) => Start::Track,
+                (true, _) => Start::Replay,
+            };
+            let far = cw.regions.far_states();
+            cw.motion
+                .load(self.dynamic.vel.view(), start, self.parallel, far);
+            self.solve(&mut cw, &plan, moved, start == Start::Replay);
+            let far = cw.regions.far_states();
+            self.integrate_positions(&mut cw.motion, far, &plan, &correction);
+            self.relax(&mut cw, &plan);
+            let far = cw.regions.far_states().map(|(homes, far)| (homes, &*far));
+            cw.motion
+                .unload(self.dynamic.vel.view_mut(), plan.replay, self.parallel, far);
+        }
+        cw.regions.store(&mut cw.solved.rows, self.parallel);
+        if plan.substeps > 0 && plan.sweep {
+            let stops = cw.sweep_fast_bodies(&mut self.dynamic, &self.statics, self.parallel);
+            self.stats.swept_stops = self.stats.swept_stops.saturating_add(stops as u64);
+        }
+        self.finish_contacts(&mut cw, &plan);
+        resets += put_back_non_finite(&mut self.dynamic, &mut cw);
+        self.may_rest |= settings.sleeping;
+        cw.end_step(
+            &mut self.dynamic,
+            &self.statics,
+            settings.sleeping.then_some((dt, settings.slop)),
+            self.stats.steps.saturating_add(1),
+            self.parallel,
+        );
+        self.contacts = Some(cw);
+        self.correction = correction;
+        self.stats.non_finite_resets = self.stats.non_finite_resets.saturating_add(resets);
+    }
+
+    /// Substep stage: forces turned into velocities over `h`; the
+    /// multi-stage integrators also leave a position correction.
+    fn integrate_velocities(&mut self, plan: &SubstepPlan, correction: &mut [Vec2]) -> u64 {
+        let (h, parallel) = (plan.solver.h, self.parallel);
+        if let Some(kernel) = &plan.kernel {
+            return kernel.velocities(&mut self.dynamic, h, parallel);
+        }
+        let integrator = self.settings().integrator;
+        let forces = step_forces(&self.settings, &self.custom, self.game_friction);
+        let (pos, vel, arrays) = self.dynamic.split();
+        let pos = pos.as_ref();
+        // Everything it reads is copied in, and each chunk takes a copy of
+        // it: stores to the arrays cannot alias the hoisted constants, which
+        // then stay in registers (see `step_bodies`).
+        let velocity = move |i: usize, v: Vec2, resets: &mut u64| {
+            integrate_velocity(
+                integrator,
+                &forces,
+                pos.at(i),
+                v,
+                &arrays.params(i),
+                h,
+                resets,
+            )
+        };
+        if plan.corrects {
+            for_chunks(parallel, (vel, correction), |offset, (vel, correction)| {
+                let (velocity, mut resets) = (velocity, 0);
+                let (vx, vy) = vel.into_parts();
+                let correction = &mut correction[..vx.len()];
+                for k in 0..vx.len() {
+                    let v = Vec2::new(vx[k], vy[k]);
+                    let (v, c) = velocity(offset + k, v, &mut resets);
+                    (vx[k], vy[k], correction[k]) = (v.x, v.y, c);
+                }
+                resets
+            })
+        } else {
+            for_chunks(parallel, vel, |offset, vel| {
+                let (velocity, mut resets) = (velocity, 0);
+                let (vx, vy) = vel.into_parts();
+                for k in 0..vx.len() {
+                    let v = velocity(offset + k, Vec2::new(vx[k], vy[k]), &mut resets).0;
+                    (vx[k], vy[k]) = (v.x, v.y);
+                }
+                resets
+            })
+        }
+    }
+
+    /// Substep stage: sleeping bodies hold still (no forces, no correction).
+    fn hold_sleepers(&mut self, correction: &mut [Vec2], corrects: bool) {
+        let b = &mut self.dynamic;
+        for (i, s) in b.sleep.iter().enumerate() {
+            if s.is_asleep() {
+                b.vel.set(i, Vec2::ZERO);
+                if corrects {
+                    correction[i] = Vec2::ZERO;
+                }
+            }
+        }
+    }
+
+    /// Substep stage: kinematic bodies keep the velocity they had when
+    /// the step began (no forces, no correction; contacts cannot change
+    /// it either, their inverse mass being zero).
+    fn keep_kinematic_velocity(&mut self, correction: &mut [Vec2], corrects: bool) {
+        let b = &mut self.dynamic;
+        for (&i, &(_, v)) in b.kinematic.iter().zip(&self.held) {
+            let i = i as usize;
+            let v = if b.sleep[i].is_asleep() {
+                Vec2::ZERO
+            } else {
+                v
+            };
+            b.vel.set(i, v);
+            if corrects {
+                correction[i] = Vec2::ZERO;
+            }
+        }
+    }
+
+    /// Substep stages: warm start (with the push impulses cleared, or
+    /// carried in a deep pile, and the separations measured if the bodies
+    /// `moved` since they last were; when `replayed` the velocities are
+    /// warm started already, see `Start::Replay`), then the Gauss-Seidel
+    /// passes with the push, on the solver's copy of the velocities (see
+    /// [`Motion::load`]).
+    fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, moved: bool, replayed: bool) {
+        let ContactWorld {
+            regions, motion, ..
+        } = cw;
+        let mut bodies = motion.bodies();
+        // Replayed (see `Start::Replay`): the warm start is in the states
+        // already. The pass then only carries the push in a deep pile, and
+        // otherwise is not needed: the first pass starts each push from
+        // zero instead of clearing it first.
+        let fresh = replayed && !plan.solver.carry_push;
+        if !fresh {
+            let begin = SolverParams {
+                warm_starting: plan.solver.warm_starting && !replayed,
+                ..plan.solver
+            };
+            regions.run(&mut bodies, &Pass::Begin(begin, moved), self.parallel);
+        }
+        let (first, pass) = (Pass::fresh(&plan.solver), Pass::solve(&plan.solver, true));
+        for k in 0..plan.solver.iterations {
+            let pass = if fresh && k == 0 { &first } else { &pass };
+            regions.run(&mut bodies, pass, self.parallel);
+        }
+    }
+
+    /// Substep stage: speed limits, then positions moved by velocity plus
+    /// push (and the integrator's correction), and each body's displacement
+    /// since the step began.
+    fn integrate_positions(
+        &mut self,
+        motion: &mut Motion,
+        far: Option<(&Homes, &mut [BodyState])>,
+        plan: &SubstepPlan,
+        correction: &[Vec2],
+    ) {
+        let (h, limits, corrects) = (plan.solver.h, plan.limits, plan.corrects);
+        let (pos, _, arrays) = self.dynamic.split();
+        let start = &motion.start[..];
+        // The bodies' states, without the rest state after them.
+        let state = &mut motion.state[..pos.len()];
+        let parts = (pos, state, &mut motion.delta[..], &mut motion.replay[..]);
+        // One loop for each kind of limit, chosen once: no test of the
+        // kind in the loop over the bodies.
+        let moves = Moves {
+            h,
+            correction: corrects.then_some(correction),
+            start,
+            replay: plan.replay,
+        };
+        let parallel = self.parallel;
+        match limits {
+            None => moves.run(parallel, parts, far, |_| None),
+            Some(Some(uniform)) => moves.run(parallel, parts, far, |_| Some(uniform)),
+            Some(None) => moves.run(parallel, parts, far, |i| Some(arrays.limits[i])),
+        }
+    }
+
+    /// Substep stage: velocity passes at the new positions.
+    fn relax(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
+        let ContactWorld {
+            regions, motion, ..
+        } = cw;
+        let mut bodies = motion.bodies();
+        // The first pass measures the separations at the new positions.
+        let (first, rest) = (Pass::relax(&plan.solver), Pass::solve(&plan.solver, false));
+        for k in 0..plan.solver.relax_iterations {
+            let pass = if k == 0 { &first } else { &rest };
+            regions.run(&mut bodies, pass, self.parallel);
+        }
+    }
+
+    /// After the substeps and sweeps: restitution, each contact's final separation,
+    /// and the speed limits of the final velocities.
+    fn finish_contacts(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
+        let ContactWorld { solved, motion, .. } = cw;
+        let b = &mut self.dynamic;
+        if plan.restitution {
+            scalar::restitution(
+                &mut solved.rows,
+                &solved.infos,
+                &mut b.vel,
+                plan.solver.restitution_threshold,
+            );
+        }
+        let parallel = self.parallel;
+        scalar::store_separations(&solved.rows, &mut solved.infos, &motion.delta, parallel);
+        if let Some(uniform) = plan.limits {
+            for_chunks(
+                parallel,
+                (b.vel.view_mut(), &b.limits[..]),
+                |_, (vel, limits)| {
+                    let (vx, vy) = vel.into_parts();
+                    for (k, limits) in limits[..vx.len()].iter().enumerate() {
+                        let mut v = Vec2::new(vx[k], vy[k]);
+                        uniform.unwrap_or(*limits).apply(&mut v);
+                        (vx[k], vy[k]) = (v.x, v.y);
+                    }
+                    0
+                },
+            );
+        }
+    }
+}
+
+/// Puts every dynamic body the step left with a non-finite position or
+/// velocity back where the step began, at rest, and drops its contacts'
+/// impulses (so neither the next step's warm start nor a snapshot carries
+/// them); returns how many it put back. Only impulses that overflow `f32`
+/// get here: the heaviest body allowed (10^30 kg) meeting something at
+/// 10^9 m/s with the speed limit turned off. The common case is one pass
+/// over the bodies with no branch.
+fn put_back_non_finite(dynamic: &mut DynamicBodies, cw: &mut ContactWorld) -> u64 {
+    let finite = |p: &Vec2, v: &Vec2| p.is_finite() & v.is_finite();
+    let all_finite =
+        (dynamic.pos.iter().zip(dynamic.vel.iter())).fold(true, |ok, (p, v)| ok & finite(&p, &v));
+    if all_finite {
+        return 0;
+    }
+    let mut resets = 0;
+    for (i, start) in cw.motion.start.iter().enumerate() {
+        if !finite(&dynamic.pos.at(i), &dynamic.vel.at(i)) {
+            dynamic.pos.set(i, *start);
+            dynamic.vel.set(i, Vec2::ZERO);
+            resets += 1;
+        }
+    }
+    for row in &mut cw.solved.rows {
+        let impulses = [row.normal_impulse, row.tangent_impulse, row.push_impulse];
+        if !impulses.iter().all(|x| x.is_finite()) || !row.max_normal_impulse.is_finite() {
+            row.normal_impulse = 0.0;
+            row.tangent_impulse = 0.0;
+            row.push_impulse = 0.0;
+            row.max_normal_impulse = 0.0;
+        }
+    }
+    resets
+}
+
+/// What the position stage moves each body by: its velocity plus push
+/// over the substep, and the integrator's correction.
+struct Moves<'a> {
+    h: f32,
+    /// The integrator's corrections (all but semi-implicit Euler).
+    correction: Option<&'a [Vec2]>,
+    /// Positions at the start of the step.
+    start: &'a [Vec2],
+    /// The substeps replay the contacts' velocity changes: a change made by
+    /// a speed limit is left out of them.
+    replay: bool,
+}
+
+impl Moves<'_> {
+    /// Applies each body's speed limits (`limit(i)`, if any; with the
+    /// replay, a limit's change is taken out of the body's replayed
+    /// change), then moves it, and keeps its displacement since the step
+    /// began. `far`: while the step splits, each body's home and the second
+    /// region's states (see [`Homes`]); each run of bodies is read and
+    /// written where it lives.
+    fn run(
+        &self,
+        parallel: bool,
+        parts: (ColumnsMut<'_>, &mut [BodyState], &mut [Vec2], &mut [Vec2]),
+        far: Option<(&Homes, &mut [BodyState])>,
+        limit: impl Fn(usize) -> Option<SpeedLimits> + Sync,
+    ) {
+        let Some((homes, far)) = far else {
+            for_chunks(parallel, parts, |offset, (pos, state, delta, replay)| {
+                self.move_run(offset, (pos, state, delta, replay), &limit);
+                0
+            });
+            return;
+        };
+        let (pos, state, delta, replay) = parts;
+        let far = &mut far[..pos.len()];
+        let parts = (pos, state, delta, replay, far);
+        for_chunks(
+            parallel,
+            parts,
+            |offset, (mut pos, state, delta, replay, far)| {
+                homes.each_state(offset, state, far, |run, states| {
+                    let (pos, delta) = (pos.slice(run.clone()), &mut delta[run.clone()]);
+                    let moving = (pos, states, delta, &mut replay[run.clone()]);
+                    self.move_run(offset + run.start, moving, &limit);
+                });
+                0
+            },
+        );
+    }
+
+    /// [`run`](Self::run) over the bodies from `first` on, whose states
+    /// are `state`.
+    #[inline(always)]
+    fn move_run(
+        &self,
+        first: usize,
+        (pos, state, delta, replay): (ColumnsMut<'_>, &mut [BodyState], &mut [Vec2], &mut [Vec2]),
+        limit: &impl Fn(usize) -> Option<SpeedLimits>,
+    ) {
+        // One loop over equal lengths (no bounds checks), with the body's
+        // work written out in it.
+        let (px, py) = pos.into_parts();
+        let n = px.len();
+        let (state, delta, replay) = (&mut state[..n], &mut delta[..n], &mut replay[..n]);
+        for k in 0..n {
+            let (s, i) = (&mut state[k], first + k);
+            let mut limited = false;
+            if let Some(limits) = limit(i) {
+                let before = s.vel;
+                limited = limits.apply(&mut s.vel);
+                if limited && self.replay {
+                    // The contacts' change so far kept, as if the body had
+                    // started the substep at the limited speed: a limit's
+                    // change is not replayed (and a body no contact touched
+                    // starts the next substep at exactly the limited speed).
+                    replay[k] = s.vel - (before - replay[k]);
+                }
+            }
+            // Semi-implicit Euler adds an exact zero here, as the
+            // no-contact path does: the same bits either way. A limit that
+            // changed the velocity leaves the correction out, as that path
+            // does (it was worked out for the velocity before the limit).
+            let c = match self.correction {
+                Some(c) if !limited => c[i],
+                _ => Vec2::ZERO,
+            };
+            let p = Vec2::new(px[k], py[k]) + ((s.vel + s.push) * self.h + c);
+            (px[k], py[k]) = (p.x, p.y);
+            delta[k] = p - self.start[i];
+            // The push is spent: until the next substep's load its slot
+            // holds the displacement, which the relax stage's first pass
+            // reads with the velocity (see `BodyState`).
+            s.push = delta[k];
+        }
+    }
+}
