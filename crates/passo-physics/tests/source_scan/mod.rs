@@ -1,5 +1,5 @@
 //! Reading the crate's sources as code for the tests that check them
-//! (`module_graph.rs`, `portable_maths.rs`): comments, the insides of
+//! (`module_graph.rs`): comments, the insides of
 //! literals and test-only code blanked out, line numbers kept.
 
 /// The code of a file without comments, without the insides of string and
