@@ -5,4 +5,5 @@ pub(crate) mod material;
 pub(crate) mod collider;
 pub(crate) mod def;
 pub(crate) mod store;
+pub(crate) mod census;
 pub(crate) mod tile_map;

@@ -309,7 +309,7 @@ impl DynamicBodies {
         def: &BodyDef,
         meta: BodyMeta,
         limits: SpeedLimits,
-        keep_prev: bool,
+        track_previous: bool,
     ) {
         self.pos.push(def.position);
         self.vel.push(def.velocity);
@@ -323,7 +323,7 @@ impl DynamicBodies {
         self.friction.push(def.friction);
         self.friction_force.push(0.0);
         self.limits.push(limits);
-        if keep_prev {
+        if track_previous {
             self.prev_pos.push(def.position);
         }
         self.sleep.push(SleepState::awake());

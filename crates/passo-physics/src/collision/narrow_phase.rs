@@ -7,7 +7,7 @@ use crate::body::filter::CollisionFilter;
 use crate::body::store::{Colliders, pair_order};
 use crate::collision::pair_sort::{KeyedPair, sort_by_key};
 use crate::collision::proxies::{Proxies, ProxyMargin};
-use crate::collision::reuse::{Reuse, keep_all};
+use crate::collision::reuse::{Reuse, reuse_all};
 use crate::constants::{ONE_WAY_DEPTH, SPECULATIVE_DISTANCE};
 use crate::contact::constraint::{Constraint, ContactInfo, ContactList, key};
 use crate::geometry::corners::{beyond_corner, over_a_step};
@@ -52,7 +52,7 @@ struct Collider {
 }
 
 /// What the narrow phase reads (shared by the threads that run it).
-pub(crate) struct Narrow<'a> {
+pub(crate) struct PairContext<'a> {
     pub proxies: &'a Proxies,
     pub bodies: Colliders<'a>,
     /// Gravitational acceleration (for restitution's impact speed).
@@ -65,11 +65,11 @@ pub(crate) struct Narrow<'a> {
     /// Whether a pair (by its contact's [`key`]) pressed on each other at the
     /// end of the last step: a body standing on a one-way platform stays
     /// on it, however deep a load presses it in (see
-    /// [`Narrow::one_way_allows`]).
+    /// [`PairContext::one_way_allows`]).
     pub pressed: &'a (dyn Fn((BodyId, BodyId)) -> bool + Sync),
 }
 
-impl Narrow<'_> {
+impl PairContext<'_> {
     fn collider(&self, body: ColliderRef) -> Collider {
         let meta = self.bodies.meta(body);
         Collider {
@@ -208,7 +208,7 @@ impl Narrow<'_> {
     }
 }
 
-impl Narrow<'_> {
+impl PairContext<'_> {
     /// How fast `c` may move this step: a dynamic body's velocity with
     /// what gravity adds over the step, a kinematic body's own, a static
     /// body's zero.
@@ -312,7 +312,7 @@ impl Narrow<'_> {
 /// walked at `next`), or found afresh.
 #[inline(always)]
 fn outcome(
-    narrow: &Narrow<'_>,
+    narrow: &PairContext<'_>,
     reuse: &Reuse<'_>,
     next: &mut usize,
     (key, pa, pb): KeyedPair,
@@ -396,11 +396,11 @@ impl NarrowPhase {
     /// pair keeps its contact (a pile at rest), the last step's list is
     /// made this step's in place: the same contacts as the walk below would
     /// copy out one by one, at a third of the cost; with `impulses` they
-    /// keep their impulses too (see [`keep_all`]). Returns whether the
+    /// keep their impulses too (see [`reuse_all`]). Returns whether the
     /// contacts were kept in place.
     pub(crate) fn run(
         &mut self,
-        narrow: &Narrow<'_>,
+        narrow: &PairContext<'_>,
         (reuse_distance_sq, impulses): (f32, bool),
         last: &mut ContactList,
         parallel: bool,
@@ -412,7 +412,7 @@ impl NarrowPhase {
         let in_place = reuse_distance_sq > 0.0;
         #[cfg(test)]
         let in_place = in_place && !self.walk_always;
-        if in_place && keep_all(narrow.bodies, keys, (reuse_distance_sq, impulses), last) {
+        if in_place && reuse_all(narrow.bodies, keys, (reuse_distance_sq, impulses), last) {
             std::mem::swap(contacts, last);
             #[cfg(test)]
             {
@@ -429,7 +429,7 @@ impl NarrowPhase {
     }
 
     /// The proxies' pairs with their keys, in key order, in `keyed`.
-    fn sort_pairs(&mut self, narrow: &Narrow<'_>, parallel: bool) {
+    fn sort_pairs(&mut self, narrow: &PairContext<'_>, parallel: bool) {
         let proxies = narrow.proxies;
         // The same pairs as the last step's, of the same bodies: the same
         // keys, which `last_keys` holds and `keyed` holds sorted (a pile
@@ -486,7 +486,7 @@ impl NarrowPhase {
 
     /// The keys of the proxies' pairs, made afresh (for tests).
     #[cfg(test)]
-    fn keys_of(&self, narrow: &Narrow<'_>) -> Vec<KeyedPair> {
+    fn keys_of(&self, narrow: &PairContext<'_>) -> Vec<KeyedPair> {
         let proxies = narrow.proxies;
         let dynamic = proxies
             .pairs
@@ -503,7 +503,7 @@ impl NarrowPhase {
     /// last step (`reuse`).
     fn find_contacts(
         &mut self,
-        narrow: &Narrow<'_>,
+        narrow: &PairContext<'_>,
         reuse: &Reuse<'_>,
         parallel: bool,
         contacts: &mut ContactList,
@@ -527,7 +527,7 @@ impl NarrowPhase {
         let mut next = 0;
         for &pair in &self.keyed {
             let outcome = outcome(narrow, reuse, &mut next, pair);
-            keep(outcome, contacts, &mut self.sensor_candidates);
+            record_outcome(outcome, contacts, &mut self.sensor_candidates);
         }
     }
 }
@@ -550,7 +550,11 @@ fn key_all(
 
 /// Puts a pair's outcome in its list.
 #[inline(always)]
-fn keep(outcome: Outcome, contacts: &mut ContactList, sensors: &mut Vec<SensorCandidate>) {
+fn record_outcome(
+    outcome: Outcome,
+    contacts: &mut ContactList,
+    sensors: &mut Vec<SensorCandidate>,
+) {
     match outcome {
         Outcome::Skip => {}
         Outcome::Sensor(candidate) => sensors.push(candidate),
@@ -578,7 +582,7 @@ struct TaskFound {
 /// last step are overwritten, and only the growth is initialised.
 #[cfg(feature = "parallel")]
 fn in_tasks(
-    narrow: &Narrow<'_>,
+    narrow: &PairContext<'_>,
     reuse: &Reuse<'_>,
     keyed: &[KeyedPair],
     tasks: &mut Vec<TaskFound>,
@@ -601,7 +605,7 @@ fn in_tasks(
             let mut next = pairs.first().map_or(0, |&(key, _, _)| reuse.start(key));
             for &pair in pairs {
                 let outcome = outcome(narrow, reuse, &mut next, pair);
-                keep(outcome, &mut task.contacts, &mut task.sensors);
+                record_outcome(outcome, &mut task.contacts, &mut task.sensors);
             }
         });
     for t in tasks.iter() {

@@ -546,7 +546,7 @@ impl Proxies {
     }
 
     /// The proxy of dynamic body `i`, made now if it has none.
-    pub(crate) fn of(&mut self, dynamic: &DynamicBodies, i: usize) -> u32 {
+    pub(crate) fn proxy_or_add(&mut self, dynamic: &DynamicBodies, i: usize) -> u32 {
         match self.of_body[i] {
             NO_PROXY => self.add(dynamic, i, true),
             p => p,
@@ -621,16 +621,16 @@ impl Proxies {
         let plain = self.asleep.is_empty()
             && self.grid.uncapped.is_empty()
             && self.grid.immovable.is_empty();
-        let may_keep = plain;
+        let may_reuse = plain;
         #[cfg(test)]
-        let may_keep = may_keep && !self.search_always;
-        let unchanged = may_keep
+        let may_reuse = may_reuse && !self.search_always;
+        let unchanged = may_reuse
             && !self.searched_boxes.is_empty()
             && same_bits(&self.boxes, &self.searched_boxes);
-        let statics_unchanged = may_keep
+        let statics_unchanged = may_reuse
             && !self.searched_around.is_empty()
             && same_bits(&self.around, &self.searched_around);
-        let within = may_keep
+        let within = may_reuse
             && !unchanged
             && !self.enlarged.is_empty()
             && all_within(&self.boxes, &self.enlarged);
@@ -665,7 +665,7 @@ impl Proxies {
                 let settled =
                     same || (self.pairs.len() == self.earlier_pairs.len() && sum == self.pairs_sum);
                 self.pairs_sum = sum;
-                if may_keep && self.grid.crowded == 0 && settled {
+                if may_reuse && self.grid.crowded == 0 && settled {
                     self.enlarge(parallel);
                 }
             }

@@ -12,7 +12,7 @@ use glam::Vec2;
 /// normal, friction and points as they were and its separation moved along
 /// the normal by that motion (exact for two boxes while their faces meet;
 /// see `ContactSettings::reuse_distance` for circles), instead of going
-/// through the narrow phase's `Narrow::pair` again. Box2D v3 reuses its
+/// through the narrow phase's `PairContext::pair` again. Box2D v3 reuses its
 /// contacts the same way.
 pub(crate) struct Reuse<'a> {
     pub last: &'a ContactList,
@@ -78,7 +78,7 @@ impl Reuse<'_> {
 /// changed only in what keeping a contact gives afresh (its separation,
 /// masses and impulses, see `Kept`), which the walk over `last` does not
 /// read: it finds the same contacts.
-pub(crate) fn keep_all(
+pub(crate) fn reuse_all(
     bodies: Colliders<'_>,
     keys: impl ExactSizeIterator<Item = u64>,
     (distance_sq, impulses): (f32, bool),

@@ -177,9 +177,9 @@ impl EventTracker {
         parallel: bool,
     ) {
         if asleep.is_empty() && goes_parallel(parallel, solved.len()) {
-            self.keep_in_chunks(solved);
+            self.record_pairs_in_chunks(solved);
         } else {
-            self.keep(solved, asleep);
+            self.record_pairs(solved, asleep);
         }
         self.fresh = true;
         self.events.clear();
@@ -223,14 +223,14 @@ impl EventTracker {
     ///
     /// The lists keep their length from the last step, so only their
     /// growth is initialised.
-    fn keep(&mut self, solved: &ContactList, asleep: &ContactList) {
+    fn record_pairs(&mut self, solved: &ContactList, asleep: &ContactList) {
         let len = solved.len() + asleep.len();
         self.cache.resize(len, NO_CACHED);
         self.touching.resize(len, NO_PAIR);
         let mut slots = self.cache.iter_mut();
         let pairs = &mut self.touching[..];
         let mut touching = 0;
-        let mut keep = |c: &Constraint, info: &ContactInfo| {
+        let mut record = |c: &Constraint, info: &ContactInfo| {
             let key = info.key();
             if let Some(slot) = slots.next() {
                 *slot = cached(key, c);
@@ -242,19 +242,19 @@ impl EventTracker {
             touching += usize::from(info.is_touching(c));
         };
         if asleep.is_empty() {
-            solved.iter().for_each(|(c, info)| keep(c, info));
+            solved.iter().for_each(|(c, info)| record(c, info));
         } else {
-            merged(solved, asleep).for_each(|(c, info)| keep(c, info));
+            merged(solved, asleep).for_each(|(c, info)| record(c, info));
         }
         self.touching.truncate(touching);
     }
 
-    /// [`keep`](Self::keep) of `solved` alone, in chunks on the thread
+    /// [`record_pairs`](Self::record_pairs) of `solved` alone, in chunks on the thread
     /// pool: each contact's entries depend on it alone, a pair not touching
     /// is written as [`NO_PAIR`], and those are taken out after. The lists
     /// keep their length from the last step, so only their growth is
     /// initialised.
-    fn keep_in_chunks(&mut self, solved: &ContactList) {
+    fn record_pairs_in_chunks(&mut self, solved: &ContactList) {
         self.cache.resize(solved.len(), NO_CACHED);
         self.touching.resize(solved.len(), NO_PAIR);
         let parts = (

@@ -10,7 +10,7 @@ pub(crate) mod state;
 
 use crate::body::collider::ColliderRef;
 use crate::body::store::{Colliders, DynamicBodies, StaticBodies};
-use crate::collision::narrow_phase::{Narrow, NarrowPhase, Outcome};
+use crate::collision::narrow_phase::{NarrowPhase, Outcome, PairContext};
 use crate::collision::proxies::{Proxies, ProxyMargin};
 use crate::contact::constraint::{Constraint, ContactInfo, ContactList, Merge};
 use crate::contact_world::events::EventTracker;
@@ -117,7 +117,7 @@ impl ContactWorld {
             self.pair_with_sleepers(dynamic);
         }
         let events = &self.events;
-        let narrow = Narrow {
+        let narrow = PairContext {
             proxies: &self.proxies,
             bodies: Colliders { dynamic, statics },
             gravity: step.gravity,
@@ -225,10 +225,10 @@ impl ContactWorld {
                 continue;
             }
             // Grown all round: a sleeping body holds still this step, as
-            // a wall does (see `Narrow::may_close`).
+            // a wall does (see `PairContext::may_close`).
             let aabb = self.proxies.around[p];
             for &body in self.sleeping.reached(&aabb, dynamic) {
-                let q = self.proxies.of(dynamic, body as usize);
+                let q = self.proxies.proxy_or_add(dynamic, body as usize);
                 self.proxies.pairs.push((p as u32, q));
             }
         }
@@ -272,9 +272,9 @@ impl ContactWorld {
         for k in 0..self.sleeping.list.len() {
             let c = self.sleeping.list.rows[k];
             if has_awake_body(dynamic, &c) {
-                self.proxies.of(dynamic, c.a as usize);
+                self.proxies.proxy_or_add(dynamic, c.a as usize);
                 if let Some(b) = c.b.dynamic_index() {
-                    self.proxies.of(dynamic, b);
+                    self.proxies.proxy_or_add(dynamic, b);
                 }
             }
         }
@@ -306,7 +306,7 @@ impl ContactWorld {
         keyed.sort_unstable_by_key(|k| k.0);
         keyed.dedup_by_key(|k| k.0);
         let events = &self.events;
-        let narrow = Narrow {
+        let narrow = PairContext {
             proxies,
             bodies,
             gravity: step.gravity,
@@ -542,7 +542,7 @@ impl ContactWorld {
     /// them, each pointing at where its bodies sit now, as a snapshot
     /// carries them (see [`carry_awake`](Self::carry_awake)), so a world
     /// restored from one reuses what this one does.
-    pub(crate) fn keep_last_contacts(
+    pub(crate) fn relocate_last_contacts(
         &mut self,
         dynamic: &DynamicBodies,
         statics: &StaticBodies,

@@ -145,7 +145,7 @@ impl World {
                 .all_contacts()
                 .map(|(_, info)| (info.id_a.index(), info.id_b.index()));
             // The lists change with steps, wakes, removals and restores.
-            let version = (self.stats.steps, self.edits, cw.revision());
+            let version = (self.stats.steps, self.revisions.edits, cw.revision());
             index.update_contacts(version, self.slots.len(), pairs);
             for &k in index.contacts_of(id.index()) {
                 let Some((c, info)) = cw.contact_at(k as usize) else {
@@ -373,7 +373,7 @@ impl World {
             &self.dynamic,
             &self.statics,
             self.query_version(),
-            self.static_edits,
+            self.revisions.static_edits,
         );
         index
     }
@@ -422,7 +422,7 @@ impl World {
 
     /// The version of the world queries index: steps taken and edits made.
     fn query_version(&self) -> (u64, u64) {
-        (self.stats.steps, self.edits)
+        (self.stats.steps, self.revisions.edits)
     }
 }
 

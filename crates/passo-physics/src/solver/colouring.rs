@@ -154,8 +154,8 @@ impl Colouring {
         // padding lanes name no body and have zero masses, so the passes
         // left their numbers zero (up to sign), and every lane a row
         // takes is written whole below.
-        let keep_layout = !coloured_now && self.blocks.len() == start;
-        if !keep_layout {
+        let same_layout = !coloured_now && self.blocks.len() == start;
+        if !same_layout {
             self.blocks.clear();
         }
         // Judged at a fixed width, so that the choice (and the bits, once a
@@ -181,7 +181,7 @@ impl Colouring {
             }
             return;
         }
-        if !keep_layout {
+        if !same_layout {
             self.blocks.resize(start, Block::PADDING);
         }
         for (i, &colour) in picked.zip(&self.colour_of) {

@@ -134,15 +134,15 @@ impl ContactRegions {
             let (picked, picked_tail) = (&mut self.picked, &mut self.picked_tail);
             let held = join(
                 true,
-                || pick(head, 0, region, use_of, picked),
-                || pick(tail, head.len(), region, use_of, picked_tail),
+                || assign_regions(head, 0, region, use_of, picked),
+                || assign_regions(tail, head.len(), region, use_of, picked_tail),
             );
             for (g, t) in picked.iter_mut().zip(&*picked_tail) {
                 g.extend_from_slice(t);
             }
             held.0 || held.1
         } else {
-            pick(rows, 0, region, use_of, &mut self.picked)
+            assign_regions(rows, 0, region, use_of, &mut self.picked)
         };
         if held && !holds {
             // A row holds a body the step did not say was held: without
@@ -301,7 +301,7 @@ impl ContactRegions {
             delta: bodies.delta,
             deep: bodies.deep,
         };
-        both(first, second, bodies, &mut far, pass, parallel);
+        solve_region_blocks(first, second, bodies, &mut far, pass, parallel);
         first.overflow(bodies, pass);
         second.overflow(&mut far, pass);
         // The contacts between the regions, on the solver's array: the far
@@ -339,7 +339,7 @@ impl ContactRegions {
 /// a body (`use_of` 3) that one contact moves and another only reads
 /// (`use_of` is empty when no row holds a body). Returns whether some row
 /// holds a dynamic body (reads it without moving it).
-fn pick(
+fn assign_regions(
     rows: &[Constraint],
     first: usize,
     region: &[u8],
@@ -368,7 +368,7 @@ fn pick(
 /// The blocks of the two regions, each on its own array of states: on two
 /// threads when `parallel` (and the feature is on), else one after the
 /// other; the same bits either way.
-fn both(
+fn solve_region_blocks(
     first: &mut Colouring,
     second: &mut Colouring,
     near: &mut SolverBodies<'_>,

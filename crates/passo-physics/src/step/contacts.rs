@@ -97,7 +97,7 @@ impl SubstepPlan {
                 restitution_threshold: settings.restitution_threshold,
                 carry_push: false,
             },
-            restitution: world.bouncy > 0,
+            restitution: world.census.bouncy > 0,
             sweep: settings.continuous,
             replay: false,
         }
@@ -176,9 +176,9 @@ impl World {
             dt,
             h: dt / settings.substeps as f32,
             parallel: self.parallel,
-            all_shaped: self.shaped_dynamic == self.dynamic.len(),
+            all_shaped: self.census.shaped_dynamic == self.dynamic.len(),
         };
-        cw.keep_last_contacts(&self.dynamic, &self.statics, |id| self.collider_of(id));
+        cw.relocate_last_contacts(&self.dynamic, &self.statics, |id| self.collider_of(id));
         cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
         if cw.crowded() > 0 {
             self.stats.crowded_steps = self.stats.crowded_steps.saturating_add(1);
@@ -205,7 +205,7 @@ impl World {
             self.parallel,
         );
         if plan.hold_kinematic {
-            self.hold_kinematic();
+            self.note_kinematic_motion();
         }
         let mut correction = std::mem::take(&mut self.correction);
         if plan.corrects {
@@ -219,7 +219,7 @@ impl World {
                 self.hold_sleepers(&mut correction, plan.corrects);
             }
             if plan.hold_kinematic {
-                self.keep_kinematic_velocity(&mut correction, plan.corrects);
+                self.hold_kinematic(&mut correction, plan.corrects);
             }
             // The bodies moved since the separations were last measured
             // unless this is the first substep or the relax stage measured.
@@ -328,7 +328,7 @@ impl World {
     /// Substep stage: kinematic bodies keep the velocity they had when
     /// the step began (no forces, no correction; contacts cannot change
     /// it either, their inverse mass being zero).
-    fn keep_kinematic_velocity(&mut self, correction: &mut [Vec2], corrects: bool) {
+    fn hold_kinematic(&mut self, correction: &mut [Vec2], corrects: bool) {
         let b = &mut self.dynamic;
         for (&i, &(_, v)) in b.kinematic.iter().zip(&self.held) {
             let i = i as usize;

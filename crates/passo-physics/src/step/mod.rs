@@ -19,6 +19,7 @@
 //! plan the step runs, so the list a user reads is the list that runs.
 
 pub(crate) mod contacts;
+use crate::body::census::BodyCensus;
 use crate::body::store::SpeedLimits;
 use crate::constants::MAX_STEP;
 use crate::forces::integrator::integrate_velocity;
@@ -160,20 +161,25 @@ impl World {
                         self.stats.steps.saturating_add(1),
                     );
                 }
-                self.hold_kinematic();
+                self.note_kinematic_motion();
                 forces_cleared = self.step_bodies(dt, plan.limits);
                 self.move_kinematic(dt);
             }
         }
         self.clear_forces(forces_cleared);
         self.count_down_drop_through(dt);
+        debug_assert_eq!(
+            self.census,
+            BodyCensus::recount(&self.dynamic, &self.statics),
+            "the body census agrees with a recount of the bodies"
+        );
         // Saturates rather than wraps: 2^64 steps at 60 Hz is 10^10 years,
         // but a restored snapshot may start anywhere.
         self.stats.steps = self.stats.steps.saturating_add(1);
         if self.stats.steps == u64::MAX {
             // The count no longer changes: queries, which rebuild when it
             // does, see the step as an edit instead.
-            self.edits = self.edits.wrapping_add(1);
+            self.revisions.edits = self.revisions.edits.wrapping_add(1);
         }
     }
 
@@ -227,7 +233,7 @@ impl World {
 
     /// Notes where each kinematic body is and how fast it goes, before
     /// integration treats it as any body.
-    pub(crate) fn hold_kinematic(&mut self) {
+    pub(crate) fn note_kinematic_motion(&mut self) {
         self.held.clear();
         let b = &self.dynamic;
         let held = b
@@ -249,7 +255,7 @@ impl World {
 
     /// Bodies dropping through one-way platforms have `dt` less left.
     fn count_down_drop_through(&mut self, dt: f32) {
-        if self.dropping == 0 {
+        if self.census.dropping == 0 {
             return;
         }
         let mut still = 0;
@@ -259,7 +265,7 @@ impl World {
                 still += usize::from(m.drop_through > 0.0);
             }
         }
-        self.dropping = still;
+        self.census.dropping = still;
     }
 
     /// Clears the force accumulators, unless the step did (`cleared`), and

@@ -2,6 +2,7 @@
 //! forces and impulses, material. Every value is checked where it enters,
 //! and a change wakes what it may have disturbed.
 
+use crate::body::census::BodyCensus;
 use crate::body::def::{check_drag_area, check_friction, check_one_way};
 use crate::error::{finite, finite_vec, non_negative, positive, unit_interval};
 use crate::world::{Location, World};
@@ -256,10 +257,13 @@ impl World {
     pub fn set_restitution(&mut self, id: BodyId, restitution: f32) -> Result<(), PhysicsError> {
         unit_interval("restitution", restitution)?;
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        let is_static = matches!(location, Location::Static(_));
         let meta = self.meta_mut(location);
-        let was_bouncy = meta.restitution > 0.0;
+        let before = BodyCensus::share(meta, is_static);
         meta.restitution = restitution;
-        self.bouncy = self.bouncy - usize::from(was_bouncy) + usize::from(restitution > 0.0);
+        let after = BodyCensus::share(meta, is_static);
+        self.census.remove(before);
+        self.census.add(after);
         self.contacts_changed(id, location);
         self.wake_after_change(location);
         Ok(())
@@ -278,9 +282,11 @@ impl World {
         non_negative("drop_through seconds", seconds)?;
         if let Some(i) = self.dynamic_index(id)? {
             let meta = &mut self.dynamic.meta[i];
-            let was = meta.drop_through > 0.0;
+            let before = BodyCensus::share(meta, false);
             meta.drop_through = seconds;
-            self.dropping = self.dropping + usize::from(seconds > 0.0) - usize::from(was);
+            let after = BodyCensus::share(meta, false);
+            self.census.remove(before);
+            self.census.add(after);
             self.wake_index(i);
         }
         Ok(())
@@ -372,7 +378,7 @@ impl World {
             Location::Static(i) => {
                 // Nothing steps with it, but snapshots carry it.
                 self.statics.meta[i as usize].drag_area = drag_area;
-                self.static_revision += 1;
+                self.revisions.statics_changed();
             }
         }
         Ok(())

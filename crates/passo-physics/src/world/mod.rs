@@ -8,6 +8,7 @@ pub(crate) mod query_cache;
 pub(crate) mod edit;
 pub(crate) mod snapshot;
 
+use crate::body::census::BodyCensus;
 use crate::body::collider::ColliderRef;
 use crate::body::store::{BodyMeta, DynamicBodies, SpeedLimits, StaticBodies};
 use crate::contact_world::ContactWorld;
@@ -55,6 +56,40 @@ pub struct StepStats {
     pub swept_stops: u64,
 }
 
+/// Counts of edits. Queries and snapshots keep the counts they were
+/// built at, and build again when the world's differ.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Revisions {
+    /// Edits that move, add or remove bodies (with the step count, it
+    /// tells queries whether their index is current).
+    pub(crate) edits: u64,
+    /// Edits of static bodies that queries see (moved, added, removed, or
+    /// restored from a snapshot).
+    pub(crate) static_edits: u64,
+    /// Every change to the static bodies, those edits and material or
+    /// flag changes (friction, restitution, filter, sensor, one-way) too:
+    /// a snapshot holds a copy of the static bodies at a revision, and
+    /// copies them again only when it differs.
+    pub(crate) statics: u64,
+}
+
+impl Revisions {
+    /// A body was added, removed or moved by hand: queries rebuild their
+    /// index (the static tree too if it was a static body).
+    pub(crate) fn body_edited(&mut self, is_static: bool) {
+        self.edits += 1;
+        if is_static {
+            self.static_edits += 1;
+            self.statics += 1;
+        }
+    }
+
+    /// A static body changed in what only snapshots carry.
+    pub(crate) fn statics_changed(&mut self) {
+        self.statics += 1;
+    }
+}
+
 /// Where a live body's data sits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -93,36 +128,19 @@ pub struct World {
     pub(crate) free: Vec<u32>,
     pub(crate) dynamic: DynamicBodies,
     pub(crate) statics: StaticBodies,
-    /// Number of dynamic bodies with their own speed limits.
-    pub(crate) speed_overrides: usize,
+    /// How many bodies of each sort the step plans with.
+    pub(crate) census: BodyCensus,
     /// Whether game code applied friction since the last step.
     pub(crate) game_friction: bool,
-    /// Shaped bodies of each kind: the contact stage runs only with some.
-    pub(crate) shaped_dynamic: usize,
-    pub(crate) shaped_static: usize,
     /// Static bodies were added, removed or moved since the last step.
     pub(crate) statics_dirty: bool,
     /// The contact stage's state, made the first time it runs.
     pub(crate) contacts: Option<Box<ContactWorld>>,
-    /// Bodies with a restitution above zero: the restitution stage runs
-    /// only with some.
-    pub(crate) bouncy: usize,
-    /// Dynamic bodies dropping through one-way platforms.
-    pub(crate) dropping: usize,
     /// Some body may have rest time or sleep: a contact step with sleeping
     /// on ran (or a snapshot was restored) since every body was last woken.
     pub(crate) may_rest: bool,
-    /// Counts edits that move, add or remove bodies (with the step count,
-    /// it tells queries whether their index is current).
-    pub(crate) edits: u64,
-    /// Counts edits of static bodies that queries see (moved, added,
-    /// removed, or restored from a snapshot).
-    pub(crate) static_edits: u64,
-    /// Counts every change to the static bodies, those edits and material
-    /// or flag changes (friction, restitution, filter, sensor, one-way) too:
-    /// a snapshot holds a copy of the static bodies at a revision, and
-    /// copies them again only when it differs.
-    pub(crate) static_revision: u64,
+    /// Counts of edits, which tell queries and snapshots what is current.
+    pub(crate) revisions: Revisions,
     /// Trees and contact lists for queries, built on demand.
     pub(crate) query_cache: QueryCache,
     /// Which world this is (a clone is another), so a snapshot knows
@@ -170,17 +188,11 @@ impl World {
             free: Vec::new(),
             dynamic: DynamicBodies::default(),
             statics: StaticBodies::default(),
-            speed_overrides: 0,
+            census: BodyCensus::default(),
             game_friction: false,
-            shaped_dynamic: 0,
-            shaped_static: 0,
             statics_dirty: false,
-            bouncy: 0,
-            dropping: 0,
             may_rest: false,
-            edits: 0,
-            static_edits: 0,
-            static_revision: 0,
+            revisions: Revisions::default(),
             query_cache: QueryCache::default(),
             instance: Instance::new(),
             snapshot_scratch: Vec::new(),
@@ -204,7 +216,7 @@ impl World {
         settings.validate()?;
         let limits_changed = settings.min_speed != self.settings.min_speed
             || settings.max_speed != self.settings.max_speed;
-        if limits_changed && self.speed_overrides > 0 {
+        if limits_changed && self.census.speed_overrides > 0 {
             for meta in self.dynamic.meta.iter().filter(|m| !m.kinematic) {
                 settings.check_speed_limits(meta.min_speed, meta.max_speed)?;
             }
@@ -303,7 +315,7 @@ impl World {
         match location {
             Location::Dynamic(i) => self.wake_index(i as usize),
             Location::Static(_) => {
-                self.static_revision += 1;
+                self.revisions.statics_changed();
                 self.wake_all();
             }
         }
@@ -343,8 +355,6 @@ impl World {
                 index
             }
         };
-        self.count_shape(def.kind, def.shape.is_some(), 1);
-        self.bouncy += usize::from(def.restitution > 0.0);
         self.note_edit(def.kind == BodyKind::Static);
         if def.kind == BodyKind::Static {
             self.forget_all_reuse();
@@ -375,13 +385,12 @@ impl World {
             max_speed: def.max_speed,
             user_data: def.user_data,
         };
+        self.census
+            .add(BodyCensus::share(&meta, def.kind == BodyKind::Static));
         match def.kind {
             BodyKind::Dynamic | BodyKind::Kinematic => {
                 slot.location = Some(Location::Dynamic(self.dynamic.len() as u32));
                 let limits = self.resolve_limits(&meta);
-                if has_overrides(&meta) {
-                    self.speed_overrides += 1;
-                }
                 self.dynamic
                     .push(&def, meta, limits, self.settings.interpolation);
             }
@@ -401,8 +410,11 @@ impl World {
     pub fn remove_body(&mut self, id: BodyId) -> Option<Body> {
         let location = self.locate(id)?;
         let body = self.view(location);
-        self.count_shape(body.kind, body.shape.is_some(), -1);
-        self.bouncy -= usize::from(body.restitution > 0.0);
+        let share = match location {
+            Location::Dynamic(i) => BodyCensus::share(&self.dynamic.meta[i as usize], false),
+            Location::Static(i) => BodyCensus::share(&self.statics.meta[i as usize], true),
+        };
+        self.census.remove(share);
         self.note_edit(body.kind == BodyKind::Static);
         let moved = match location {
             Location::Dynamic(i) => {
@@ -410,13 +422,6 @@ impl World {
                     && let Some(cw) = &mut self.contacts
                 {
                     cw.press_removed(i, self.dynamic.len());
-                }
-                let meta = &self.dynamic.meta[i as usize];
-                if has_overrides(meta) {
-                    self.speed_overrides -= 1;
-                }
-                if meta.drop_through > 0.0 {
-                    self.dropping -= 1;
                 }
                 // What rested on it wakes, and falls at the next step; its
                 // island's other stored contacts answer queries until then.
@@ -488,7 +493,8 @@ impl World {
     /// shaped dynamic body exists and something else is shaped.
     pub(crate) fn contact_settings(&self) -> Option<ContactSettings> {
         let contacts = self.settings().contacts?;
-        (self.shaped_dynamic > 0 && self.shaped_dynamic + self.shaped_static >= 2)
+        (self.census.shaped_dynamic > 0
+            && self.census.shaped_dynamic + self.census.shaped_static >= 2)
             .then_some(contacts)
     }
 
@@ -505,19 +511,6 @@ impl World {
     }
 
     // ----- helpers -----
-
-    pub(crate) fn count_shape(&mut self, kind: BodyKind, shaped: bool, delta: isize) {
-        if shaped {
-            // Kinematic bodies live in the dynamic arrays.
-            let count = match kind {
-                BodyKind::Dynamic | BodyKind::Kinematic => &mut self.shaped_dynamic,
-                BodyKind::Static => &mut self.shaped_static,
-            };
-            *count = count
-                .checked_add_signed(delta)
-                .expect("shape count underflow");
-        }
-    }
 
     fn world_limits(&self) -> SpeedLimits {
         SpeedLimits::new(self.settings.min_speed, self.settings.max_speed)
@@ -538,13 +531,13 @@ impl World {
     /// limits for every body, `None` when some body has its own (kinematic
     /// bodies have none).
     pub(crate) fn speed_limits(&self) -> Option<Option<SpeedLimits>> {
-        let uniform = self.speed_overrides == 0 && self.dynamic.kinematic.is_empty();
+        let uniform = self.census.speed_overrides == 0 && self.dynamic.kinematic.is_empty();
         self.has_speed_limits()
             .then(|| uniform.then(|| self.world_limits()))
     }
 
     fn has_speed_limits(&self) -> bool {
-        self.speed_overrides > 0
+        self.census.speed_overrides > 0
             || self.settings.min_speed > 0.0
             || self.settings.max_speed < f32::INFINITY
     }
@@ -582,11 +575,7 @@ impl World {
     /// A body was added, removed or moved by hand: queries rebuild their
     /// index (the static tree too if it was a static body).
     pub(crate) fn note_edit(&mut self, is_static: bool) {
-        self.edits += 1;
-        if is_static {
-            self.static_edits += 1;
-            self.static_revision += 1;
-        }
+        self.revisions.body_edited(is_static);
     }
 
     /// A static body changed what it covers of its neighbours (filter,
@@ -642,12 +631,6 @@ impl Clone for Instance {
     fn clone(&self) -> Self {
         Self::new()
     }
-}
-
-/// Whether a dynamic body has speed limits of its own (a kinematic body's
-/// are ignored).
-fn has_overrides(meta: &BodyMeta) -> bool {
-    !meta.kinematic && (meta.min_speed.is_some() || meta.max_speed.is_some())
 }
 
 /// The forces of a step, constants hoisted out of the body loop.

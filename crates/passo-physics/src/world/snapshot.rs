@@ -1,5 +1,6 @@
 //! Snapshots: the whole state of a world, to save, send or roll back to.
 
+use crate::body::census::BodyCensus;
 use crate::body::store::{DynamicBodies, StaticBodies, heap};
 use crate::contact_world::ContactWorld;
 use crate::contact_world::state::ContactState;
@@ -241,21 +242,16 @@ impl WorldSnapshot {
     }
 
     fn check_counters(&self) -> Result<(), PhysicsError> {
-        let (d, s) = (&self.dynamic, &self.statics);
-        let overrides = d
-            .meta
-            .iter()
-            .filter(|m| !m.kinematic && (m.min_speed.is_some() || m.max_speed.is_some()))
-            .count();
-        let shaped_dynamic = d.meta.iter().filter(|m| m.shape.is_some()).count();
-        let shaped_static = s.meta.iter().filter(|m| m.shape.is_some()).count();
-        if (overrides, shaped_dynamic, shaped_static)
-            != (
-                self.speed_overrides,
-                self.shaped_dynamic,
-                self.shaped_static,
-            )
-        {
+        let census = BodyCensus::recount(&self.dynamic, &self.statics);
+        if (
+            census.speed_overrides,
+            census.shaped_dynamic,
+            census.shaped_static,
+        ) != (
+            self.speed_overrides,
+            self.shaped_dynamic,
+            self.shaped_static,
+        ) {
             return bad("body counters disagree with the bodies".into());
         }
         Ok(())
@@ -291,15 +287,15 @@ impl World {
         out.slots.clone_from(&self.slots);
         out.free.clone_from(&self.free);
         out.dynamic.copy_from(&self.dynamic);
-        let source = Some((self.instance.0, self.static_revision));
+        let source = Some((self.instance.0, self.revisions.statics));
         if out.statics_source != source {
             out.statics.copy_from(&self.statics);
             out.statics_source = source;
         }
-        out.speed_overrides = self.speed_overrides;
+        out.speed_overrides = self.census.speed_overrides;
         out.game_friction = self.game_friction;
-        out.shaped_dynamic = self.shaped_dynamic;
-        out.shaped_static = self.shaped_static;
+        out.shaped_dynamic = self.census.shaped_dynamic;
+        out.shaped_static = self.census.shaped_static;
         out.stats = self.stats;
         let WorldSnapshot {
             dynamic, contacts, ..
@@ -344,7 +340,8 @@ impl World {
 
     /// Puts this world back in the state of `snapshot`, which was checked.
     fn restore_checked(&mut self, snapshot: &WorldSnapshot) {
-        let same_statics = snapshot.statics_source == Some((self.instance.0, self.static_revision));
+        let same_statics =
+            snapshot.statics_source == Some((self.instance.0, self.revisions.statics));
         self.settings = snapshot.settings;
         self.slots.clone_from(&snapshot.slots);
         self.free.clone_from(&snapshot.free);
@@ -356,10 +353,7 @@ impl World {
             // and a buffer that holds the statics of before is stale.
             self.note_edit(true);
         }
-        self.speed_overrides = snapshot.speed_overrides;
         self.game_friction = snapshot.game_friction;
-        self.shaped_dynamic = snapshot.shaped_dynamic;
-        self.shaped_static = snapshot.shaped_static;
         self.stats = snapshot.stats;
         match (&snapshot.contacts, &mut self.contacts) {
             (Some(state), Some(cw)) => cw.restore(state, !same_statics),
@@ -371,19 +365,14 @@ impl World {
     }
 
     /// What a world derives from its arrays rather than saving: kinematic
-    /// bodies, speed limits, counts of bouncy and dropping bodies.
+    /// bodies, speed limits and the body census (whose counts the snapshot
+    /// carries was checked against it, see `check_counters`).
     fn after_restore(&mut self) {
         self.dynamic.find_kinematic();
         for i in 0..self.dynamic.len() {
             self.dynamic.limits[i] = self.resolve_limits(&self.dynamic.meta[i]);
         }
-        self.bouncy = (self.dynamic.meta.iter())
-            .chain(&self.statics.meta)
-            .filter(|m| m.restitution > 0.0)
-            .count();
-        self.dropping = (self.dynamic.meta.iter())
-            .filter(|m| m.drop_through > 0.0)
-            .count();
+        self.census = BodyCensus::recount(&self.dynamic, &self.statics);
         self.may_rest = true;
     }
 

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::Shape;
+use crate::body::census::BodyCensus;
 
 fn ball(x: f32) -> BodyDef {
     BodyDef::point_mass(Vec2::new(x, 0.0))
@@ -255,4 +256,60 @@ fn a_minimum_speed_above_the_maximum_is_refused_wherever_it_comes_from() {
     let err = world.set_settings(conflict).unwrap_err().to_string();
     assert!(err.contains("minimum speed") && err.contains('3'), "{err}");
     assert_eq!(world.settings().max_speed, 5.0);
+}
+
+/// Random adds, removals and edits of every sort of body, the census
+/// checked against a recount after each one (not only after a step, where
+/// the world checks it in debug builds).
+#[test]
+fn the_census_agrees_with_a_recount_after_every_edit() {
+    let mut next = crate::testing::uniform(7);
+    let mut world = World::default();
+    let mut ids = Vec::new();
+    let mut sorts_seen = BodyCensus::default();
+    for round in 0..600 {
+        let r = next();
+        if ids.is_empty() || r < 0.45 {
+            let kind = match (next() * 3.0) as u32 {
+                0 => BodyKind::Static,
+                1 => BodyKind::Kinematic,
+                _ => BodyKind::Dynamic,
+            };
+            let def = BodyDef {
+                kind,
+                position: Vec2::new(next() * 50.0, next() * 50.0),
+                shape: (next() < 0.7).then(|| Shape::circle(0.5)),
+                restitution: if next() < 0.3 { 0.5 } else { 0.0 },
+                max_speed: (next() < 0.2).then_some(30.0),
+                ..Default::default()
+            };
+            ids.push(world.add_body(def).unwrap());
+        } else if r < 0.7 {
+            let id = ids.swap_remove((next() * ids.len() as f32) as usize % ids.len());
+            world.remove_body(id).unwrap();
+        } else if r < 0.8 {
+            let id = ids[(next() * ids.len() as f32) as usize % ids.len()];
+            let restitution = if next() < 0.5 { 0.0 } else { 0.7 };
+            world.set_restitution(id, restitution).unwrap();
+        } else if r < 0.9 {
+            let id = ids[(next() * ids.len() as f32) as usize % ids.len()];
+            let seconds = if next() < 0.5 { 0.0 } else { 0.05 };
+            world.try_drop_through(id, seconds).unwrap();
+        } else {
+            world.step(1.0 / 60.0);
+        }
+        let recount = BodyCensus::recount(&world.dynamic, &world.statics);
+        assert_eq!(world.census, recount, "round {round}");
+        sorts_seen.add(recount);
+    }
+    // The sweep reached every count.
+    let c = sorts_seen;
+    let counts = [
+        c.shaped_dynamic,
+        c.shaped_static,
+        c.bouncy,
+        c.dropping,
+        c.speed_overrides,
+    ];
+    assert!(counts.iter().all(|&n| n > 0), "{c:?}");
 }
