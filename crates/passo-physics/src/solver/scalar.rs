@@ -3,21 +3,10 @@
 //!
 //! Bodies do not rotate, so every point of a manifold has the same
 //! Jacobian: one normal row and one friction row per contact are exactly
-//! what solving each point would give. Per step:
-//!
-//! ```text
-//! prepare contacts (narrow phase, warm-start impulses)
-//! for each substep h = dt / substeps:
-//!     integrate velocities (forces)
-//!     warm start: apply the last substep's impulses (after the first
-//!         substep, each body's velocity change in the last one, added
-//!         as the substep starts: see `motion::Start::Replay`)
-//!     iterate: normal, friction (velocity), push (position)
-//!     integrate positions with velocity + push; forget the push
-//!     relax: more velocity iterations
-//! restitution
-//! sweep the bodies that moved beyond their reach (see `continuous`)
-//! ```
+//! what solving each point would give. Where these functions run in a
+//! tick is described in `step/mod.rs`. After the first substep, the warm
+//! start adds each body's velocity change of the last substep as the
+//! substep starts (see `motion::Start::Replay`).
 //!
 //! The passes run colour by colour, four or eight contacts wide (see
 //! `colouring`), in an order that keeps each body's contacts in the list's

@@ -1,8 +1,6 @@
-//! The contact step: find the contacts, then in each substep integrate
-//! velocities, hold sleepers, warm start, solve, integrate positions and
-//! relax; after the substeps restitution, the final separations and speed
-//! limits; then record events and sleep. Each stage is a function, and
-//! each is skipped when the plan does not need it.
+//! The contact step: a plan of its stages, and a function for each. The
+//! step runs the plan's list in order; the tick as a whole is described
+//! in `step/mod.rs`.
 
 use crate::body::store::{DynamicBodies, SpeedLimits};
 use crate::columns::ColumnsMut;
@@ -20,7 +18,8 @@ use glam::Vec2;
 
 /// One stage of the contact step, in the order [`World::contact_stages`]
 /// lists them: the first seven run in every substep, the last four once
-/// after the substeps.
+/// after the substeps. The step runs the stages from that list, one
+/// function each.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ContactStage {
     /// Forces turned into new velocities over the substep.
@@ -33,7 +32,9 @@ pub enum ContactStage {
     /// the cache in the first substep, then each body's velocity change in
     /// the last substep (the same sum, with no pass over the contacts).
     WarmStart,
-    /// Gauss-Seidel passes over the contacts: normal, friction, push.
+    /// Gauss-Seidel passes over the contacts: normal, friction, push
+    /// (after the pass that clears the pushes and measures the
+    /// separations, when there is no warm start to do it).
     Solve,
     /// Speed limits, then positions moved by velocity plus push.
     IntegratePositions,
@@ -49,6 +50,71 @@ pub enum ContactStage {
     StoreSeparations,
     /// Minimum-speed snap and maximum-speed clamp of the final velocities.
     ClampSpeeds,
+}
+
+impl ContactStage {
+    /// Whether the stage runs in each substep (rather than once after
+    /// them).
+    pub fn in_substep(self) -> bool {
+        use ContactStage::*;
+        matches!(
+            self,
+            IntegrateVelocities
+                | HoldSleepers
+                | HoldKinematic
+                | WarmStart
+                | Solve
+                | IntegratePositions
+                | Relax
+        )
+    }
+
+    /// Whether the stage works on the solver's copy of the velocities
+    /// (see `Motion::load`) rather than on the body arrays.
+    fn on_solver_copy(self) -> bool {
+        use ContactStage::*;
+        matches!(self, WarmStart | Solve | IntegratePositions | Relax)
+    }
+}
+
+/// The stages a contact step runs, in order: a list of fixed size, so a
+/// step allocates nothing to make it.
+#[derive(Clone, Copy, Debug)]
+struct StageList {
+    stages: [ContactStage; 11],
+    len: usize,
+}
+
+impl StageList {
+    /// The stages whose condition holds, in order.
+    fn new(steps: [(bool, ContactStage); 11]) -> Self {
+        let mut list = Self {
+            stages: [ContactStage::Solve; 11],
+            len: 0,
+        };
+        for (on, stage) in steps {
+            if on {
+                list.stages[list.len] = stage;
+                list.len += 1;
+            }
+        }
+        list
+    }
+
+    fn all(&self) -> &[ContactStage] {
+        &self.stages[..self.len]
+    }
+
+    /// The substep's stages on the body arrays, then those on the
+    /// solver's copy, then the stages after the substeps.
+    fn parts(&self) -> (&[ContactStage], &[ContactStage], &[ContactStage]) {
+        let all = self.all();
+        let substep = all.partition_point(|s| s.in_substep());
+        let (substep, after) = all.split_at(substep);
+        let on_bodies = substep.partition_point(|s| !s.on_solver_copy());
+        let (on_bodies, on_copy) = substep.split_at(on_bodies);
+        (on_bodies, on_copy, after)
+    }
 }
 
 /// What the substeps of a contact step run.
@@ -72,14 +138,27 @@ struct SubstepPlan {
     /// Continuous collision: fast bodies are swept.
     sweep: bool,
     /// The substeps after the first warm start by replaying each body's
-    /// velocity change of the last substep (see [`Start::Replay`]).
+    /// velocity change of the last substep (see [`Start::Replay`]): with a
+    /// warm start, with a relax pass to measure the separations (the warm
+    /// start pass does otherwise), and with a substep after the first.
     replay: bool,
+    /// The stages to run, in order.
+    stages: StageList,
 }
 
 impl SubstepPlan {
-    fn new(world: &World, settings: &ContactSettings, dt: f32, any_asleep: bool) -> Self {
+    /// The plan of a step of `dt` with `settings`. `any_asleep`: some body
+    /// sleeps. `carry_push`: a deep pile carries its push from substep to
+    /// substep (see `Piles::find`).
+    fn new(
+        world: &World,
+        settings: &ContactSettings,
+        dt: f32,
+        any_asleep: bool,
+        carry_push: bool,
+    ) -> Self {
         let all_asleep = any_asleep && world.dynamic.sleep.iter().all(|s| s.is_asleep());
-        Self {
+        let mut plan = Self {
             substeps: if all_asleep { 0 } else { settings.substeps },
             kernel: world.kernel(None),
             hold_sleepers: any_asleep,
@@ -95,18 +174,22 @@ impl SubstepPlan {
                 push_out_speed: settings.push_out_speed,
                 slop: settings.slop,
                 restitution_threshold: settings.restitution_threshold,
-                carry_push: false,
+                carry_push: carry_push && settings.warm_starting,
             },
             restitution: world.census.bouncy > 0,
             sweep: settings.continuous,
             replay: false,
-        }
+            stages: StageList::new([(false, ContactStage::Solve); 11]),
+        };
+        plan.replay = settings.warm_starting && settings.relax_iterations > 0 && plan.substeps > 1;
+        plan.stages = plan.stage_list();
+        plan
     }
 
-    fn stages(&self) -> Vec<ContactStage> {
+    fn stage_list(&self) -> StageList {
         use ContactStage::*;
         let s = &self.solver;
-        let steps = [
+        StageList::new([
             (self.substeps > 0, IntegrateVelocities),
             (self.substeps > 0 && self.hold_sleepers, HoldSleepers),
             (self.substeps > 0 && self.hold_kinematic, HoldKinematic),
@@ -118,12 +201,7 @@ impl SubstepPlan {
             (self.restitution, Restitution),
             (true, StoreSeparations),
             (self.limits.is_some(), ClampSpeeds),
-        ];
-        steps
-            .iter()
-            .filter(|(on, _)| *on)
-            .map(|(_, s)| *s)
-            .collect()
+        ])
     }
 }
 
@@ -139,7 +217,8 @@ impl World {
             Some(cw) => cw.sleeping.any(&self.dynamic),
             None => false,
         };
-        SubstepPlan::new(self, &settings, 1.0, any_asleep).stages()
+        let plan = SubstepPlan::new(self, &settings, 1.0, any_asleep, false);
+        plan.stages.all().to_vec()
     }
 
     /// The contact step: find the contacts, run the substeps, finish, and
@@ -183,20 +262,15 @@ impl World {
         if cw.crowded() > 0 {
             self.stats.crowded_steps = self.stats.crowded_steps.saturating_add(1);
         }
-        let mut plan = SubstepPlan::new(self, settings, dt, cw.sleeping.any(&self.dynamic));
-        plan.solver.carry_push = settings.warm_starting
+        let carry_push = settings.warm_starting
             && cw.motion.piles.find(
                 &cw.solved.rows,
                 self.dynamic.len(),
                 DEEP_OVERLAP,
                 self.parallel,
             );
-        // The substeps after the first warm start by replaying each body's
-        // velocity change (see `Start::Replay`), unless no relax pass
-        // measures the separations (the warm start pass does then), or
-        // there is no substep after the first.
-        plan.replay =
-            settings.warm_starting && plan.solver.relax_iterations > 0 && plan.substeps > 1;
+        let any_asleep = cw.sleeping.any(&self.dynamic);
+        let plan = SubstepPlan::new(self, settings, dt, any_asleep, carry_push);
         cw.regions.build(
             &cw.solved.rows,
             &cw.motion.start,
@@ -213,19 +287,13 @@ impl World {
             correction.resize(self.dynamic.len(), Vec2::ZERO);
         }
         let mut resets = 0;
+        let (on_bodies, on_copy, after) = plan.stages.parts();
         for substep in 0..plan.substeps {
-            resets += self.integrate_velocities(&plan, &mut correction);
-            if plan.hold_sleepers {
-                self.hold_sleepers(&mut correction, plan.corrects);
+            for &stage in on_bodies {
+                resets += self.run_on_bodies(stage, &plan, &mut correction);
             }
-            if plan.hold_kinematic {
-                self.hold_kinematic(&mut correction, plan.corrects);
-            }
-            // The bodies moved since the separations were last measured
-            // unless this is the first substep or the relax stage measured.
-            let moved = substep > 0 && plan.solver.relax_iterations == 0;
-            // From here to the end of the relax stage the passes work on
-            // the solver's copy of the velocities (see `Motion::load`).
+            // From here to the end of the substep the passes work on the
+            // solver's copy of the velocities (see `Motion::load`).
             let start = match (plan.replay, substep) {
                 (false, _) => Start::Plain,
                 (true, 0) => Start::Track,
@@ -234,20 +302,24 @@ impl World {
             let far = cw.regions.far_states();
             cw.motion
                 .load(self.dynamic.vel.view(), start, self.parallel, far);
-            self.solve(&mut cw, &plan, moved, start == Start::Replay);
-            let far = cw.regions.far_states();
-            self.integrate_positions(&mut cw.motion, far, &plan, &correction);
-            self.relax(&mut cw, &plan);
+            let pass = SubstepPass {
+                // The bodies moved since the separations were last measured
+                // unless this is the first substep or the relax stage
+                // measured.
+                moved: substep > 0 && plan.solver.relax_iterations == 0,
+                replayed: start == Start::Replay,
+            };
+            for &stage in on_copy {
+                self.run_on_copy(stage, &mut cw, &plan, pass, &correction);
+            }
             let far = cw.regions.far_states().map(|(homes, far)| (homes, &*far));
             cw.motion
                 .unload(self.dynamic.vel.view_mut(), plan.replay, self.parallel, far);
         }
         cw.regions.store(&mut cw.solved.rows, self.parallel);
-        if plan.substeps > 0 && plan.sweep {
-            let stops = cw.sweep_fast_bodies(&mut self.dynamic, &self.statics, self.parallel);
-            self.stats.swept_stops = self.stats.swept_stops.saturating_add(stops as u64);
+        for &stage in after {
+            self.run_after_substeps(stage, &mut cw, &plan);
         }
-        self.finish_contacts(&mut cw, &plan);
         resets += put_back_non_finite(&mut self.dynamic, &mut cw);
         self.may_rest |= settings.sleeping;
         cw.end_step(
@@ -260,6 +332,66 @@ impl World {
         self.contacts = Some(cw);
         self.correction = correction;
         self.stats.non_finite_resets = self.stats.non_finite_resets.saturating_add(resets);
+    }
+
+    /// Runs a substep stage on the body arrays; returns the non-finite
+    /// velocities it put back.
+    fn run_on_bodies(
+        &mut self,
+        stage: ContactStage,
+        plan: &SubstepPlan,
+        correction: &mut [Vec2],
+    ) -> u64 {
+        use ContactStage::*;
+        match stage {
+            IntegrateVelocities => return self.integrate_velocities(plan, correction),
+            HoldSleepers => self.hold_sleepers(correction, plan.corrects),
+            HoldKinematic => self.hold_kinematic(correction, plan.corrects),
+            _ => unreachable!("{stage:?} does not run on the body arrays"),
+        }
+        0
+    }
+
+    /// Runs a substep stage on the solver's copy of the velocities.
+    fn run_on_copy(
+        &mut self,
+        stage: ContactStage,
+        cw: &mut ContactWorld,
+        plan: &SubstepPlan,
+        pass: SubstepPass,
+        correction: &[Vec2],
+    ) {
+        use ContactStage::*;
+        match stage {
+            WarmStart => self.warm_start(cw, plan, pass),
+            Solve => self.solve(cw, plan, pass),
+            IntegratePositions => {
+                let far = cw.regions.far_states();
+                self.integrate_positions(&mut cw.motion, far, plan, correction);
+            }
+            Relax => self.relax(cw, plan),
+            _ => unreachable!("{stage:?} does not run on the solver's copy"),
+        }
+    }
+
+    /// Runs a stage after the substeps.
+    fn run_after_substeps(
+        &mut self,
+        stage: ContactStage,
+        cw: &mut ContactWorld,
+        plan: &SubstepPlan,
+    ) {
+        use ContactStage::*;
+        match stage {
+            SweepFastBodies => {
+                let stops = cw.sweep_fast_bodies(&mut self.dynamic, &self.statics, self.parallel);
+                self.stats.swept_stops = self.stats.swept_stops.saturating_add(stops as u64);
+            }
+            Restitution => self.restitution(cw, plan),
+            StoreSeparations => self.store_separations(cw),
+            ClampSpeeds => self.clamp_speeds(plan),
+            _ => unreachable!("{stage:?} runs in the substeps"),
+        }
     }
 
     /// Substep stage: forces turned into velocities over `h`; the
@@ -344,33 +476,43 @@ impl World {
         }
     }
 
-    /// Substep stages: warm start (with the push impulses cleared, or
-    /// carried in a deep pile, and the separations measured if the bodies
-    /// `moved` since they last were; when `replayed` the velocities are
-    /// warm started already, see `Start::Replay`), then the Gauss-Seidel
-    /// passes with the push, on the solver's copy of the velocities (see
-    /// [`Motion::load`]).
-    fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, moved: bool, replayed: bool) {
+    /// Substep stage: the last impulses applied again, the push impulses
+    /// cleared (or carried in a deep pile) and the separations measured if
+    /// the bodies moved since they last were. When the substep was
+    /// replayed (see `Start::Replay`) the velocities are warm started
+    /// already: the pass then only carries the push in a deep pile.
+    fn warm_start(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, pass: SubstepPass) {
+        if pass.fresh(plan) {
+            // The first solve pass starts each push from zero instead.
+            return;
+        }
+        let begin = SolverParams {
+            warm_starting: !pass.replayed,
+            ..plan.solver
+        };
+        let mut bodies = cw.motion.bodies();
+        (cw.regions).run(&mut bodies, &Pass::Begin(begin, pass.moved), self.parallel);
+    }
+
+    /// Substep stage: the Gauss-Seidel passes with the push. Without a warm
+    /// start, a first pass clears the pushes and measures the separations.
+    fn solve(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, pass: SubstepPass) {
         let ContactWorld {
             regions, motion, ..
         } = cw;
         let mut bodies = motion.bodies();
-        // Replayed (see `Start::Replay`): the warm start is in the states
-        // already. The pass then only carries the push in a deep pile, and
-        // otherwise is not needed: the first pass starts each push from
-        // zero instead of clearing it first.
-        let fresh = replayed && !plan.solver.carry_push;
-        if !fresh {
-            let begin = SolverParams {
-                warm_starting: plan.solver.warm_starting && !replayed,
-                ..plan.solver
-            };
-            regions.run(&mut bodies, &Pass::Begin(begin, moved), self.parallel);
+        if !plan.solver.warm_starting {
+            regions.run(
+                &mut bodies,
+                &Pass::Begin(plan.solver, pass.moved),
+                self.parallel,
+            );
         }
-        let (first, pass) = (Pass::fresh(&plan.solver), Pass::solve(&plan.solver, true));
+        let fresh = pass.fresh(plan);
+        let (first, solve) = (Pass::fresh(&plan.solver), Pass::solve(&plan.solver, true));
         for k in 0..plan.solver.iterations {
-            let pass = if fresh && k == 0 { &first } else { &pass };
-            regions.run(&mut bodies, pass, self.parallel);
+            let p = if fresh && k == 0 { &first } else { &solve };
+            regions.run(&mut bodies, p, self.parallel);
         }
     }
 
@@ -420,36 +562,65 @@ impl World {
         }
     }
 
-    /// After the substeps and sweeps: restitution, each contact's final separation,
-    /// and the speed limits of the final velocities.
-    fn finish_contacts(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
+    /// Stage after the substeps: contacts hit fast enough bounce.
+    fn restitution(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
+        let solved = &mut cw.solved;
+        scalar::restitution(
+            &mut solved.rows,
+            &solved.infos,
+            &mut self.dynamic.vel,
+            plan.solver.restitution_threshold,
+        );
+    }
+
+    /// Stage after the substeps: each contact's final separation.
+    fn store_separations(&mut self, cw: &mut ContactWorld) {
         let ContactWorld { solved, motion, .. } = cw;
+        scalar::store_separations(
+            &solved.rows,
+            &mut solved.infos,
+            &motion.delta,
+            self.parallel,
+        );
+    }
+
+    /// Stage after the substeps: the speed limits of the final velocities.
+    fn clamp_speeds(&mut self, plan: &SubstepPlan) {
+        let Some(uniform) = plan.limits else {
+            return;
+        };
         let b = &mut self.dynamic;
-        if plan.restitution {
-            scalar::restitution(
-                &mut solved.rows,
-                &solved.infos,
-                &mut b.vel,
-                plan.solver.restitution_threshold,
-            );
-        }
-        let parallel = self.parallel;
-        scalar::store_separations(&solved.rows, &mut solved.infos, &motion.delta, parallel);
-        if let Some(uniform) = plan.limits {
-            for_chunks(
-                parallel,
-                (b.vel.view_mut(), &b.limits[..]),
-                |_, (vel, limits)| {
-                    let (vx, vy) = vel.into_parts();
-                    for (k, limits) in limits[..vx.len()].iter().enumerate() {
-                        let mut v = Vec2::new(vx[k], vy[k]);
-                        uniform.unwrap_or(*limits).apply(&mut v);
-                        (vx[k], vy[k]) = (v.x, v.y);
-                    }
-                    0
-                },
-            );
-        }
+        for_chunks(
+            self.parallel,
+            (b.vel.view_mut(), &b.limits[..]),
+            |_, (vel, limits)| {
+                let (vx, vy) = vel.into_parts();
+                for (k, limits) in limits[..vx.len()].iter().enumerate() {
+                    let mut v = Vec2::new(vx[k], vy[k]);
+                    uniform.unwrap_or(*limits).apply(&mut v);
+                    (vx[k], vy[k]) = (v.x, v.y);
+                }
+                0
+            },
+        );
+    }
+}
+
+/// What the solver stages of one substep need to know of it.
+#[derive(Clone, Copy)]
+struct SubstepPass {
+    /// The bodies moved since the separations were last measured.
+    moved: bool,
+    /// The substep started from the replay of each body's velocity change
+    /// (see `Start::Replay`): the warm start is in the velocities already.
+    replayed: bool,
+}
+
+impl SubstepPass {
+    /// Whether the warm start pass is left out: replayed, with no push to
+    /// carry, the first solve pass starts each push from zero.
+    fn fresh(self, plan: &SubstepPlan) -> bool {
+        self.replayed && !plan.solver.carry_push
     }
 }
 
@@ -582,5 +753,107 @@ impl Moves<'_> {
             // reads with the velocity (see `BodyState`).
             s.push = delta[k];
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{BodyDef, BodyKind, Shape};
+
+    /// A world of two boxes on the ground with the settings `tweak` makes.
+    fn world(tweak: impl Fn(&mut ContactSettings), kinematic: bool, bouncy: bool) -> World {
+        let mut world = World::default();
+        world
+            .add_body(BodyDef::new_static(Vec2::ZERO, Shape::rect(10.0, 1.0)))
+            .unwrap();
+        for (x, kind) in [(0.0, BodyKind::Dynamic), (2.0, BodyKind::Kinematic)] {
+            let kind = if kinematic { kind } else { BodyKind::Dynamic };
+            let def = BodyDef {
+                kind,
+                position: Vec2::new(x, 1.0),
+                shape: Some(Shape::rect(1.0, 1.0)),
+                restitution: if bouncy { 0.5 } else { 0.0 },
+                ..Default::default()
+            };
+            world.add_body(def).unwrap();
+        }
+        let mut settings = *world.settings();
+        tweak(settings.contacts.as_mut().unwrap());
+        world.set_settings(settings).unwrap();
+        world
+    }
+
+    /// Every combination of the settings that add or drop stages: the
+    /// list keeps the stages' order, splits into the substep's stages on
+    /// the arrays, on the solver's copy and after, and holds exactly the
+    /// stages whose condition is met.
+    #[test]
+    fn the_stage_list_holds_what_the_settings_ask_for_in_order() {
+        use ContactStage::*;
+        let order = [
+            IntegrateVelocities,
+            HoldSleepers,
+            HoldKinematic,
+            WarmStart,
+            Solve,
+            IntegratePositions,
+            Relax,
+            SweepFastBodies,
+            Restitution,
+            StoreSeparations,
+            ClampSpeeds,
+        ];
+        let mut seen = std::collections::BTreeSet::new();
+        for case in 0..32u32 {
+            let bit = |k: u32| case & (1 << k) != 0;
+            let (warm, relax, continuous, kinematic, bouncy) =
+                (bit(0), bit(1), bit(2), bit(3), bit(4));
+            let w = world(
+                |c| {
+                    c.warm_starting = warm;
+                    c.relax_iterations = if relax { 2 } else { 0 };
+                    c.continuous = continuous;
+                },
+                kinematic,
+                bouncy,
+            );
+            let stages = w.contact_stages();
+            let rank = |s: &ContactStage| order.iter().position(|o| o == s).unwrap();
+            assert!(
+                stages.windows(2).all(|p| rank(&p[0]) < rank(&p[1])),
+                "{stages:?}"
+            );
+            let expect = |s: ContactStage, on: bool| {
+                assert_eq!(stages.contains(&s), on, "case {case}: {s:?} in {stages:?}");
+            };
+            expect(WarmStart, warm);
+            expect(Relax, relax);
+            expect(SweepFastBodies, continuous);
+            expect(HoldKinematic, kinematic);
+            expect(Restitution, bouncy);
+            for s in [
+                IntegrateVelocities,
+                Solve,
+                IntegratePositions,
+                StoreSeparations,
+            ] {
+                expect(s, true);
+            }
+            let plan = SubstepPlan::new(&w, &w.contact_settings().unwrap(), 1.0, false, false);
+            let (on_bodies, on_copy, after) = plan.stages.parts();
+            assert!(
+                on_bodies
+                    .iter()
+                    .all(|s| s.in_substep() && !s.on_solver_copy())
+            );
+            assert!(on_copy.iter().all(|s| s.in_substep() && s.on_solver_copy()));
+            assert!(after.iter().all(|s| !s.in_substep()));
+            assert_eq!([on_bodies, on_copy, after].concat(), stages);
+            seen.extend(stages.iter().map(rank));
+        }
+        // Every stage but HoldSleepers (no body asleep here) was listed in
+        // some case (ClampSpeeds by the default minimum-speed snap).
+        assert_eq!(seen.len(), order.len() - 1);
     }
 }

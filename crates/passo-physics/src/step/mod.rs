@@ -1,22 +1,41 @@
 //! The step: a plan made from the settings and the bodies, and the stages
 //! it runs, each a function, each skipped when the plan does not need it.
 //!
+//! This is the one description of a tick; the other places that speak of
+//! it link here. `[Stage]` and `[ContactStage]` name the stages that
+//! [`World::active_stages`] and [`World::contact_stages`] list.
+//!
 //! ```text
 //! World::step(dt)
-//!   store previous positions               (interpolation)
-//!   without contacts: one pass per body    (forces, integrate, speed limits)
-//!   with contacts:
-//!     find contacts                        (ContactWorld::begin_step)
-//!     substeps h = dt / n:
-//!       integrate velocities, hold sleepers, warm start, solve,
-//!       integrate positions, relax
-//!     restitution, store separations, clamp speeds
-//!     record events and sleep              (ContactWorld::end_step)
-//!   clear forces
+//!   store previous positions                    [StorePrevious, with interpolation]
+//!   without contacts, one pass per body:        [the force models, Integrate, SpeedLimits]
+//!     forces, integrate, speed limits; kinematic bodies move by their own velocity
+//!   with contacts (step::contacts):             [Contacts]
+//!     find the contacts: broad phase, narrow phase, warm-start impulses
+//!                                               (ContactWorld::begin_step)
+//!     find deep piles, plan the substeps, split the contacts in regions
+//!     each substep h = dt / substeps, on the body arrays:
+//!       integrate velocities                    [IntegrateVelocities]
+//!       hold sleepers still                     [HoldSleepers]
+//!       hold kinematic bodies at their velocity [HoldKinematic]
+//!     then on the solver's copy of the velocities (solver::motion):
+//!       warm start                              [WarmStart]
+//!       solve: normal, friction, push           [Solve]
+//!       integrate positions by velocity + push  [IntegratePositions]
+//!       relax: velocity passes, no push         [Relax]
+//!     after the substeps:
+//!       sweep fast bodies to their first impact [SweepFastBodies]
+//!       restitution                             [Restitution]
+//!       store each contact's separation         [StoreSeparations]
+//!       clamp speeds                            [ClampSpeeds]
+//!     put back non-finite bodies; record events and sleep
+//!                                               (ContactWorld::end_step)
+//!   clear forces, count down drop-through timers
 //! ```
 //!
-//! [`World::active_stages`] and [`World::contact_stages`] read the same
-//! plan the step runs, so the list a user reads is the list that runs.
+//! The contact step runs its stages from the plan's list
+//! (`SubstepPlan::stages`), as Box2D walks its stage array: the list a user
+//! reads is the list that runs.
 
 pub(crate) mod contacts;
 use crate::body::census::BodyCensus;
@@ -119,16 +138,11 @@ impl World {
     }
 
     /// Advances the world by `dt` seconds, stage by stage; each stage runs
-    /// only if the settings and bodies ask for it ([`active_stages`](Self::active_stages)):
-    ///
-    /// 1. store previous positions (interpolation);
-    /// 2. without contacts, one pass per body: integrate velocity with every
-    ///    active force model, clamp speed, integrate position;
-    /// 3. with contacts, broad and narrow phase, then `substeps` times:
-    ///    integrate velocities, warm start, solve contacts, clamp speeds,
-    ///    integrate positions, relax; then restitution and a last clamp
-    ///    ([`contact_stages`](Self::contact_stages));
-    /// 4. clear force accumulators.
+    /// only if the settings and bodies ask for it
+    /// ([`active_stages`](Self::active_stages) and
+    /// [`contact_stages`](Self::contact_stages) list them). The `step`
+    /// module's documentation (in the source, `step/mod.rs`) describes the
+    /// tick stage by stage.
     ///
     /// Run it from a fixed-timestep loop (`passo-loop`) with a constant `dt`:
     /// a variable `dt` makes the result depend on the frame rate.
