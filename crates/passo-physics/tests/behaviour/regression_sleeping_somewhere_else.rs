@@ -7,9 +7,9 @@
 //! caught that (`tests/netplay.rs`); the second test here keeps a simpler
 //! scene honest at every tick.
 
+use crate::support::add_ground;
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, Shape, World};
-use passo_tests::add_ground;
 
 const DT: f32 = 1.0 / 60.0;
 

@@ -3,9 +3,9 @@
 //! of another sleeping island: that body had no proxy, and the contact was
 //! looked up with none.
 
+use crate::support::add_ground;
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, Shape, World};
-use passo_tests::add_ground;
 
 #[test]
 fn a_ball_landing_on_a_sleeping_box_beside_another_wakes_it_without_a_panic() {

@@ -4,9 +4,9 @@
 //! inside a static sensor box of its own: 5 000 candidate pairs, enough for
 //! the narrow phase to go to the pool, and not one contact.
 
+use crate::support::weightless_world;
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, SensorPair, Shape};
-use passo_tests::weightless_world;
 
 /// Every body that entered a sensor on the first step, with and without
 /// the pool.

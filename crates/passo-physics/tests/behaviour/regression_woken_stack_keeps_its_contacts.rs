@@ -4,9 +4,9 @@
 //! touching (and the next step as touching again), and the impulses the
 //! stack rested on were not there to warm start from.
 
+use crate::support::add_ground;
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, Shape, World};
-use passo_tests::add_ground;
 
 /// A stack of five boxes on the ground; a ball thrown down at its top.
 fn stack_and_ball(sleeping: bool) -> (World, Vec<BodyId>) {

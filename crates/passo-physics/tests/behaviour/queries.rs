@@ -1,9 +1,9 @@
 //! Queries a game makes every frame: rays, points, boxes and swept shapes
 //! with a filter, the contacts of one body, and events read once per frame.
 
+use crate::support::contacts_seen_from;
 use passo_physics::glam::Vec2;
 use passo_physics::{Aabb, BodyDef, BodyId, CollisionFilter, QueryFilter, Shape, World};
-use passo_tests::contacts_seen_from;
 
 const DT: f32 = 1.0 / 60.0;
 

@@ -6,10 +6,10 @@
 //! may be stopped during the step). A static or kinematic body is met in
 //! every direction as far as the other body's travel reaches.
 
+use crate::support::{add_ground, max_penetration, weightless_world};
 use passo_physics::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, Shape, World};
-use passo_tests::{add_ground, max_penetration, weightless_world};
 
 const DT: f32 = 1.0 / 60.0;
 

@@ -1,11 +1,11 @@
 //! Collisions on the cases that break weak solvers, with quantitative bounds.
 
+use crate::support::{
+    add_box, add_circle, add_static_box, assert_finite, max_penetration, weightless_world,
+};
 use passo_physics::constants::LINEAR_SLOP;
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, ForceModels, Shape, World, WorldSettings};
-use passo_tests::{
-    add_box, add_circle, add_static_box, assert_finite, max_penetration, weightless_world,
-};
 
 const DT: f32 = 1.0 / 60.0;
 

@@ -2,9 +2,9 @@
 //! with no ghost collisions at the joints between them, per-cell material
 //! and one-way cells.
 
+use crate::support::{assert_falls_freely_along_a_wall, assert_slides_as_on_one_box, push_along_x};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, BodyKind, Shape, TileKind, TileMap, World};
-use passo_tests::{assert_falls_freely_along_a_wall, assert_slides_as_on_one_box, push_along_x};
 
 const DT: f32 = 1.0 / 60.0;
 

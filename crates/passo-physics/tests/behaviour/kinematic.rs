@@ -1,9 +1,9 @@
 //! Kinematic bodies: moved by their velocity alone, they carry, lift and
 //! push dynamic bodies and are not moved by anything.
 
+use crate::support::{add_ground, max_penetration};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, BodyKind, ContactStage, Shape, Stage, World, WorldSettings};
-use passo_tests::{add_ground, max_penetration};
 
 const DT: f32 = 1.0 / 60.0;
 

@@ -1,10 +1,10 @@
 //! Sleeping: resting islands stop costing solver work, keep their contacts,
 //! and wake when something reaches them or game code changes them.
 
+use crate::support::{add_box, add_ground, add_static_box, assert_finite};
 use passo_physics::constants::{SLEEP_SPEED, TIME_TO_SLEEP};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, ContactSettings, Shape, World, WorldSettings};
-use passo_tests::{add_box, add_ground, add_static_box, assert_finite};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -105,7 +105,7 @@ fn bodies_pushed_out_of_an_overlap_are_not_resting() {
     }
     run(&mut w, 3.0);
     assert_eq!(w.sleeping_len(), 6, "they settle and sleep");
-    let pen = passo_tests::max_penetration(&w);
+    let pen = crate::support::max_penetration(&w);
     assert!(
         pen <= 2.0 * passo_physics::constants::LINEAR_SLOP,
         "asleep at {pen} m overlap"

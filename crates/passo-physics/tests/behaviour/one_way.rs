@@ -1,8 +1,8 @@
 //! One-way platforms: solid from one side, open from every other.
 
+use crate::support::add_ground;
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, CollisionFilter, Shape, World};
-use passo_tests::add_ground;
 
 const DT: f32 = 1.0 / 60.0;
 const UP: Vec2 = Vec2::Y;
@@ -143,13 +143,69 @@ fn drop_through_lets_a_standing_body_fall_to_the_ground() {
     }
     let y = world.body(a).unwrap().position.y;
     assert!((y - 0.25).abs() < 0.006, "on the ground: {y}");
-    // After the time ran out the platform holds it again from above.
-    let b = ball(&mut world, Vec2::new(1.0, 4.0), Vec2::ZERO);
-    for _ in 0..120 {
+    assert!(world.try_drop_through(a, -1.0).is_err());
+}
+
+/// Sets `a` just above the platform, falling at 3 m/s onto it, and steps
+/// 40 ticks; returns whether the platform then holds it.
+fn lands_on_the_platform(world: &mut World, a: BodyId, platform: BodyId) -> bool {
+    world.set_position(a, Vec2::new(0.0, 2.3));
+    world.set_velocity(a, Vec2::new(0.0, -3.0));
+    for _ in 0..40 {
         world.step(DT);
     }
-    assert_eq!(world.standing_on(b, 0.8), Some(platform));
-    assert!(world.try_drop_through(a, -1.0).is_err());
+    world.standing_on(a, 0.8) == Some(platform)
+}
+
+#[test]
+fn drop_through_lasts_its_time_then_the_platform_holds_the_same_body_again() {
+    // The timer counts down by dt each step: it runs out in the step that
+    // takes it to zero, ceil(seconds / dt) steps after the call.
+    for seconds in [0.2f32, 0.5, 1.0] {
+        let ticks = (seconds / DT).ceil() as usize;
+        // While the time runs, the body passes through from above every
+        // time it meets the platform: set back above it three ticks before
+        // the end of its time, it falls through again.
+        let (mut world, platform) = world_with_platform("static");
+        let a = ball(&mut world, Vec2::new(0.0, 2.25), Vec2::ZERO);
+        world.drop_through(a, seconds);
+        for _ in 0..ticks - 3 {
+            world.step(DT);
+        }
+        world.set_position(a, Vec2::new(0.0, 2.3));
+        world.set_velocity(a, Vec2::new(0.0, -3.0));
+        // It enters the platform before the time runs out, and a body
+        // still inside then goes on through.
+        for _ in 0..60 {
+            world.step(DT);
+        }
+        let y = world.body(a).unwrap().position.y;
+        assert!(
+            (y - 0.25).abs() < 0.01,
+            "{seconds} s: through the platform to the ground: {y}"
+        );
+        // Once it ran out, the same body lands on the platform.
+        let (mut world, platform) = world_with_platform("static");
+        let a = ball(&mut world, Vec2::new(0.0, 2.25), Vec2::ZERO);
+        world.drop_through(a, seconds);
+        for _ in 0..ticks {
+            world.step(DT);
+        }
+        assert!(
+            lands_on_the_platform(&mut world, a, platform),
+            "{seconds} s: held again after {ticks} ticks"
+        );
+        // A drop-through of 0 seconds ends one early.
+        let (mut world, platform) = world_with_platform("static");
+        let a = ball(&mut world, Vec2::new(0.0, 2.25), Vec2::ZERO);
+        world.drop_through(a, seconds);
+        world.step(DT);
+        world.drop_through(a, 0.0);
+        assert!(
+            lands_on_the_platform(&mut world, a, platform),
+            "{seconds} s, ended"
+        );
+    }
 }
 
 #[test]

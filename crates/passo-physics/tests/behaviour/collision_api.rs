@@ -1,8 +1,8 @@
 //! What a game reads from collisions: events, sensors, filters, queries.
 
+use crate::support::{add_box, add_circle, add_static_box, weightless_world};
 use passo_physics::glam::Vec2;
 use passo_physics::{Aabb, BodyDef, CollisionFilter, ContactPair, SensorPair, Shape, Stage, World};
-use passo_tests::{add_box, add_circle, add_static_box, weightless_world};
 
 const DT: f32 = 1.0 / 60.0;
 

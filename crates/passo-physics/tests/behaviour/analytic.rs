@@ -455,7 +455,7 @@ fn a_speed_limit_acts_on_a_body_in_the_contact_step_as_without_the_replayed_warm
             contacts.relax_iterations = relax_iterations;
         }
         let mut world = World::new(settings).unwrap();
-        passo_tests::add_ground(&mut world, 10.0);
+        crate::support::add_ground(&mut world, 10.0);
         let shape = passo_physics::Shape::circle(0.1);
         // Snapped in the second substep of tick 6 (gravity takes 9.81 / 240
         // m/s a substep), so that the replay would act within the step.
@@ -511,7 +511,7 @@ fn a_speed_limit_moves_a_body_along_its_velocity_with_every_integrator() {
             .unwrap();
             let shape = passo_physics::Shape::circle(0.1);
             if contacts {
-                passo_tests::add_ground(&mut world, 10.0);
+                crate::support::add_ground(&mut world, 10.0);
             }
             let pushed = world
                 .add_body(BodyDef::new_dynamic(Vec2::new(0.0, 50.0), shape))

@@ -8,9 +8,9 @@
 //! circles were still overlapping by 19 cm after 10 s, and are now apart
 //! in about 5 s (`passo bench extreme`).
 
+use crate::support::{max_penetration, weightless_world};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, Shape};
-use passo_tests::{max_penetration, weightless_world};
 
 #[test]
 fn a_pile_spawned_on_one_spot_spreads_out_calmly_with_bounded_contacts() {

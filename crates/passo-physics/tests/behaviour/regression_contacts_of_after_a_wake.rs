@@ -3,9 +3,9 @@
 //! per-body index was kept while waking dropped stored contacts. It also
 //! returned a removed body's contacts for the body that reused its slot.
 
+use crate::support::{add_ground, contacts_seen_from as scan};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, Shape, World};
-use passo_tests::{add_ground, contacts_seen_from as scan};
 
 #[test]
 fn contacts_of_after_waking_a_sleeping_pile_matches_the_contact_list() {

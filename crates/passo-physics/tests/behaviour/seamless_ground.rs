@@ -4,12 +4,12 @@
 //! the second box's side, normal (1, 0)), and the same with the second box
 //! 1 mm lower (a speculative contact with its side).
 
-use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, BodyId, Shape, World};
-use passo_tests::{
+use crate::support::{
     add_box, add_ground, assert_falls_freely_along_a_wall, assert_slides_as_on_one_box,
     push_along_x,
 };
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, BodyId, Shape, World};
 
 const DT: f32 = 1.0 / 60.0;
 

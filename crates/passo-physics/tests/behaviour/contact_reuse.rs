@@ -4,9 +4,9 @@
 //! hold it to what finding every contact afresh gives, to the bound it
 //! claims, and to rollback's bits.
 
+use crate::support::add_ground;
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyId, Shape, World};
-use passo_tests::add_ground;
 
 const DT: f32 = 1.0 / 60.0;
 
