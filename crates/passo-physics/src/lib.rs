@@ -49,6 +49,7 @@ mod error;
 
 mod columns;
 mod parallel;
+mod switches;
 
 mod geometry;
 mod body;
@@ -66,6 +67,7 @@ pub use body::filter::CollisionFilter;
 pub use body::material::FrictionMix;
 pub use body::tile_map::{ASCII_LEGEND, MAX_TILE_CELLS, TileKind, TileMap, TileRect};
 pub use contact::{Contact, ContactEvents, ContactPair, ContactSettings, SensorPair};
+pub use contact_world::StepCounters;
 pub use error::PhysicsError;
 pub use forces::integrator::Integrator;
 pub use forces::models::{
@@ -83,6 +85,8 @@ pub use query::mover::{CharacterMover, MoveOutcome};
 pub use query::{QueryFilter, RayHit, ShapeHit};
 pub use step::Stage;
 pub use step::contacts::ContactStage;
+#[doc(hidden)]
+pub use switches::TestSwitches;
 pub use world::settings::WorldSettings;
 pub use world::snapshot::WorldSnapshot;
 pub use world::{StepStats, World};

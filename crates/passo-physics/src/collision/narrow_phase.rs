@@ -13,6 +13,7 @@ use crate::contact::constraint::{Constraint, ContactInfo, ContactList, key};
 use crate::geometry::corners::{beyond_corner, over_a_step};
 use crate::geometry::manifold::{Faces, Manifold, collide_seamless};
 use crate::parallel::for_chunks_max;
+use crate::switches::TestSwitches;
 use crate::{BodyId, SensorPair, Shape};
 use glam::Vec2;
 
@@ -360,15 +361,12 @@ pub(crate) struct NarrowPhase {
     /// The pairs found again when sleeping bodies wake (see
     /// `ContactWorld::wake_reached`).
     pub woken: Vec<KeyedPair>,
-    /// Whether the last run sorted its pairs (for tests).
-    #[cfg(test)]
-    sorted: bool,
-    /// Runs that kept every contact in place (for tests).
-    #[cfg(test)]
-    kept_in_place: usize,
-    /// Never keep the contacts in place (for tests).
-    #[cfg(test)]
-    walk_always: bool,
+    /// Runs that sorted their pairs (see `StepCounters`).
+    pub(crate) pair_sorts: u64,
+    /// Runs that reused every contact in place.
+    pub(crate) contacts_reused_in_place: u64,
+    /// The shortcuts turned off (`walk_always`).
+    pub(crate) switches: TestSwitches,
     /// The proxies' slots the last keys were made with.
     last_slots: Vec<u32>,
     /// The sort's other buffer.
@@ -409,15 +407,10 @@ impl NarrowPhase {
         self.sort_pairs(narrow, parallel);
         self.sensor_candidates.clear();
         let keys = self.keyed.iter().map(|k| k.0);
-        let in_place = reuse_distance_sq > 0.0;
-        #[cfg(test)]
-        let in_place = in_place && !self.walk_always;
+        let in_place = reuse_distance_sq > 0.0 && !self.switches.walk_always;
         if in_place && reuse_all(narrow.bodies, keys, (reuse_distance_sq, impulses), last) {
             std::mem::swap(contacts, last);
-            #[cfg(test)]
-            {
-                self.kept_in_place += 1;
-            }
+            self.contacts_reused_in_place += 1;
             return true;
         }
         let reuse = Reuse {
@@ -436,10 +429,7 @@ impl NarrowPhase {
         // at rest: 7 µs a step of the pyramid of base 50 to make them).
         if proxies.pairs_same && proxies.slot == self.last_slots {
             #[cfg(test)]
-            {
-                self.sorted = false;
-                debug_assert_eq!(self.last_keys, self.keys_of(narrow));
-            }
+            debug_assert_eq!(self.last_keys, self.keys_of(narrow));
             return;
         }
         self.last_slots.clone_from(&proxies.slot);
@@ -466,11 +456,8 @@ impl NarrowPhase {
         ));
         // The same keys in the same order as the last step's: `keyed` holds
         // them sorted already.
-        #[cfg(test)]
-        {
-            self.sorted = self.keys != self.last_keys;
-        }
         if self.keys != self.last_keys {
+            self.pair_sorts += 1;
             self.keyed.clone_from(&self.keys);
             let slots = highest as usize + 1;
             sort_by_key(
@@ -644,24 +631,21 @@ fn copy_into(tasks: &[TaskFound], rows: &mut [Constraint], infos: &mut [ContactI
 
 #[cfg(test)]
 mod tests {
-    use crate::World;
     use crate::testing::pile;
+    use crate::{TestSwitches, World};
     use glam::Vec2;
 
     /// Runs a step of `world` and returns whether its narrow phase sorted
     /// the pairs, checking that the pairs it went through are this step's
     /// keys sorted.
     fn step(world: &mut World) -> bool {
+        let before = world.counters().pair_sorts;
         world.step(1.0 / 60.0);
         let narrow = world.contacts.as_ref().expect("contacts").narrow();
         let mut sorted = narrow.last_keys.clone();
         sorted.sort_by_key(|k| k.0);
         assert_eq!(narrow.keyed, sorted, "the pairs in key order");
-        narrow.sorted
-    }
-
-    fn narrow_of(world: &mut World) -> &mut super::NarrowPhase {
-        world.contacts.as_mut().expect("contacts").narrow_mut()
+        world.counters().pair_sorts > before
     }
 
     #[test]
@@ -703,17 +687,24 @@ mod tests {
 
     #[test]
     fn impulses_kept_in_place_are_those_the_warm_start_gives() {
-        let (mut world, _) = beside_a_dropped_box(|warmed| {
-            warmed.contacts.as_mut().unwrap().warm_start_always = true;
+        let (world, _) = beside_a_dropped_box(|warmed| {
+            warmed.set_test_switches(TestSwitches {
+                warm_start_always: true,
+                ..Default::default()
+            });
         });
-        assert!(narrow_of(&mut world).kept_in_place > 60);
+        assert!(world.counters().contacts_reused_in_place > 60);
     }
 
     #[test]
     fn contacts_kept_in_place_are_those_the_walk_keeps() {
-        let (mut world, mut walked) =
-            beside_a_dropped_box(|walked| narrow_of(walked).walk_always = true);
-        let kept = |w: &mut World| narrow_of(w).kept_in_place;
+        let (mut world, mut walked) = beside_a_dropped_box(|walked| {
+            walked.set_test_switches(TestSwitches {
+                walk_always: true,
+                ..Default::default()
+            })
+        });
+        let kept = |w: &mut World| w.counters().contacts_reused_in_place;
         assert_eq!(kept(&mut walked), 0);
         assert!(
             kept(&mut world) > 60,
@@ -733,7 +724,10 @@ mod tests {
             world.step(1.0 / 60.0);
         }
         let mut walked = world.clone();
-        narrow_of(&mut walked).walk_always = true;
+        walked.set_test_switches(TestSwitches {
+            walk_always: true,
+            ..Default::default()
+        });
         let last = world
             .contacts
             .as_ref()
@@ -747,7 +741,7 @@ mod tests {
         } else {
             last.id_a
         };
-        let kept_before = narrow_of(&mut world).kept_in_place;
+        let kept_before = world.counters().contacts_reused_in_place;
         crate::testing::step_side_by_side(
             (&mut world, &mut walked),
             &boxes,
@@ -761,7 +755,11 @@ mod tests {
                 let (a, b) = (&a.unwrap().solved, &b.unwrap().solved);
                 assert_eq!(a, b, "tick {tick}: the same contacts and impulses");
                 if tick == 0 {
-                    assert_eq!(narrow_of(world).kept_in_place, kept_before, "not kept");
+                    assert_eq!(
+                        world.counters().contacts_reused_in_place,
+                        kept_before,
+                        "not kept"
+                    );
                 }
             },
         );

@@ -11,6 +11,7 @@ use crate::constants::{LINEAR_SLOP, SPECULATIVE_DISTANCE, SPECULATIVE_REACH};
 use crate::geometry::manifold::Faces;
 use crate::geometry::static_tree::StaticTree;
 use crate::parallel::for_chunks;
+use crate::switches::TestSwitches;
 use crate::{Aabb, Shape};
 use glam::Vec2;
 
@@ -263,19 +264,16 @@ pub(crate) struct Proxies {
     /// Whether the static tree was built again this step (other static
     /// bodies, or the same ones at other indices).
     tree_rebuilt: bool,
-    /// Searches whose pairs were kept from the last one (for tests).
-    #[cfg(test)]
-    pub(crate) kept_grid_pairs: usize,
+    /// Searches whose pairs were reused from the last one (see
+    /// `StepCounters`).
+    pub(crate) grid_pairs_reused: u64,
     /// Searches whose pairs were those of the grown boxes that the boxes
-    /// overlap (for tests).
-    #[cfg(test)]
-    pub(crate) kept_enlarged_pairs: usize,
-    /// Searches whose pairs with static bodies were kept (for tests).
-    #[cfg(test)]
-    pub(crate) kept_static_pairs: usize,
-    /// Search the grid every step, never keeping its pairs (for tests).
-    #[cfg(test)]
-    pub(crate) search_always: bool,
+    /// overlap.
+    pub(crate) grown_pairs_reused: u64,
+    /// Searches whose pairs with static bodies were reused.
+    pub(crate) static_pairs_reused: u64,
+    /// The shortcuts turned off (`search_always`).
+    pub(crate) switches: TestSwitches,
 }
 
 impl Proxies {
@@ -621,9 +619,7 @@ impl Proxies {
         let plain = self.asleep.is_empty()
             && self.grid.uncapped.is_empty()
             && self.grid.immovable.is_empty();
-        let may_reuse = plain;
-        #[cfg(test)]
-        let may_reuse = may_reuse && !self.search_always;
+        let may_reuse = plain && !self.switches.search_always;
         let unchanged = may_reuse
             && !self.searched_boxes.is_empty()
             && same_bits(&self.boxes, &self.searched_boxes);
@@ -671,12 +667,9 @@ impl Proxies {
             }
             same
         };
-        #[cfg(test)]
-        {
-            self.kept_grid_pairs += usize::from(unchanged);
-            self.kept_enlarged_pairs += usize::from(within);
-            self.kept_static_pairs += usize::from(statics_unchanged);
-        }
+        self.grid_pairs_reused += u64::from(unchanged);
+        self.grown_pairs_reused += u64::from(within);
+        self.static_pairs_reused += u64::from(statics_unchanged);
         self.grid_pairs = self.pairs.len();
         // Kept to compare only when the search was a plain one.
         self.boxes_searched = plain;
@@ -859,10 +852,13 @@ mod tests {
         let (mut world, boxes) = crate::testing::pile();
         world.step(1.0 / 60.0);
         let mut searched = world.clone();
-        proxies_of(&mut searched).search_always = true;
+        searched.set_test_switches(crate::TestSwitches {
+            search_always: true,
+            ..Default::default()
+        });
         let kept = |w: &mut World| {
-            let p = proxies_of(w);
-            (p.kept_grid_pairs, p.kept_static_pairs)
+            let c = w.counters();
+            (c.grid_pairs_reused, c.static_pairs_reused)
         };
         // Knocked at tick 200: the boxes move, and are searched again.
         let mut before_knock = (0, 0);
@@ -920,7 +916,10 @@ mod tests {
         let (mut world, boxes) = crate::testing::pyramid(12);
         world.step(1.0 / 60.0);
         let mut searched = world.clone();
-        proxies_of(&mut searched).search_always = true;
+        searched.set_test_switches(crate::TestSwitches {
+            search_always: true,
+            ..Default::default()
+        });
         let mut before_knock = 0;
         crate::testing::step_side_by_side(
             (&mut world, &mut searched),
@@ -934,7 +933,7 @@ mod tests {
                     pairs
                 };
                 assert_eq!(grid_pairs(world), grid_pairs(searched), "tick {tick}");
-                let kept = proxies_of(world).kept_enlarged_pairs;
+                let kept = world.counters().grown_pairs_reused;
                 match tick {
                     59 => before_knock = kept,
                     60 => assert_eq!(kept, before_knock, "searched when knocked"),
@@ -942,12 +941,12 @@ mod tests {
                 }
             },
         );
-        assert_eq!(proxies_of(&mut searched).kept_enlarged_pairs, 0);
+        assert_eq!(searched.counters().grown_pairs_reused, 0);
         assert!(
             before_knock >= 10,
             "grown boxes' pairs kept {before_knock} times before the knock"
         );
-        let after = proxies_of(&mut world).kept_enlarged_pairs - before_knock;
+        let after = world.counters().grown_pairs_reused - before_knock;
         assert!(after >= 5, "kept {after} times after the knock");
     }
 

@@ -19,8 +19,35 @@ use crate::contact_world::state::{ContactState, names_bodies};
 use crate::solver::continuous::Sweeps;
 use crate::solver::motion::Motion;
 use crate::solver::regions::ContactRegions;
+use crate::switches::TestSwitches;
 use crate::{BodyId, ContactEvents, ContactSettings, SensorPair};
 use glam::Vec2;
+
+/// What the contact steps' shortcuts saved, counted since the world was
+/// made (Box2D publishes the like as `b2Counters`). Each is a count of
+/// steps; the difference of two readings covers the steps between them.
+/// Read them with [`World::counters`](crate::World::counters). They are
+/// diagnostics, not state: a snapshot does not carry them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StepCounters {
+    /// Broad-phase searches whose pairs were the last search's, because
+    /// no body's box changed by a bit.
+    pub grid_pairs_reused: u64,
+    /// Broad-phase searches whose pairs were taken from the grown boxes
+    /// of a settled scene, because every box stayed inside its grown one.
+    pub grown_pairs_reused: u64,
+    /// Searches whose pairs with static bodies were the last search's.
+    pub static_pairs_reused: u64,
+    /// Narrow-phase runs that sorted their pairs (the others had the last
+    /// step's pairs, sorted already).
+    pub pair_sorts: u64,
+    /// Narrow-phase runs that reused every contact of the last step in
+    /// place, none having moved beyond the reuse distance.
+    pub contacts_reused_in_place: u64,
+    /// Colourings of the contacts that took the last step's colours (a
+    /// step that splits its contacts in regions colours each).
+    pub colourings_reused: u64,
+}
 
 /// What a step tells the contact stage.
 #[derive(Clone, Copy, Debug)]
@@ -63,10 +90,8 @@ pub(crate) struct ContactWorld {
     /// stored contacts, a removal), so what is built from them (the
     /// per-body contact index of queries) knows when it is stale.
     revision: u64,
-    /// Warm start every step, never keeping a kept contact's impulses
-    /// (for tests).
-    #[cfg(test)]
-    pub(crate) warm_start_always: bool,
+    /// The shortcuts turned off (`warm_start_always`).
+    pub(crate) switches: TestSwitches,
     /// Whether a removal moved bodies to other indices since the last step
     /// (or restore): until then every awake contact names the bodies it was
     /// found with; after it a row may name the wrong ones, and the list is
@@ -129,9 +154,8 @@ impl ContactWorld {
         // Contacts kept in place keep the impulses they ended the last
         // step with when those are the cache's: the warm start would give
         // them the same.
-        let impulses = settings.warm_starting && self.events.fresh;
-        #[cfg(test)]
-        let impulses = impulses && !self.warm_start_always;
+        let impulses =
+            settings.warm_starting && self.events.fresh && !self.switches.warm_start_always;
         let (last, solved) = (&mut self.last, &mut self.solved);
         let kept = self.narrow.run(
             &narrow,
@@ -444,10 +468,23 @@ impl ContactWorld {
         &self.narrow
     }
 
-    /// The narrow phase's buffers, to change (for tests).
-    #[cfg(test)]
-    pub(crate) fn narrow_mut(&mut self) -> &mut NarrowPhase {
-        &mut self.narrow
+    /// Turns the step's shortcuts off, or on again (see [`TestSwitches`]).
+    pub(crate) fn set_switches(&mut self, switches: TestSwitches) {
+        self.switches = switches;
+        self.proxies.switches = switches;
+        self.narrow.switches = switches;
+        self.regions.set_switches(switches);
+    }
+
+    /// What the step's shortcuts saved, and the work they did not save.
+    pub(crate) fn count(&self, counters: &mut StepCounters) {
+        let (p, n) = (&self.proxies, &self.narrow);
+        counters.grid_pairs_reused = p.grid_pairs_reused;
+        counters.grown_pairs_reused = p.grown_pairs_reused;
+        counters.static_pairs_reused = p.static_pairs_reused;
+        counters.pair_sorts = n.pair_sorts;
+        counters.contacts_reused_in_place = n.contacts_reused_in_place;
+        counters.colourings_reused = self.regions.colourings_reused();
     }
 
     /// The proxies and their pairs, to change (for tests).

@@ -29,6 +29,7 @@
 use crate::contact::constraint::Constraint;
 use crate::solver::lanes::{Block, Bodies, LANES, NONE, Rates, measure, solve_block, warm_start};
 use crate::solver::scalar::{self, SolverBodies, SolverParams};
+use crate::switches::TestSwitches;
 use std::ops::Range;
 
 /// Colours at most: one bit each in a body's `u128` mask.
@@ -58,12 +59,10 @@ pub(crate) struct Colouring {
     counts: Vec<usize>,
     /// Rows the last colouring left over (colour [`OVERFLOW`]).
     left_over: usize,
-    /// Builds that took the last build's colours (for tests).
-    #[cfg(test)]
-    reused: usize,
-    /// Lay the contacts out in blocks however empty (for tests).
-    #[cfg(test)]
-    blocks_always: bool,
+    /// Builds that took the last build's colours (see `StepCounters`).
+    pub(crate) reused: u64,
+    /// The shortcuts turned off (`blocks_always`).
+    pub(crate) switches: TestSwitches,
 }
 
 /// Lanes per contact above which the contacts are solved one by one
@@ -118,10 +117,7 @@ impl Colouring {
         if coloured_now {
             self.colour(rows, picked.clone());
         } else {
-            #[cfg(test)]
-            {
-                self.reused += 1;
-            }
+            self.reused += 1;
             // (A pile coloured whole has none to look for.)
             if self.left_over > 0 {
                 for (i, &colour) in picked.clone().zip(&self.colour_of) {
@@ -162,8 +158,11 @@ impl Colouring {
         // chain wraps round) is the same with four lanes or eight.
         let coloured = self.colour_of.len() - self.overflow.len();
         let lanes: usize = counts.iter().map(|&n| n.div_ceil(8) * 8).sum();
-        #[cfg(test)]
-        let coloured = if self.blocks_always { lanes } else { coloured };
+        let coloured = if self.switches.blocks_always {
+            lanes
+        } else {
+            coloured
+        };
         if lanes > MAX_PADDING * coloured {
             // Mostly padding (a stack: one contact a colour): one by one
             // in the list's order is faster, and gives the same bits while

@@ -39,6 +39,7 @@ use crate::solver::colouring::{Colouring, Pass};
 use crate::solver::lanes::Bodies;
 use crate::solver::motion::{Home, Homes};
 use crate::solver::scalar::{BodyState, SolverBodies};
+use crate::switches::TestSwitches;
 use glam::Vec2;
 
 /// Dynamic bodies from which a step splits into regions: 4 096 (as the
@@ -86,6 +87,18 @@ pub(crate) struct ContactRegions {
 }
 
 impl ContactRegions {
+    /// Turns the colourings' shortcuts off, or on again.
+    pub(crate) fn set_switches(&mut self, switches: TestSwitches) {
+        for group in &mut self.groups {
+            group.switches = switches;
+        }
+    }
+
+    /// Builds that took the last build's colours, over the groups.
+    pub(crate) fn colourings_reused(&self) -> u64 {
+        self.groups.iter().map(|g| g.reused).sum()
+    }
+
     /// Splits (or not) and colours `rows`, over the dynamic bodies at
     /// positions `pos`; `deep` as for [`Colouring::build`]. `holds`: some
     /// row holds a dynamic body (asleep or kinematic: inverse mass zero in

@@ -244,6 +244,9 @@ impl World {
             .contacts
             .take()
             .unwrap_or_else(|| Box::new(ContactWorld::new()));
+        if cw.switches != self.switches {
+            cw.set_switches(self.switches);
+        }
         if std::mem::take(&mut self.statics_dirty) {
             cw.statics_changed();
         }

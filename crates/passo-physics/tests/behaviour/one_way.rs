@@ -166,7 +166,7 @@ fn drop_through_lasts_its_time_then_the_platform_holds_the_same_body_again() {
         // While the time runs, the body passes through from above every
         // time it meets the platform: set back above it three ticks before
         // the end of its time, it falls through again.
-        let (mut world, platform) = world_with_platform("static");
+        let (mut world, _) = world_with_platform("static");
         let a = ball(&mut world, Vec2::new(0.0, 2.25), Vec2::ZERO);
         world.drop_through(a, seconds);
         for _ in 0..ticks - 3 {

@@ -52,7 +52,10 @@ fn a_chain_is_solved_link_after_link_and_a_floor_of_resting_bodies_in_two_colour
     // A chain 0-1-2-3-4: each link after the one before, as in the list.
     let chain: Vec<_> = (0..4).map(|i| row(i, Some(i + 1), 1.0)).collect();
     let mut c = Colouring {
-        blocks_always: true,
+        switches: TestSwitches {
+            blocks_always: true,
+            ..TestSwitches::default()
+        },
         ..Colouring::default()
     };
     c.build(&chain, 0..chain.len(), 5, &[]);
@@ -90,7 +93,10 @@ fn rows_moving_the_same_bodies_again_take_the_last_colours_and_give_the_same_blo
     rows.extend((1..200).map(|i| row(0, Some(100 + i), 1.0)));
     let fresh = |rows: &[Constraint], picked: &[usize]| {
         let mut c = Colouring {
-            blocks_always: true,
+            switches: TestSwitches {
+                blocks_always: true,
+                ..TestSwitches::default()
+            },
             ..Colouring::default()
         };
         c.build(rows, picked.iter().copied(), 300, &[]);
@@ -162,7 +168,10 @@ fn a_body_with_more_contacts_than_colours_overflows_and_all_come_back() {
     // Body 0 touches 200 others: COLOURS coloured, the rest left over.
     let mut rows: Vec<_> = (1..=200).map(|i| row(0, Some(i), 1.0)).collect();
     let mut c = Colouring {
-        blocks_always: true,
+        switches: TestSwitches {
+            blocks_always: true,
+            ..TestSwitches::default()
+        },
         ..Colouring::default()
     };
     c.build(&rows, 0..rows.len(), 201, &[]);
@@ -234,7 +243,10 @@ fn a_replayed_warm_start_gives_the_velocities_of_a_pass_over_the_contacts() {
     let params = SolverParams::for_tests();
     for blocks_always in [true, false] {
         let mut colouring = Colouring {
-            blocks_always,
+            switches: TestSwitches {
+                blocks_always,
+                ..TestSwitches::default()
+            },
             ..Colouring::default()
         };
         colouring.build(&rows, 0..rows.len(), 4, &[]);
@@ -337,7 +349,10 @@ fn wide_and_scalar(
     steps: &[Step],
 ) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>) {
     let mut colouring = Colouring {
-        blocks_always: true,
+        switches: TestSwitches {
+            blocks_always: true,
+            ..TestSwitches::default()
+        },
         ..Colouring::default()
     };
     colouring.build(rows, 0..rows.len(), vel0.len(), deep);
@@ -464,7 +479,10 @@ fn lanes_solve_as_the_scalar_solver_does() {
         ..SolverParams::for_tests()
     };
     let mut colouring = Colouring {
-        blocks_always: true,
+        switches: TestSwitches {
+            blocks_always: true,
+            ..TestSwitches::default()
+        },
         ..Colouring::default()
     };
     colouring.build(&rows, 0..rows.len(), 4, &deep);
@@ -543,7 +561,10 @@ fn blocks_at_rest_leave_the_push_out_with_the_scalar_solvers_bits() {
     ];
     let resting = || RESTING.with(|n| n.get());
     let mut colouring = Colouring {
-        blocks_always: true,
+        switches: TestSwitches {
+            blocks_always: true,
+            ..TestSwitches::default()
+        },
         ..Colouring::default()
     };
     colouring.build(&rows, 0..rows.len(), vel0.len(), &[]);
@@ -591,7 +612,10 @@ fn blocks_at_rest_leave_the_push_out_with_the_scalar_solvers_bits() {
     let floor: Vec<_> = ground.chain(sides).collect();
     let vel0 = [Vec2::new(0.0, -0.1); 16];
     let mut colouring = Colouring {
-        blocks_always: true,
+        switches: TestSwitches {
+            blocks_always: true,
+            ..TestSwitches::default()
+        },
         ..Colouring::default()
     };
     colouring.build(&floor, 0..floor.len(), vel0.len(), &[]);
