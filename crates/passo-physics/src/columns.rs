@@ -1,8 +1,8 @@
 //! Vectors kept as two arrays, one of x and one of y: structure of arrays
 //! down to the components. A loop over them loads whole vector registers
-//! of x and of y, with no shuffles to pull interleaved `Vec2`s apart (on
-//! the benchmark machine the interleaved layout alone made a bare
-//! integration loop 1.22–1.35× slower). The dynamic bodies keep their
+//! of x and of y, with no shuffles to pull interleaved `Vec2`s apart
+//! (BENCHMARKS.md, "Why the code is shaped this way", has what the
+//! interleaved layout cost). The dynamic bodies keep their
 //! positions, velocities and forces this way.
 //!
 //! Serialised as a sequence of `Vec2`, as a `Vec<Vec2>` is: the layout in

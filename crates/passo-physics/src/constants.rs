@@ -18,8 +18,8 @@ pub const AIR_DENSITY: f32 = 1.225;
 ///
 /// One millimetre per second is invisible at any zoom a game uses and far
 /// above the subnormal range: velocities that decay under drag would
-/// otherwise end up as subnormal floats, which makes the same integration
-/// loop about 3× slower. Keep it well under the speed gravity adds in one
+/// otherwise end up as subnormal floats, on which the same integration
+/// loop runs several times slower. Keep it well under the speed gravity adds in one
 /// (sub)step, `g dt / substeps` (0.041 m/s at 60 Hz with the default four
 /// substeps; `g dt` without contacts): a body slower than the minimum at the
 /// apex of a jump is snapped to rest there, and gravity alone never lifts
@@ -98,8 +98,8 @@ pub const LINEAR_SLOP: f32 = 0.005;
 /// their contact is found afresh, metres: the default of
 /// [`ContactSettings::reuse_distance`](crate::ContactSettings::reuse_distance),
 /// [`LINEAR_SLOP`]. Box2D v3 reuses within ten times its slop; here ten
-/// times saved no more than this (a pyramid of base 50: 0.55–0.60 ms a
-/// step either way, against 0.69–0.76 without reuse).
+/// times saved no more time than this (BENCHMARKS.md, "Why the code is
+/// shaped this way").
 pub const REUSE_DISTANCE: f32 = LINEAR_SLOP;
 
 /// Distance below which contacts are kept before bodies touch, metres:

@@ -110,9 +110,7 @@ pub(crate) fn join<A: Send, B: Send>(
 /// `2 × threads`-th of the whole, whichever is more: about two tasks a
 /// thread, enough to even out a thread that starts late, and each hand-over costs
 /// a few microseconds (with two threads, a loop over 10 000 bodies is
-/// four tasks instead of sixteen: the velocity, load and unload stages of
-/// the rain of 10 000 on both cores took 0.068 ms a step, as long as on
-/// one thread, and now 0.055–0.058). `offset` is the chunk's first item.
+/// four tasks instead of sixteen). `offset` is the chunk's first item.
 /// Returns the sum of what `f` returns.
 pub(crate) fn for_chunks<P: Parts>(
     parallel: bool,
@@ -187,8 +185,9 @@ fn split_join<P: Parts>(
 /// work until it returns, instead of falling asleep in the step's serial
 /// parts.
 ///
-/// A worker with nothing to do yields for about 15 µs, then sleeps; waking
-/// it took about 23 µs on the benchmark machine (2 vCPUs), paid at each of
+/// A worker with nothing to do yields for a while, then sleeps; waking it
+/// costs tens of microseconds (BENCHMARKS.md, "Why the code is shaped this
+/// way"), paid at each of
 /// the step's stages that follows a serial part longer than that (the
 /// narrow phase after the pair sort, the colouring after the regions'
 /// split, ...). Here each other worker runs a helper task from when it

@@ -109,8 +109,8 @@ impl PairContext<'_> {
     ///
     /// Inlined, with [`Constraint::new`], into the loops over the pairs:
     /// the outcome (a hundred bytes) is then built where it is kept instead
-    /// of being returned through memory and copied (the pyramid of base 50's
-    /// pairs loop took 98 µs a step that way, 76 inlined).
+    /// of being returned through memory and copied (BENCHMARKS.md, "Why the
+    /// code is shaped this way", has the timing).
     #[inline(always)]
     pub(crate) fn pair(&self, pa: u32, pb: ColliderRef) -> Outcome {
         let margins = &self.proxies.margins;
@@ -356,7 +356,7 @@ pub(crate) struct NarrowPhase {
     keys: Vec<KeyedPair>,
     /// The last step's, which `keyed` holds sorted: a pile at rest finds
     /// the same pairs in the same order step after step, and skips the
-    /// sort (the pyramid of base 50: 1 % fewer instructions a step).
+    /// sort.
     last_keys: Vec<KeyedPair>,
     /// The pairs found again when sleeping bodies wake (see
     /// `ContactWorld::wake_reached`).
@@ -425,8 +425,8 @@ impl NarrowPhase {
     fn sort_pairs(&mut self, narrow: &PairContext<'_>, parallel: bool) {
         let proxies = narrow.proxies;
         // The same pairs as the last step's, of the same bodies: the same
-        // keys, which `last_keys` holds and `keyed` holds sorted (a pile
-        // at rest: 7 µs a step of the pyramid of base 50 to make them).
+        // keys, which `last_keys` holds and `keyed` holds sorted: a pile
+        // at rest need not make them again.
         if proxies.pairs_same && proxies.slot == self.last_slots {
             #[cfg(test)]
             debug_assert_eq!(self.last_keys, self.keys_of(narrow));

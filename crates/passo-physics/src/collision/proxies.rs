@@ -610,8 +610,8 @@ impl Proxies {
     /// every pair of boxes that overlap is a pair of grown boxes, and the
     /// grid's pairs are those of the grown boxes' pairs whose boxes
     /// overlap: the pairs a search would find, in another order (the
-    /// narrow phase sorts them), for a fifth of a search's time (the
-    /// pyramid of base 50: 4 µs instead of 20). Should the boxes crowd a
+    /// narrow phase sorts them), for a fraction of a search's time. Should
+    /// the boxes crowd a
     /// cell that the grown ones did not, they are all the pairs that
     /// overlap, where a search would have capped them; no more than the
     /// grown boxes' pairs, which their search bounds.

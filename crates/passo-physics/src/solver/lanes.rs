@@ -12,8 +12,8 @@ use crate::solver::scalar::{BodyState, SolverBodies, SolverParams, clamp, greate
 use glam::{Mat4, Vec2, Vec4};
 
 /// Contacts solved side by side in a [`Block`]: the `f32`s of one vector
-/// register, eight with AVX, four with SSE (the default x86-64 target;
-/// eight there spill registers and ran 5 % slower). The lanes of a block
+/// register, eight with AVX, four with SSE (the default x86-64 target,
+/// where eight spill registers). The lanes of a block
 /// are independent, so the width changes the speed, never the bits.
 #[cfg(target_feature = "avx")]
 pub(crate) const LANES: usize = 8;
@@ -254,8 +254,7 @@ fn gather(k: &Block, bodies: &Bodies<'_>) -> (Lanes, Lanes) {
 /// the four velocities' x, their y, the four pushes' x, their y. Each
 /// state is one row of a 4×4 matrix, so the turn is a transpose, a few
 /// shuffles on a vector unit, where reading each number into its own lane
-/// took a load and a shuffle apiece (the passes over the pyramid of base
-/// 50: 14 % fewer instructions). The numbers are only moved, never
+/// took a load and a shuffle apiece. The numbers are only moved, never
 /// changed.
 #[inline(always)]
 fn columns(state: impl Fn(usize) -> BodyState) -> [[f32; 4]; 4] {

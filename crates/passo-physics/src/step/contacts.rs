@@ -227,9 +227,7 @@ impl World {
         // A large world steps on a worker of the thread pool: the stages hand
         // work to the other workers dozens of times a step (the regions'
         // passes, the chunks), which costs a few microseconds from a worker
-        // and ten times that from a thread outside the pool. (Rain of
-        // 10 000, two threads: 2.25 ms per step on a worker, 2.96 ms from
-        // outside, 2.98 ms on one thread.)
+        // and ten times that from a thread outside the pool.
         #[cfg(feature = "parallel")]
         if self.parallel && self.dynamic.len() >= crate::constants::PARALLEL_MIN_ITEMS {
             crate::parallel::on_pool(|| self.step_with_contacts_here(dt, settings));

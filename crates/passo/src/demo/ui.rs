@@ -61,8 +61,8 @@ pub(crate) fn panel(
 ) -> f32 {
     // No fill: the scene's background shows through, and the scene is
     // clipped to the right of the panel (`DrawList::clip`). On a software
-    // adapter filling the panel's 260 000 pixels again took 7 of the 17 ms
-    // of a frame at 1280 × 800 (BENCHMARKS.md, Off-screen rendering).
+    // adapter filling the panel's pixels again cost a large share of a
+    // frame (BENCHMARKS.md, Off-screen rendering, has the timing).
     let frame = egui::Frame::side_top_panel(ui.style()).fill(Color32::TRANSPARENT);
     // What lies behind the panel, told to egui without painting it, so the
     // scroll area fades its edges into the scene's background.
