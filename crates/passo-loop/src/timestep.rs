@@ -425,6 +425,7 @@ impl FixedTimestep {
 }
 
 fn step_from_hz(hz: f64) -> Result<Duration, LoopError> {
+    // (A rate of zero would also fail the step's check below.)
     if !(hz.is_finite() && hz > 0.0 && hz <= 1e9) {
         return Err(LoopError::InvalidRate(hz));
     }
@@ -708,5 +709,76 @@ mod tests {
         let frame = t.advance(Duration::MAX);
         assert_eq!(frame.ticks, DEFAULT_MAX_TICKS_PER_FRAME);
         assert!(t.remainder() < MS);
+    }
+
+    #[test]
+    fn the_settings_read_back_as_they_were_set() {
+        let mut t = FixedTimestep::new(20 * MS);
+        assert_eq!(t.hz(), 50.0);
+        assert_eq!(t.max_frame_time(), DEFAULT_MAX_FRAME_TIME);
+        assert_eq!(t.max_ticks_per_frame(), DEFAULT_MAX_TICKS_PER_FRAME);
+        assert_eq!(t.time_scale(), 1.0);
+        assert!(!t.is_paused());
+        t.set_max_frame_time(100 * MS);
+        t.set_max_ticks_per_frame(3);
+        t.set_time_scale(0.5).unwrap();
+        t.pause();
+        assert_eq!(t.max_frame_time(), 100 * MS);
+        assert_eq!(t.max_ticks_per_frame(), 3);
+        assert_eq!(t.time_scale(), 0.5);
+        assert!(t.is_paused());
+        t.resume();
+        assert!(!t.is_paused());
+        // 60 Hz rounds to 16 666 667 ns: 59.9999988 ticks a second.
+        let sixty = FixedTimestep::from_hz(60.0).unwrap();
+        assert!((sixty.hz() - 59.999_998_8).abs() < 1e-9, "{}", sixty.hz());
+    }
+
+    #[test]
+    fn half_a_step_left_over_is_an_alpha_of_one_half_until_the_remainder_is_reset() {
+        let mut t = FixedTimestep::new(10 * MS);
+        assert_eq!(t.last_frame(), None);
+        let frame = t.advance(25 * MS);
+        assert_eq!((frame.ticks, t.alpha()), (2, 0.5));
+        assert_eq!(t.last_frame(), Some(frame));
+        t.reset_accumulator();
+        assert_eq!((t.remainder(), t.alpha()), (Duration::ZERO, 0.0));
+    }
+
+    #[test]
+    fn advance_ticks_counts_the_ticks_and_leaves_the_time_alone() {
+        let mut t = FixedTimestep::new(10 * MS);
+        t.advance(15 * MS);
+        let frame = t.advance_ticks(5);
+        assert_eq!((frame.first_tick, frame.ticks), (1, 5));
+        assert_eq!(t.tick(), 6);
+        assert_eq!(t.remainder(), 5 * MS);
+        assert_eq!(t.last_frame(), Some(frame));
+    }
+
+    #[test]
+    fn a_time_scale_out_of_range_read_from_outside_is_refused() {
+        let mut t = FixedTimestep::new(10 * MS);
+        assert_eq!(t.validate(), Ok(()));
+        for bad in [MAX_TIME_SCALE * 2.0, -1.0, f64::NAN, f64::INFINITY] {
+            t.time_scale = bad;
+            assert!(t.validate().is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn the_slowest_rate_is_one_tick_an_hour() {
+        let t = FixedTimestep::from_hz(1.0 / 3600.0).unwrap();
+        assert_eq!(t.step(), MAX_STEP);
+        assert!(FixedTimestep::from_hz(1.0 / 3601.0).is_err());
+    }
+
+    #[test]
+    fn a_remainder_one_ns_short_of_a_step_is_the_largest_alpha_below_one() {
+        // (1 s - 1 ns) / 1 s rounds to 1.0 in f32: kept below it.
+        let mut t = FixedTimestep::new(Duration::from_secs(1));
+        t.set_max_frame_time(Duration::from_secs(2));
+        t.advance(Duration::from_secs(1) - ns(1));
+        assert_eq!(t.alpha(), f32::from_bits(1.0f32.to_bits() - 1));
     }
 }
