@@ -273,6 +273,7 @@ impl World {
         }
         let mut still = 0;
         for m in &mut self.dynamic.meta {
+            // (`>=` would do the same: a zero stays zero.)
             if m.drop_through > 0.0 {
                 m.drop_through = (m.drop_through - dt).max(0.0);
                 still += usize::from(m.drop_through > 0.0);
@@ -580,5 +581,30 @@ mod tests {
                 Stage::SpeedLimits
             ]
         );
+    }
+
+    /// Once the step count stops at `u64::MAX`, each step still counts as
+    /// a change for queries: a moving body is found where it is now.
+    #[test]
+    fn queries_follow_a_body_after_the_step_count_stops() {
+        let mut world = World::new(WorldSettings {
+            forces: ForceModels::none(),
+            ..Default::default()
+        })
+        .unwrap();
+        let def = BodyDef {
+            velocity: Vec2::new(60.0, 0.0),
+            shape: Some(crate::Shape::circle(0.1)),
+            ..Default::default()
+        };
+        let id = world.add_body(def).unwrap();
+        world.stats.steps = u64::MAX - 2;
+        for _ in 0..3 {
+            world.step(1.0 / 60.0);
+            let x = world.body(id).unwrap().position.x;
+            let here = crate::Aabb::from_centre(Vec2::new(x, 0.0), Vec2::splat(0.2));
+            assert_eq!(world.query_aabb(here), [id], "at x = {x}");
+        }
+        assert_eq!(world.stats.steps, u64::MAX);
     }
 }
