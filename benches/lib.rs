@@ -6,6 +6,19 @@ use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyKind, Shape, World};
 use std::time::Instant;
 
+#[cfg(feature = "box2d")]
+pub mod box2d;
+pub mod stability;
+
+/// The density that gives a body its Passo mass (1 for immovable ones), for
+/// peers that take densities.
+pub fn density_of(b: &passo_physics::Body) -> f32 {
+    match (b.kind, b.shape) {
+        (BodyKind::Dynamic, Some(shape)) => b.mass / shape.area(),
+        _ => 1.0,
+    }
+}
+
 /// Radius of a rain circle, metres.
 pub const RAIN_RADIUS: f32 = 0.1;
 /// Mass of a rain circle, kilograms.
