@@ -478,3 +478,35 @@ fn a_fast_body_crossing_the_path_of_a_moving_sensor_is_seen() {
     let (began, ended, listed) = sensor_events(&mut w, pair, 3);
     assert_eq!((began, ended, listed), (vec![0], vec![0], false));
 }
+
+#[test]
+fn a_contact_between_two_moving_bodies_names_the_lower_id_first() {
+    // The same two boxes, added in both orders: the contact's `a` is the
+    // lower id and its normal points from `a` to `b`, whatever the order.
+    for lower_on_top in [false, true] {
+        let mut world = World::default();
+        world
+            .add_body(BodyDef::new_static(
+                Vec2::new(0.0, -0.5),
+                Shape::rect(10.0, 1.0),
+            ))
+            .unwrap();
+        let bottom_def = BodyDef::new_dynamic(Vec2::new(0.0, 0.5), Shape::rect(1.0, 1.0));
+        let top_def = BodyDef::new_dynamic(Vec2::new(0.0, 1.5), Shape::rect(1.0, 1.0));
+        let (bottom, top) = if lower_on_top {
+            let top = world.add_body(top_def).unwrap();
+            (world.add_body(bottom_def).unwrap(), top)
+        } else {
+            let bottom = world.add_body(bottom_def).unwrap();
+            (bottom, world.add_body(top_def).unwrap())
+        };
+        world.step(1.0 / 60.0);
+        let c = world
+            .contacts()
+            .find(|c| [c.a, c.b] == [bottom, top] || [c.a, c.b] == [top, bottom])
+            .expect("the boxes touch");
+        assert!(c.a.index() < c.b.index(), "{c:?}");
+        let up = if c.a == bottom { 1.0 } else { -1.0 };
+        assert_eq!(c.normal, Vec2::new(0.0, up), "{c:?}");
+    }
+}

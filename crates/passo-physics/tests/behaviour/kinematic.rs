@@ -225,12 +225,43 @@ fn kinematic_bodies_meet_neither_static_nor_kinematic_ones() {
             ..Default::default()
         })
         .unwrap();
-    for _ in 0..360 {
+    // They pass through each other and through the wall, with no contact
+    // at any tick (they overlap from 1 s to 5 s).
+    for tick in 0..360 {
         world.step(DT);
+        let touching = |id| world.contacts().any(|c| c.a == id || c.b == id);
+        assert!(!touching(a) && !touching(b), "tick {tick}");
     }
     assert!((pos(&world, a).x - 3.0).abs() < 1e-3);
     assert!((pos(&world, b).x + 3.0).abs() < 1e-3);
-    assert!(world.contacts().all(|c| c.a != a && c.b != a));
+}
+
+#[test]
+fn a_kinematic_sensor_sees_a_kinematic_body_pass() {
+    let mut world = World::default();
+    let sensor = world
+        .add_body(
+            BodyDef::new_kinematic(Vec2::new(-3.0, 0.0), Shape::rect(1.0, 1.0), Vec2::X)
+                .as_sensor(),
+        )
+        .unwrap();
+    let k = platform(&mut world, Vec2::new(3.0, 0.0), Vec2::new(-1.0, 0.0));
+    // A dynamic body far away, so the contact stage runs.
+    let far = BodyDef::new_dynamic(Vec2::new(100.0, 0.0), Shape::circle(0.5));
+    world.add_body(far).unwrap();
+    let mut seen = 0;
+    for _ in 0..360 {
+        world.step(DT);
+        seen += usize::from(
+            world
+                .sensor_overlaps()
+                .iter()
+                .any(|p| (p.sensor, p.visitor) == (sensor, k)),
+        );
+    }
+    // Their 1 m and 4 m boxes overlap while 2.5 m or less apart, closing
+    // at 2 m/s: 2.5 s, 150 ticks.
+    assert!((148..=152).contains(&seen), "{seen} ticks");
 }
 
 #[test]
