@@ -622,3 +622,37 @@ fn a_tmj_tileset_listing_its_tiles_out_of_order_gives_each_cell_its_tile() {
     // Id 1 is not listed: a plain solid tile.
     assert_eq!(kind(3), TileKind::SOLID);
 }
+
+#[test]
+fn a_tmj_is_as_strict_about_numbers_as_a_tmx() {
+    let map = |width: &str, firstgid: &str, cell: &str| {
+        format!(
+            r#"{{"orientation": "orthogonal", "width": {width}, "height": 1, "tilewidth": 16, "tileheight": 16,
+            "tilesets": [{{"firstgid": {firstgid}, "tilecount": 1, "tiles": []}}],
+            "layers": [{{"type": "tilelayer", "name": "solid", "data": [1, {cell}]}}]}}"#
+        )
+    };
+    let load = |name: &str, text: &str| level_ref(name).load(&map_file(name, text));
+    // A well-formed map loads: 2 cells, both solid.
+    assert!(load("good.tmj", &map("2", "1", "1")).is_ok());
+    // Tile data that is not a tile id is refused, naming the cell.
+    for cell in ["-1", "2.5", "\"x\"", "null", "true", "4294967296"] {
+        let err = load("cell.tmj", &map("2", "1", cell))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("cell.tmj") && err.contains("cell 1") && err.contains(cell),
+            "{cell}: {err}"
+        );
+    }
+    for firstgid in ["0", "-1", "1.5", "\"1\""] {
+        let err = load("gid.tmj", &map("2", firstgid, "1"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("firstgid"), "{firstgid}: {err}");
+    }
+    let err = load("wide.tmj", &map("2.5", "1", "1"))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("`width` must be a whole number"), "{err}");
+}

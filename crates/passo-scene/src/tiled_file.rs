@@ -256,10 +256,12 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneE
     {
         return Err(fail("must be orthogonal and finite".into()));
     }
+    // Sizes and ids are whole numbers, as Tiled writes them and as the
+    // `.tmx` reader requires: 1.5 is refused, not read as 1.
     let dimension = |key: &str| {
         number(&json, key)
-            .filter(|n| *n >= 1.0 && *n <= 65_536.0)
-            .ok_or_else(|| fail(format!("`{key}` must be a number in [1, 65536]")))
+            .filter(|n| *n >= 1.0 && *n <= 65_536.0 && n.fract() == 0.0)
+            .ok_or_else(|| fail(format!("`{key}` must be a whole number in [1, 65536]")))
     };
     let mut raw = RawMap {
         width: dimension("width")? as u32,
@@ -282,7 +284,17 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneE
         .into_iter()
         .flatten()
     {
-        let first = number(set, "firstgid").unwrap_or(1.0) as u32;
+        let first = match set.get("firstgid") {
+            None => 1,
+            Some(v) => v
+                .as_u64()
+                .filter(|&n| (1..=u64::from(u32::MAX)).contains(&n))
+                .ok_or_else(|| {
+                    fail(format!(
+                        "a tileset's `firstgid` must be a whole number from 1, not {v}"
+                    ))
+                })? as u32,
+        };
         let set = match set.get("source").and_then(Json::as_str) {
             Some(source) => read(&path.parent().unwrap_or(Path::new("")).join(source))?,
             None => set.clone(),
@@ -359,11 +371,22 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneE
                         raw.height
                     )));
                 }
-                // The top bits of a global id are flip flags.
+                // Each cell is a global tile id, a whole number from 0 (empty)
+                // to 2^32 - 1, as the `.tmx` reader requires; anything else
+                // is refused rather than read as an empty cell. The top bits
+                // of an id are flip flags.
+                let mut gids = Vec::with_capacity(data.len());
+                for (k, v) in data.iter().enumerate() {
+                    let gid = v.as_u64().filter(|&n| n <= u64::from(u32::MAX)).ok_or_else(|| {
+                        fail(format!(
+                            "layer `{name}`: cell {k} holds {v}: a tile id is a whole number from 0"
+                        ))
+                    })?;
+                    gids.push(gid as u32 & 0x1FFF_FFFF);
+                }
                 let mut palette = Palette::new();
-                let cells = data
-                    .iter()
-                    .map(|v| v.as_u64().unwrap_or(0) as u32 & 0x1FFF_FFFF)
+                let cells = gids
+                    .into_iter()
                     .map(|gid| {
                         (gid != 0).then(|| {
                             let read = || tile_of(gid).unwrap_or_default();

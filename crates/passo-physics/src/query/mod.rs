@@ -287,7 +287,11 @@ impl World {
     /// The closest shaped body along the ray from `origin` in `direction`
     /// (any length but zero) within `max_distance` metres; on equal
     /// distances the lower id. A ray starting inside a shape hits it at
-    /// distance 0. Returns `None` for a zero or non-finite direction.
+    /// distance 0. Returns `None` for a zero or non-finite direction, and
+    /// for an origin that is not finite or lies farther from the world's
+    /// origin than any body may ([`MAX_COORDINATE`] along either axis).
+    ///
+    /// [`MAX_COORDINATE`]: crate::constants::MAX_COORDINATE
     pub fn ray_cast(&self, origin: Vec2, direction: Vec2, max_distance: f32) -> Option<RayHit> {
         self.ray_cast_with(origin, direction, max_distance, &QueryFilter::default())
     }
@@ -303,7 +307,8 @@ impl World {
         filter: &QueryFilter,
     ) -> Option<RayHit> {
         let dir = crate::body::def::unit_direction(direction)?;
-        if !origin.is_finite() || max_distance.is_nan() || max_distance < 0.0 {
+        let origin = crate::error::position("ray origin", origin).ok()?;
+        if max_distance.is_nan() || max_distance < 0.0 {
             return None;
         }
         let mut best: Option<RayHit> = None;
@@ -336,7 +341,10 @@ impl World {
     /// the body's normal there. Exact (closed-form times of impact). A shape
     /// that starts overlapping a body meets it at fraction 0; one that only
     /// grazes a body (touches without overlapping) does not meet it. Returns
-    /// `None` for a non-finite start or translation.
+    /// `None` for a start or an end (`start + translation`) that is not
+    /// finite or lies farther from the world's origin than any body may
+    /// ([`MAX_COORDINATE`](crate::constants::MAX_COORDINATE) along either
+    /// axis), and for an invalid shape.
     pub fn cast_shape(
         &self,
         shape: &Shape,
@@ -344,7 +352,8 @@ impl World {
         translation: Vec2,
         filter: &QueryFilter,
     ) -> Option<ShapeHit> {
-        if !(start.is_finite() && translation.is_finite()) || shape.validate().is_err() {
+        let within = |p| crate::error::position("cast", p).is_ok();
+        if !(within(start) && within(start + translation)) || shape.validate().is_err() {
             return None;
         }
         let half = shape.half_extents();

@@ -373,3 +373,42 @@ fn a_ray_from_afar_hits_a_small_circle_exactly_with_a_unit_normal() {
             .is_none()
     );
 }
+
+/// A ray or a cast starting (or, for a cast, ending) where no body may be
+/// gives no hit: a ray from (3.4e38, 3.4e38) toward a body once reported a
+/// hit at an infinite distance and point.
+#[test]
+fn queries_from_beyond_the_worlds_limits_give_no_hit() {
+    use passo_physics::constants::MAX_COORDINATE;
+    let mut world = World::default();
+    // A wall covering the whole diagonal the rays cross.
+    let wall = BodyDef::new_static(Vec2::ZERO, Shape::rect(1.0e6, 1.0e6));
+    world.add_body(wall).unwrap();
+    let toward = Vec2::new(-1.0, -1.0);
+    for far in [3.4e38f32, 1.0e20, MAX_COORDINATE * 1.01] {
+        let origin = Vec2::splat(far);
+        assert_eq!(world.ray_cast(origin, toward, f32::INFINITY), None, "{far}");
+        let filter = QueryFilter::default();
+        let circle = Shape::circle(0.5);
+        assert!(
+            world
+                .cast_shape(&circle, origin, -origin, &filter)
+                .is_none(),
+            "{far}"
+        );
+        // From inside the limits to beyond them.
+        assert!(
+            world
+                .cast_shape(&circle, Vec2::ZERO, origin, &filter)
+                .is_none(),
+            "{far}"
+        );
+    }
+    // At the limit itself, the same ray hits the wall at a finite point.
+    let origin = Vec2::splat(MAX_COORDINATE);
+    let hit = world
+        .ray_cast(origin, toward, f32::INFINITY)
+        .expect("a hit");
+    assert!(hit.distance.is_finite() && hit.point.is_finite(), "{hit:?}");
+    assert!((hit.point - Vec2::splat(5.0e5)).length() < 1.0, "{hit:?}");
+}
