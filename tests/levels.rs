@@ -20,6 +20,7 @@ fn level_ref(file: &str) -> TileMapRef {
         origin: Vec2::ZERO,
         kind: BodyKind::Static,
         path: None,
+        root: None,
     }
 }
 
@@ -655,4 +656,53 @@ fn a_tmj_is_as_strict_about_numbers_as_a_tmx() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("`width` must be a whole number"), "{err}");
+}
+
+/// A map reads only regular files inside its own folder, or inside the
+/// folder its scene names as `root`: a map naming `../../…`, `/dev/zero` or
+/// a pipe was opened, and a pipe blocked the load.
+#[test]
+fn a_map_reads_only_regular_files_inside_its_folder() {
+    let set = r#"<?xml version="1.0"?><tileset name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1"/>"#;
+    // levels/ holds the maps; shared/ beside it a tileset.
+    let scene = map_file("scene.ron", "");
+    let dir = std::path::Path::new(&scene).parent().unwrap().to_owned();
+    for sub in ["levels", "shared"] {
+        std::fs::create_dir_all(dir.join(sub)).unwrap();
+    }
+    std::fs::write(dir.join("shared/set.tsx"), set).unwrap();
+    std::fs::write(dir.join("levels/set.tsx"), set).unwrap();
+    let fifo = dir.join("levels/pipe.tsx");
+    let _ = std::fs::remove_file(&fifo);
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    let naming = |name: &str, source: &str| {
+        let map = tmx_4x2_naming(&format!(r#"<tileset firstgid="1" source="{source}"/>"#));
+        std::fs::write(dir.join("levels").join(name), map).unwrap();
+        format!("levels/{name}")
+    };
+    // Beside the map: read.
+    let file = naming("inside.tmx", "set.tsx");
+    assert!(level_ref(&file).load(&scene).is_ok());
+    // Outside its folder, a device, a pipe: refused, naming what and why.
+    let cases = [
+        ("up.tmx", "../shared/set.tsx", "outside the map's folder"),
+        (
+            "far.tmx",
+            "../../../../../../../etc/hostname",
+            "outside the map's folder",
+        ),
+        ("zero.tmx", "/dev/zero", "not a regular file"),
+        ("pipe.tmx", "pipe.tsx", "not a regular file"),
+    ];
+    for (name, source, why) in cases {
+        let file = naming(name, source);
+        let err = level_ref(&file).load(&scene).unwrap_err().to_string();
+        assert!(err.contains(name) && err.contains(why), "{source}: {err}");
+    }
+    // A scene that names their common folder as the root reads ../shared.
+    let file = naming("up.tmx", "../shared/set.tsx");
+    let mut r = level_ref(&file);
+    r.root = Some(".".into());
+    assert!(r.load(&scene).is_ok(), "{:?}", r.load(&scene));
 }

@@ -70,9 +70,13 @@ impl TileMapRef {
         };
         let path = beside(scene, file);
         let shown = path.display().to_string();
+        let root = match &self.root {
+            Some(root) => beside(scene, root),
+            None => path.parent().unwrap_or(Path::new("")).to_path_buf(),
+        };
         let raw = match path.extension().and_then(|e| e.to_str()) {
-            Some("tmj") | Some("json") => read_tmj(&path, &self.layer)?,
-            _ => read_tmx(&path, &self.layer)?,
+            Some("tmj") | Some("json") => read_tmj(&path, &self.layer, &root)?,
+            _ => read_tmx(&path, &self.layer, &root)?,
         };
         raw.into_level(self, &shown)
     }

@@ -43,19 +43,50 @@ pub const MAX_JSON_VALUES: u64 = passo_physics::MAX_TILE_CELLS as u64 + (1 << 20
 pub(crate) struct MapBudget {
     bytes: std::cell::Cell<u64>,
     values: std::cell::Cell<u64>,
+    /// The folder every file must lie in, its links resolved (`None`: it
+    /// does not exist, and no file can be read).
+    root: Option<std::path::PathBuf>,
 }
 
 impl MapBudget {
-    pub(crate) fn new() -> Self {
+    /// A budget for a map whose files must lie in `root`.
+    pub(crate) fn new(root: &Path) -> Self {
+        let root = if root.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            root
+        };
         Self {
             bytes: std::cell::Cell::new(MAX_MAP_BYTES),
             values: std::cell::Cell::new(MAX_JSON_VALUES),
+            root: root.canonicalize().ok(),
+        }
+    }
+
+    /// Checks that `path` is a regular file inside the root, before it is
+    /// opened: opening a pipe would block, and a device or a file elsewhere
+    /// is none of a map's business.
+    fn check_place(&self, path: &Path) -> std::io::Result<()> {
+        let refused = |why: String| std::io::Error::new(std::io::ErrorKind::PermissionDenied, why);
+        if !std::fs::metadata(path)?.is_file() {
+            return Err(refused("is not a regular file".into()));
+        }
+        let real = path.canonicalize()?;
+        match &self.root {
+            Some(root) if real.starts_with(root) => Ok(()),
+            Some(root) => Err(refused(format!(
+                "lies outside the map's folder {} (a scene's `root` names another)",
+                root.display()
+            ))),
+            None => Err(refused("the map's folder does not exist".into())),
         }
     }
 
     /// Reads `path` whole out of what is left of the budget's bytes (and
-    /// at most [`MAX_FILE_BYTES`]).
+    /// at most [`MAX_FILE_BYTES`]), if it is a regular file inside the root.
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+        self.check_place(path)
+            .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
         let left = self.bytes.get();
         let bytes = read_at_most(path, left.min(MAX_FILE_BYTES)).map_err(|e| {
             if e.kind() == std::io::ErrorKind::InvalidData && left < MAX_FILE_BYTES {

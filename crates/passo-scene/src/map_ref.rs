@@ -33,6 +33,13 @@ pub struct TileMapRef {
     /// A `Kinematic` map's back-and-forth path, as a body's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path: Option<PlatformPath>,
+    /// The folder, relative to the scene file, that every file a Tiled map
+    /// names (tilesets, templates) must lie in. Default: the map's own
+    /// folder. A map that names a file outside it, or anything but a
+    /// regular file (a device, a pipe), is an error: a level from a
+    /// stranger reads nothing else on the machine.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub root: Option<String>,
 }
 
 fn default_layer() -> String {

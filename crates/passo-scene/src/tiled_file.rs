@@ -82,11 +82,11 @@ impl<K: Ord> Palette<K> {
     }
 }
 
-pub(crate) fn read_tmx(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneError> {
+pub(crate) fn read_tmx(path: &Path, wanted_layer: &str, root: &Path) -> Result<RawMap, SceneError> {
     let shown = path.display().to_string();
     // Every file the map names (tilesets, templates) is read through the
-    // same checks, out of one budget for them all.
-    let budget = crate::limits::MapBudget::new();
+    // same checks, out of one budget for them all, from inside `root` alone.
+    let budget = crate::limits::MapBudget::new(root);
     let map = tiled::Loader::with_reader(|p: &Path| budget.read_tiled_xml(p))
         .load_tmx_map(path)
         .map_err(|e| SceneError::Io {
@@ -226,7 +226,7 @@ fn tmx_properties(properties: &tiled::Properties) -> Properties {
 
 /// Reads a map saved as JSON (`.tmj`): the same model as a `.tmx`, with
 /// tilesets embedded or in `.tsj` files beside it.
-pub(crate) fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneError> {
+pub(crate) fn read_tmj(path: &Path, wanted_layer: &str, root: &Path) -> Result<RawMap, SceneError> {
     use serde_json::Value as Json;
     let shown = path.display().to_string();
     let fail = |message: String| SceneError::Invalid {
@@ -234,8 +234,9 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str) -> Result<RawMap, SceneE
         field: "map".into(),
         message,
     };
-    // The map and its tilesets are read out of one budget.
-    let budget = crate::limits::MapBudget::new();
+    // The map and its tilesets are read out of one budget, from inside
+    // `root` alone.
+    let budget = crate::limits::MapBudget::new(root);
     let read = |p: &Path| -> Result<Json, SceneError> {
         let text = budget.read_json(p).map_err(|e| SceneError::Io {
             source_name: p.display().to_string(),
