@@ -9,6 +9,12 @@
 //! as an import of the module that defines it. See the graph with
 //! `cargo test -p passo-tests --test module_cycles -- --nocapture`.
 
+// The walk over a crate's files, shared with passo-physics' own checks.
+#[allow(dead_code)]
+#[path = "../crates/passo-physics/tests/source_scan/mod.rs"]
+mod source_scan;
+
+use source_scan::rust_files;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -26,17 +32,6 @@ fn module_of(src: &Path, file: &Path) -> Module {
         parts.pop();
     }
     parts
-}
-
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
 }
 
 /// The code of a file without comments and without its test module.

@@ -16,7 +16,7 @@
 
 mod source_scan;
 
-use source_scan::strip;
+use source_scan::{rust_files, strip};
 use std::collections::BTreeMap;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -198,18 +198,6 @@ fn against_the_flow(tree: &Tree, from: &Module, to: &Module) -> Option<String> {
             to.join("::")
         )
     })
-}
-
-/// Every `.rs` file under `dir`.
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
 }
 
 #[test]

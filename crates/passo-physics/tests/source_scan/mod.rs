@@ -194,3 +194,15 @@ fn after_attributes(code: &[char], mut i: usize) -> usize {
         i = end;
     }
 }
+
+/// Every `.rs` file under `dir`, depth first.
+pub fn rust_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
