@@ -706,3 +706,85 @@ fn a_map_reads_only_regular_files_inside_its_folder() {
     r.root = Some(".".into());
     assert!(r.load(&scene).is_ok(), "{:?}", r.load(&scene));
 }
+
+/// What the `tiled` crate builds before any check of Passo's could run is
+/// bounded before it gets the file: an infinite map's chunks (one 67
+/// million tiles wide took 5.8 GB), a tileset's tile count (4 294 967 295
+/// aborted the process asking for 1.7 TB), a chunk at x = 2^31 - 1 (an
+/// overflow panic inside the crate) and millions of objects (2.2 GB for
+/// six million `<object/>`, 1.3 GB for eight million `{}` in a `.tmj`).
+#[test]
+fn a_map_cannot_make_the_tiled_crate_build_without_bound() {
+    let csv = r#"<data encoding="csv">1,0,0,1,1,1,1,1</data>"#;
+    let load = |name: &str, text: &str| {
+        level_ref(name)
+            .load(&map_file(name, text))
+            .unwrap_err()
+            .to_string()
+    };
+    let infinite = tmx_4x2(r#"<data encoding="csv"><chunk x="0" y="0" width="4" height="2">1,0,0,1,1,1,1,1</chunk></data>"#)
+        .replace(r#"infinite="0""#, r#"infinite="1""#);
+    let err = load("infinite.tmx", &infinite);
+    assert!(
+        err.contains("infinite.tmx") && err.contains("an infinite map"),
+        "{err}"
+    );
+    let chunk = tmx_4x2(
+        r#"<data encoding="csv"><chunk x="2147483647" y="0" width="2" height="1">1,1</chunk></data>"#,
+    );
+    let err = load("chunk.tmx", &chunk);
+    assert!(err.contains("has a chunk"), "{err}");
+    for (count, image) in [
+        ("4294967295", ""),
+        (
+            "30000000",
+            r#"<image source="t.png" width="16" height="16"/>"#,
+        ),
+        ("65537", ""),
+    ] {
+        let set = format!(
+            r#"<tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="{count}" columns="1">{image}</tileset>"#
+        );
+        let inline = tmx_4x2(csv).replace(
+            r#"<tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="1" columns="1"/>"#,
+            &set,
+        );
+        let err = load("count.tmx", &inline);
+        assert!(
+            err.contains(&format!("a tileset of {count} tiles")),
+            "{count}: {err}"
+        );
+        // The same tileset in its own file.
+        let scene = map_file("count.tsx", &format!(r#"<?xml version="1.0"?>{set}"#));
+        let dir = std::path::Path::new(&scene).parent().unwrap().to_owned();
+        let map = tmx_4x2_naming(r#"<tileset firstgid="1" source="count.tsx"/>"#);
+        std::fs::write(dir.join("external.tmx"), map).unwrap();
+        let err = level_ref("external.tmx")
+            .load(&scene)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("count.tsx") && err.contains(count),
+            "{count}: {err}"
+        );
+    }
+    // The most tiles a tileset may have still loads.
+    let most = tmx_4x2(csv).replace(r#"tilecount="1""#, r#"tilecount="65536""#);
+    assert!(
+        level_ref("most.tmx")
+            .load(&map_file("most.tmx", &most))
+            .is_ok()
+    );
+    // Objects past the bound, in both formats.
+    let many = r#"<object id="1" x="0" y="0"/>"#.repeat(262_145);
+    let err = load("objects.tmx", &tmx_with(&many));
+    assert!(err.contains("more than 262144 objects"), "{err}");
+    let braces = vec!["{}"; 262_145].join(",");
+    let tmj = format!(
+        r#"{{"orientation": "orthogonal", "width": 2, "height": 1, "tilewidth": 16, "tileheight": 16,
+        "tilesets": [], "layers": [{{"type": "tilelayer", "name": "solid", "data": [0, 0]}},
+        {{"type": "objectgroup", "name": "things", "objects": [{braces}]}}]}}"#
+    );
+    let err = load("braces.tmj", &tmj);
+    assert!(err.contains("more than 262144 objects"), "{err}");
+}

@@ -37,8 +37,8 @@ pub use error::SceneError;
 pub use format::{BodySpec, Camera, Colour, Forces, Generator, MAX_BODIES, Material, SceneFile};
 pub use level::Level;
 pub use limits::{
-    MAX_FILE_BYTES, MAX_JSON_VALUES, MAX_MAP_BYTES, MAX_TILE_DATA_BYTES, MAX_XML_DEPTH,
-    read_at_most,
+    MAX_FILE_BYTES, MAX_JSON_VALUES, MAX_MAP_BYTES, MAX_OBJECTS, MAX_TILE_DATA_BYTES,
+    MAX_TILESET_TILES, MAX_XML_DEPTH, read_at_most,
 };
 pub use map_ref::{PlatformPath, TileMapRef};
 pub use save::scene_from_world;

@@ -38,6 +38,18 @@ pub const MAX_MAP_BYTES: u64 = MAX_FILE_BYTES;
 /// or more, so 64 MiB of `{},` (22 million objects) took 4.4 GB.
 pub const MAX_JSON_VALUES: u64 = passo_physics::MAX_TILE_CELLS as u64 + (1 << 20);
 
+/// The tiles a tileset may say it holds (`tilecount`): the `tiled` crate
+/// reserves room for that many before it reads one, so 4 294 967 295 asked
+/// for 1.7 TB and aborted the process, and 30 million with an image 13.5 GB.
+/// 65 536 tiles is a 4096 × 4096 image of 16-pixel tiles.
+pub const MAX_TILESET_TILES: u64 = 1 << 16;
+
+/// The objects (`<object>` elements, or JSON objects `{…}` of a `.tmj` and
+/// its `.tsj` tilesets) a map file may hold. Each is built whole before any
+/// check runs: 6 million `<object/>` in a `.tmx` took 2.2 GB, 8 million
+/// `{}` in a `.tmj` 1.3 GB.
+pub const MAX_OBJECTS: u64 = 1 << 18;
+
 /// What one Tiled map load may still read, all its files together (see
 /// [`MAX_MAP_BYTES`] and [`MAX_JSON_VALUES`]).
 pub(crate) struct MapBudget {
@@ -117,7 +129,8 @@ impl MapBudget {
         let left = self.values.get();
         let values = json_values(text.as_bytes(), left).ok_or_else(|| {
             invalid_data(format!(
-                "takes the map and its tilesets past {MAX_JSON_VALUES} JSON values together"
+                "takes the map and its tilesets past {MAX_JSON_VALUES} JSON values together, \
+                 or holds more than {MAX_OBJECTS} objects"
             ))
         })?;
         self.values.set(left - values);
@@ -130,6 +143,7 @@ impl MapBudget {
 /// element and member; `None` once past `limit`.
 fn json_values(text: &[u8], limit: u64) -> Option<u64> {
     let (mut values, mut in_string, mut escaped) = (1u64, false, false);
+    let mut objects = 0u64;
     for &b in text {
         if in_string {
             match (escaped, b) {
@@ -142,7 +156,9 @@ fn json_values(text: &[u8], limit: u64) -> Option<u64> {
         }
         match b {
             b'"' => in_string = true,
+            b'{' if objects == MAX_OBJECTS => return None,
             b'{' | b'[' | b',' => {
+                objects += u64::from(b == b'{');
                 values += 1;
                 if values > limit {
                     return None;
@@ -276,6 +292,7 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
     // Its text since the last tag.
     let mut run: Vec<u8> = Vec::new();
     let mut expanded = 0u64;
+    let mut objects = 0u64;
     let mut flush = |run: &mut Vec<u8>, data: &mut Option<Data>| {
         if let Some(Data {
             encoding: Some(e),
@@ -330,6 +347,7 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
             if element == b"layer" {
                 cells = layer_cells(tag)?;
             }
+            check_element(element, tag, &mut objects)?;
             if let Some(d) = &mut data {
                 d.chunked |= element == b"chunk";
             }
@@ -355,6 +373,38 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
 }
 
 /// The cells of a `<layer ...>` tag, `width` × `height`, if it gives both.
+/// The checks of one start tag that must come before the `tiled` crate
+/// builds what it names: an infinite map (whose chunks it builds, however
+/// wide, before Passo's check of the map could refuse it; a chunk at x =
+/// 2^31 - 1 also overflowed inside it), a tileset's tile count, and the
+/// objects counted so far.
+fn check_element(element: &[u8], tag: &[u8], objects: &mut u64) -> Result<(), String> {
+    let number = |key: &[u8]| -> Result<Option<u64>, String> {
+        let value = attribute(tag, key)?;
+        Ok(value.and_then(|v| std::str::from_utf8(&v).ok()?.trim().parse().ok()))
+    };
+    match element {
+        b"map" if number(b"infinite")?.is_some_and(|n| n != 0) => {
+            Err("is an infinite map: Passo loads maps of a fixed size".into())
+        }
+        b"chunk" => Err("has a chunk, which only an infinite map may hold".into()),
+        b"tileset" => match number(b"tilecount")? {
+            Some(n) if n > MAX_TILESET_TILES => Err(format!(
+                "has a tileset of {n} tiles, more than {MAX_TILESET_TILES}"
+            )),
+            _ => Ok(()),
+        },
+        b"object" => {
+            *objects += 1;
+            if *objects > MAX_OBJECTS {
+                return Err(format!("holds more than {MAX_OBJECTS} objects"));
+            }
+            Ok(())
+        }
+        _ => Ok(()),
+    }
+}
+
 fn layer_cells(tag: &[u8]) -> Result<Option<u64>, String> {
     let number = |key: &[u8]| -> Result<Option<u64>, String> {
         let value = attribute(tag, key)?;
@@ -575,11 +625,11 @@ mod tests {
     }
 
     #[test]
-    fn the_budget_is_the_whole_files_in_text_chunks_and_cdata() {
+    fn the_budget_is_the_whole_files_in_text_and_cdata() {
         let mib = zeros(1);
         let budget = 2 << 20;
         let two = format!(
-            r#"<map><layer><data encoding="base64" compression="zlib">{mib}</data></layer><layer><data compression="zlib" encoding="base64"><chunk>{mib}</chunk></data></layer></map>"#
+            r#"<map><layer><data encoding="base64" compression="zlib">{mib}</data></layer><layer><data compression="zlib" encoding="base64">{mib}</data></layer></map>"#
         );
         assert_eq!(scan(two.as_bytes(), budget), Ok(()));
         let cdata = format!(
@@ -649,5 +699,21 @@ mod tests {
         assert_eq!(scan(escaped.as_bytes(), budget), Ok(()));
         assert!(unescape(b"&bogus;").is_err() && unescape(b"a & b").is_err());
         assert_eq!(unescape(b"&lt;&amp;&#x41;&#66;"), Ok(b"<&AB".to_vec()));
+    }
+
+    #[test]
+    fn infinite_maps_chunks_huge_tilesets_and_too_many_objects_are_refused() {
+        assert!(check_xml(br#"<map infinite="1"></map>"#).is_err());
+        assert_eq!(check_xml(br#"<map infinite="0"></map>"#), Ok(()));
+        assert!(check_xml(br#"<data encoding="csv"><chunk x="0">1</chunk></data>"#).is_err());
+        let set = |n: u64| format!(r#"<tileset tilecount="{n}"/>"#);
+        assert_eq!(check_xml(set(MAX_TILESET_TILES).as_bytes()), Ok(()));
+        assert!(check_xml(set(MAX_TILESET_TILES + 1).as_bytes()).is_err());
+        let objects = |n: u64| format!("<g>{}</g>", "<object/>".repeat(n as usize));
+        assert_eq!(check_xml(objects(MAX_OBJECTS).as_bytes()), Ok(()));
+        assert!(check_xml(objects(MAX_OBJECTS + 1).as_bytes()).is_err());
+        let braces = |n: u64| format!("[{}]", vec!["{}"; n as usize].join(","));
+        assert!(json_values(braces(MAX_OBJECTS).as_bytes(), u64::MAX).is_some());
+        assert!(json_values(braces(MAX_OBJECTS + 1).as_bytes(), u64::MAX).is_none());
     }
 }
