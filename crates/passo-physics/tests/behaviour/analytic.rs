@@ -2,7 +2,7 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{
-    BodyDef, BodyId, ForceForm, ForceModels, Integrator, LinearDrag, QuadraticDrag, Spring,
+    BodyDef, BodyId, ForceForm, ForceModels, Integrator, LinearDrag, QuadraticDrag, Shape, Spring,
     SurfaceFriction, World, WorldSettings,
 };
 
@@ -549,5 +549,63 @@ fn a_speed_limit_moves_a_body_along_its_velocity_with_every_integrator() {
         let b = world.body(hanging).unwrap();
         assert_eq!(b.velocity, Vec2::ZERO, "{integrator:?}");
         assert_eq!(b.position, Vec2::new(0.0, 5.0), "{integrator:?}: it hangs");
+    }
+}
+
+/// Two balls meeting head on in empty space leave with the velocities of
+/// the one-dimensional collision law, for every mass ratio and
+/// restitution swept: `v_a' = (m_a v_a + m_b v_b - m_b e (v_a - v_b)) / M`
+/// and `v_b' = (m_a v_a + m_b v_b + m_a e (v_a - v_b)) / M`. Momentum is
+/// kept exactly; a closing speed under the restitution threshold (1 m/s)
+/// gives no bounce, as `e = 0` would.
+#[test]
+fn balls_meeting_head_on_leave_as_the_collision_law_says() {
+    let no_forces = WorldSettings {
+        forces: ForceModels::none(),
+        ..Default::default()
+    };
+    for (ma, mb) in [(1.0f32, 1.0f32), (1.0, 3.0), (5.0, 1.0)] {
+        for e in [1.0f32, 0.5, 0.0] {
+            for (va, vb) in [(4.0f32, 0.0f32), (3.0, -2.0), (0.6, 0.0)] {
+                let mut world = World::new(no_forces).unwrap();
+                let ball = |world: &mut World, x: f32, v: f32, m: f32| {
+                    let def = BodyDef {
+                        position: Vec2::new(x, 0.0),
+                        velocity: Vec2::new(v, 0.0),
+                        shape: Some(Shape::circle(0.25)),
+                        mass: m,
+                        restitution: e,
+                        ..Default::default()
+                    };
+                    world.add_body(def).unwrap()
+                };
+                let a = ball(&mut world, -1.0, va, ma);
+                let b = ball(&mut world, 0.0, vb, mb);
+                for _ in 0..60 {
+                    world.step(1.0 / 60.0);
+                }
+                let v = |id| world.body(id).unwrap().velocity.x;
+                let e = if va - vb < 1.0 { 0.0 } else { e };
+                let m = ma + mb;
+                let want_a = (ma * va + mb * vb - mb * e * (va - vb)) / m;
+                let want_b = (ma * va + mb * vb + ma * e * (va - vb)) / m;
+                let case = format!("{ma}:{mb} kg, e {e}, {va} and {vb} m/s");
+                assert!(
+                    (v(a) - want_a).abs() < 0.02 * va.abs().max(1.0),
+                    "{case}: a {}, want {want_a}",
+                    v(a)
+                );
+                assert!(
+                    (v(b) - want_b).abs() < 0.02 * va.abs().max(1.0),
+                    "{case}: b {}, want {want_b}",
+                    v(b)
+                );
+                let p = ma * v(a) + mb * v(b);
+                assert!(
+                    (p - (ma * va + mb * vb)).abs() < 1e-4 * m,
+                    "{case}: momentum {p}"
+                );
+            }
+        }
     }
 }
