@@ -361,12 +361,14 @@ fn a_ray_from_afar_hits_a_small_circle_exactly_with_a_unit_normal() {
             assert!((hit.normal - want).length() < 1e-4, "{case}");
         }
     }
-    // From 10^30 m, where the distance squared overflows f32 (the ray
-    // missed), and heading away (no hit).
+    // From the edge of the world (a ray from farther gives no hit: see
+    // `queries_from_beyond_the_worlds_limits_give_no_hit`), and heading
+    // away (no hit).
+    let edge = passo_physics::constants::MAX_COORDINATE;
     let hit = world
-        .ray_cast(Vec2::new(0.0, -1e30), Vec2::Y, f32::INFINITY)
+        .ray_cast(Vec2::new(0.0, -edge), Vec2::Y, f32::INFINITY)
         .unwrap();
-    assert_eq!((hit.distance, hit.normal), (1e30, -Vec2::Y));
+    assert_eq!((hit.distance, hit.normal), (edge - r, -Vec2::Y));
     assert!(
         world
             .ray_cast(Vec2::new(-5.0, 0.0), -Vec2::X, 100.0)
