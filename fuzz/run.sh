@@ -14,6 +14,9 @@ fi
 cargo run --quiet --release --bin seed
 for target in "${targets[@]}"; do
     echo "== $target, ${seconds} s"
+    # Built first, so that a target that does not build fails the run
+    # (set -e and pipefail); the run's own output is filtered below.
+    cargo +nightly fuzz build "$target" 2>&1 | tail -n 1
     cargo +nightly fuzz run "$target" "corpus/$target" -- \
         -max_total_time="$seconds" -rss_limit_mb=1024 -timeout=10 -print_final_stats=1 2>&1 \
         | grep -E '^(stat::number_of_executed_units|stat::peak_rss_mb|==|SUMMARY|Done|.*ERROR)' || true

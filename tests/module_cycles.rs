@@ -1,8 +1,8 @@
 //! No two files of a crate import each other, directly or in a circle: for
 //! every crate of the workspace the graph of `crate::` and `super::` imports
-//! between its files has no cycle. (`passo-physics` is held to more: its
-//! files import only files declared above them in `lib.rs`, see its
-//! `tests/module_graph.rs`.)
+//! between its files has no cycle. (`passo-physics` is held to more: at
+//! every level of its folders a module imports only modules declared
+//! above it, see its `tests/module_graph.rs`.)
 //!
 //! The check reads the sources as text: paths outside comments and outside
 //! `#[cfg(test)]` modules count, and a name a crate root re-exports counts

@@ -100,7 +100,14 @@ impl Tree {
 fn exports(lib: &str) -> BTreeMap<String, Vec<String>> {
     let mut out = BTreeMap::new();
     for statement in strip(lib).split(';') {
-        let Some(path) = statement.trim().strip_prefix("pub use ") else {
+        // Attributes before the `pub use` (`#[doc(hidden)]`) are skipped.
+        let mut statement = statement.trim();
+        while let Some(rest) = statement.strip_prefix("#[") {
+            statement = rest
+                .split_once(']')
+                .map_or("", |(_, after)| after.trim_start());
+        }
+        let Some(path) = statement.strip_prefix("pub use ") else {
             continue;
         };
         let mut paths = Vec::new();

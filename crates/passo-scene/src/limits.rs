@@ -211,11 +211,13 @@ fn invalid_data(message: String) -> std::io::Error {
 /// [`MAX_TILE_DATA_BYTES`]: a scan of its tags (comments, processing
 /// instructions, declarations and quoted attribute values skipped) that
 /// decodes the text of each `<data>` element compressed with zlib or gzip
-/// (its `<chunk>`s included) and stops as soon as the total passes the
-/// limit. It also counts the tiles of each layer's CSV or base64 `<data>`
-/// against the layer's `width` × `height`: the `tiled` crate indexes a
-/// layer by its size and panics on one whose data is shorter. Whether the
-/// rest is a valid map is the parser's business.
+/// and stops as soon as the total passes the limit. It also counts the
+/// tiles of each layer's CSV or base64 `<data>` against the layer's
+/// `width` × `height` (the `tiled` crate indexes a layer by its size and
+/// panics on one whose data is shorter), and refuses infinite maps and
+/// chunks, tilesets of more than [`MAX_TILESET_TILES`] tiles and more than
+/// [`MAX_OBJECTS`] objects (see `check_element`). Whether the rest is a
+/// valid map is the parser's business.
 pub(crate) fn check_xml(bytes: &[u8]) -> Result<(), String> {
     scan(bytes, MAX_TILE_DATA_BYTES)
 }
@@ -228,8 +230,6 @@ struct Data {
     depth: usize,
     /// Tiles read so far.
     tiles: u64,
-    /// Whether it holds `<chunk>`s (an infinite map's: no layer size).
-    chunked: bool,
 }
 
 /// How a `<data>` element writes its tiles.
@@ -328,7 +328,7 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
             flush(&mut run, &mut data)?;
             if data.as_ref().is_some_and(|d| d.depth == depth) {
                 let d = data.take().expect("checked");
-                if let (Some(cells), Some(_), false) = (cells, d.encoding, d.chunked)
+                if let (Some(cells), Some(_)) = (cells, d.encoding)
                     && d.tiles < cells
                 {
                     return Err(format!(
@@ -348,9 +348,6 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
                 cells = layer_cells(tag)?;
             }
             check_element(element, tag, &mut objects)?;
-            if let Some(d) = &mut data {
-                d.chunked |= element == b"chunk";
-            }
             if !tag.ends_with(b"/") {
                 depth += 1;
                 if depth > MAX_XML_DEPTH {
@@ -361,7 +358,6 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
                         encoding: Encoding::of(tag)?,
                         depth,
                         tiles: 0,
-                        chunked: false,
                     });
                 }
             }
@@ -372,17 +368,19 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
     Ok(())
 }
 
-/// The cells of a `<layer ...>` tag, `width` × `height`, if it gives both.
+/// A whole-number attribute of a tag, if it has one that parses.
+fn number_attribute(tag: &[u8], key: &[u8]) -> Result<Option<u64>, String> {
+    let value = attribute(tag, key)?;
+    Ok(value.and_then(|v| std::str::from_utf8(&v).ok()?.trim().parse().ok()))
+}
+
 /// The checks of one start tag that must come before the `tiled` crate
 /// builds what it names: an infinite map (whose chunks it builds, however
 /// wide, before Passo's check of the map could refuse it; a chunk at x =
 /// 2^31 - 1 also overflowed inside it), a tileset's tile count, and the
 /// objects counted so far.
 fn check_element(element: &[u8], tag: &[u8], objects: &mut u64) -> Result<(), String> {
-    let number = |key: &[u8]| -> Result<Option<u64>, String> {
-        let value = attribute(tag, key)?;
-        Ok(value.and_then(|v| std::str::from_utf8(&v).ok()?.trim().parse().ok()))
-    };
+    let number = |key: &[u8]| number_attribute(tag, key);
     match element {
         b"map" if number(b"infinite")?.is_some_and(|n| n != 0) => {
             Err("is an infinite map: Passo loads maps of a fixed size".into())
@@ -405,11 +403,9 @@ fn check_element(element: &[u8], tag: &[u8], objects: &mut u64) -> Result<(), St
     }
 }
 
+/// The cells of a `<layer ...>` tag, `width` × `height`, if it gives both.
 fn layer_cells(tag: &[u8]) -> Result<Option<u64>, String> {
-    let number = |key: &[u8]| -> Result<Option<u64>, String> {
-        let value = attribute(tag, key)?;
-        Ok(value.and_then(|v| std::str::from_utf8(&v).ok()?.trim().parse().ok()))
-    };
+    let number = |key: &[u8]| number_attribute(tag, key);
     Ok(match (number(b"width")?, number(b"height")?) {
         (Some(w), Some(h)) => Some(u64::saturating_mul(w, h)),
         _ => None,

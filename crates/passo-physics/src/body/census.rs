@@ -9,7 +9,9 @@ use crate::body::store::{BodyMeta, DynamicBodies, StaticBodies};
 ///
 /// Every change goes through [`add`](Self::add) and
 /// [`remove`](Self::remove) of one body's [`share`](Self::share): an edit
-/// removes the body's share before it and adds the share after it.
+/// removes the body's share before it and adds the share after it. (The
+/// drop-through countdown, which walks every body, recounts `dropping`
+/// itself.)
 /// [`recount`](Self::recount) counts from the bodies themselves; the world
 /// checks the two agree after every step in debug builds.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

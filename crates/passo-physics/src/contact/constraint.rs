@@ -125,7 +125,7 @@ impl ContactInfo {
     }
 
     /// The pair's order key, as the narrow phase's pairs carry it (see
-    /// `bodies::pair_order`).
+    /// `body::store::pair_order`).
     #[inline(always)]
     pub(crate) fn order(&self) -> u64 {
         crate::body::store::pair_order(self.id_a.index, self.id_b.index)

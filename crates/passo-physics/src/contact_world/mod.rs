@@ -23,8 +23,9 @@ use crate::switches::TestSwitches;
 use crate::{BodyId, ContactEvents, ContactSettings, SensorPair};
 use glam::Vec2;
 
-/// What the contact steps' shortcuts saved, counted since the world was
-/// made (Box2D publishes the like as `b2Counters`). Each is a count of
+/// What the contact steps' shortcuts saved, counted since the world's
+/// contact state was made: its first contact step, or a restored snapshot
+/// (Box2D publishes the like as `b2Counters`). Each is a count of
 /// steps; the difference of two readings covers the steps between them.
 /// Read them with [`World::counters`](crate::World::counters). They are
 /// diagnostics, not state: a snapshot does not carry them.

@@ -299,7 +299,7 @@ fn scatter(k: &Block, bodies: &mut Bodies<'_>, v: &Lanes, p: &Lanes) {
 }
 
 /// Warm start and push carry of one block (see
-/// [`solver::begin_substep`](crate::solver::scalar::begin_substep)).
+/// [`scalar::begin_substep`](crate::solver::scalar::begin_substep)).
 pub(crate) fn warm_start(k: &mut Block, bodies: &mut Bodies<'_>, warm: bool, carry: bool) {
     let carries = carry && k.carry.iter().any(|&c| c);
     if !carries {

@@ -86,12 +86,15 @@ struct StageList {
 }
 
 impl StageList {
+    /// No stage.
+    const EMPTY: Self = Self {
+        stages: [ContactStage::Solve; 11],
+        len: 0,
+    };
+
     /// The stages whose condition holds, in order.
     fn new(steps: [(bool, ContactStage); 11]) -> Self {
-        let mut list = Self {
-            stages: [ContactStage::Solve; 11],
-            len: 0,
-        };
+        let mut list = Self::EMPTY;
         for (on, stage) in steps {
             if on {
                 list.stages[list.len] = stage;
@@ -149,7 +152,7 @@ struct SubstepPlan {
 impl SubstepPlan {
     /// The plan of a step of `dt` with `settings`. `any_asleep`: some body
     /// sleeps. `carry_push`: a deep pile carries its push from substep to
-    /// substep (see `Piles::find`).
+    /// substep (see `DeepPiles::find`; only with a warm start).
     fn new(
         world: &World,
         settings: &ContactSettings,
@@ -158,8 +161,9 @@ impl SubstepPlan {
         carry_push: bool,
     ) -> Self {
         let all_asleep = any_asleep && world.dynamic.sleep.iter().all(|s| s.is_asleep());
+        let substeps = if all_asleep { 0 } else { settings.substeps };
         let mut plan = Self {
-            substeps: if all_asleep { 0 } else { settings.substeps },
+            substeps,
             kernel: world.kernel(None),
             hold_sleepers: any_asleep,
             hold_kinematic: !world.dynamic.kinematic.is_empty(),
@@ -174,14 +178,14 @@ impl SubstepPlan {
                 push_out_speed: settings.push_out_speed,
                 slop: settings.slop,
                 restitution_threshold: settings.restitution_threshold,
-                carry_push: carry_push && settings.warm_starting,
+                carry_push,
             },
             restitution: world.census.bouncy > 0,
             sweep: settings.continuous,
-            replay: false,
-            stages: StageList::new([(false, ContactStage::Solve); 11]),
+            replay: settings.warm_starting && settings.relax_iterations > 0 && substeps > 1,
+            // Filled in from the rest of the plan just below.
+            stages: StageList::EMPTY,
         };
-        plan.replay = settings.warm_starting && settings.relax_iterations > 0 && plan.substeps > 1;
         plan.stages = plan.stage_list();
         plan
     }

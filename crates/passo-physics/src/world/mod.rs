@@ -355,10 +355,8 @@ impl World {
     /// either way; only the time taken differs.
     #[doc(hidden)]
     pub fn set_test_switches(&mut self, switches: TestSwitches) {
+        // The contact step hands them on to its parts as it starts.
         self.switches = switches;
-        if let Some(cw) = &mut self.contacts {
-            cw.set_switches(switches);
-        }
     }
 
     /// Lets large worlds run their per-body stages, broad-phase pair search

@@ -6,9 +6,9 @@
 //! body ever holds a non-finite value, and a snapshot restored into a fresh
 //! world steps to the same hash as the world it came from.
 //!
-//! `cargo test -p passo-tests --test api_fuzz` runs 2 000 sequences; the
+//! `cargo test -p passo-physics --test behaviour api_fuzz` runs 2 000 sequences; the
 //! long run (a million operations) is
-//! `PROPTEST_CASES=40000 cargo test --release -p passo-tests --test api_fuzz`.
+//! `PROPTEST_CASES=40000 cargo test --release -p passo-physics --test behaviour api_fuzz`.
 
 use passo_physics::glam::Vec2;
 use passo_physics::{
