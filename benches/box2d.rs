@@ -55,6 +55,7 @@ pub fn copy(passo: &World, sleep: bool) -> Box2d {
         let def = BodyBuilder::from(foundation.body_def())
             .body_type(kind)
             .position(Position::new(b.position.x, b.position.y))
+            .linear_velocity(BoxVec2::new(b.velocity.x, b.velocity.y))
             .motion_locks(MotionLocks::new(false, false, true))
             .enable_sleep(sleep)
             .build()
@@ -62,8 +63,8 @@ pub fn copy(passo: &World, sleep: bool) -> Box2d {
         let id = world.create_body(def).expect("a body");
         let density = crate::density_of(&b);
         let material = SurfaceMaterial::new()
-            .with_friction(0.6)
-            .and_then(|m| m.with_restitution(0.0))
+            .with_friction(b.friction)
+            .and_then(|m| m.with_restitution(b.restitution))
             .expect("a material");
         let shape_def = ShapeDef::builder()
             .density(density)
