@@ -1,0 +1,99 @@
+//! Tests of `contacts`.
+
+use super::*;
+use crate::{BodyDef, BodyKind, Shape};
+
+/// A world of two boxes on the ground with the settings `tweak` makes.
+fn world(tweak: impl Fn(&mut ContactSettings), kinematic: bool, bouncy: bool) -> World {
+    let mut world = World::default();
+    world
+        .add_body(BodyDef::new_static(Vec2::ZERO, Shape::rect(10.0, 1.0)))
+        .unwrap();
+    for (x, kind) in [(0.0, BodyKind::Dynamic), (2.0, BodyKind::Kinematic)] {
+        let kind = if kinematic { kind } else { BodyKind::Dynamic };
+        let def = BodyDef {
+            kind,
+            position: Vec2::new(x, 1.0),
+            shape: Some(Shape::rect(1.0, 1.0)),
+            restitution: if bouncy { 0.5 } else { 0.0 },
+            ..Default::default()
+        };
+        world.add_body(def).unwrap();
+    }
+    let mut settings = *world.settings();
+    tweak(settings.contacts.as_mut().unwrap());
+    world.set_settings(settings).unwrap();
+    world
+}
+
+/// Every combination of the settings that add or drop stages: the
+/// list keeps the stages' order, splits into the substep's stages on
+/// the arrays, on the solver's copy and after, and holds exactly the
+/// stages whose condition is met.
+#[test]
+fn the_stage_list_holds_what_the_settings_ask_for_in_order() {
+    use ContactStage::*;
+    let order = [
+        IntegrateVelocities,
+        HoldSleepers,
+        HoldKinematic,
+        WarmStart,
+        Solve,
+        IntegratePositions,
+        Relax,
+        SweepFastBodies,
+        Restitution,
+        StoreSeparations,
+        ClampSpeeds,
+    ];
+    let mut seen = std::collections::BTreeSet::new();
+    for case in 0..32u32 {
+        let bit = |k: u32| case & (1 << k) != 0;
+        let (warm, relax, continuous, kinematic, bouncy) = (bit(0), bit(1), bit(2), bit(3), bit(4));
+        let w = world(
+            |c| {
+                c.warm_starting = warm;
+                c.relax_iterations = if relax { 2 } else { 0 };
+                c.continuous = continuous;
+            },
+            kinematic,
+            bouncy,
+        );
+        let stages = w.contact_stages();
+        let rank = |s: &ContactStage| order.iter().position(|o| o == s).unwrap();
+        assert!(
+            stages.windows(2).all(|p| rank(&p[0]) < rank(&p[1])),
+            "{stages:?}"
+        );
+        let expect = |s: ContactStage, on: bool| {
+            assert_eq!(stages.contains(&s), on, "case {case}: {s:?} in {stages:?}");
+        };
+        expect(WarmStart, warm);
+        expect(Relax, relax);
+        expect(SweepFastBodies, continuous);
+        expect(HoldKinematic, kinematic);
+        expect(Restitution, bouncy);
+        for s in [
+            IntegrateVelocities,
+            Solve,
+            IntegratePositions,
+            StoreSeparations,
+        ] {
+            expect(s, true);
+        }
+        let plan = SubstepPlan::new(&w, &w.contact_settings().unwrap(), 1.0, false, false);
+        let (on_bodies, on_copy, after) = plan.stages.parts();
+        assert!(
+            on_bodies
+                .iter()
+                .all(|s| s.in_substep() && !s.on_solver_copy())
+        );
+        assert!(on_copy.iter().all(|s| s.in_substep() && s.on_solver_copy()));
+        assert!(after.iter().all(|s| !s.in_substep()));
+        assert_eq!([on_bodies, on_copy, after].concat(), stages);
+        seen.extend(stages.iter().map(rank));
+    }
+    // Every stage but HoldSleepers (no body asleep here) was listed in
+    // some case (ClampSpeeds by the default minimum-speed snap).
+    assert_eq!(seen.len(), order.len() - 1);
+}
