@@ -521,6 +521,134 @@ mod tests {
         assert_eq!((o.rest, o.escaped), (None, 1), "{o:?}");
     }
 
+    /// Runs the case named `name` in Passo.
+    fn outcome(name: &str) -> Outcome {
+        let case = cases().into_iter().find(|c| c.name == name).unwrap();
+        run(&case, &mut Passo(case.world.clone()))
+    }
+
+    /// A stack of boxes of `masses` (bottom first), with `settings`
+    /// changed by `change`.
+    fn stack_of(masses: &[f32], change: impl Fn(&mut passo_physics::ContactSettings)) -> Case {
+        let mut case = stack("stack", "a stack", 1.0, masses);
+        let mut settings = *case.world.settings();
+        change(settings.contacts.as_mut().unwrap());
+        case.world.set_settings(settings).unwrap();
+        case.seconds = 3.0;
+        case
+    }
+
+    #[test]
+    fn stacks_rest_at_once_at_any_mass_ratio_and_in_either_order() {
+        for ratio in [1.0f32, 1.5, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0] {
+            for n in [2, 3, 5, 10] {
+                let up = growing(1.0, ratio.powf(1.0 / (n - 1) as f32), n);
+                let down: Vec<f32> = up.iter().rev().copied().collect();
+                for masses in [up, down] {
+                    let o = run(
+                        &stack_of(&masses, |_| {}),
+                        &mut Passo(stack_of(&masses, |_| {}).world),
+                    );
+                    let what = format!("{n} boxes, {masses:?}: {o:?}");
+                    assert!(o.rest.is_some_and(|t| t <= 0.5), "{what}");
+                    assert!(o.peak_overlap <= 0.005, "{what}");
+                    assert!(o.energy_gain <= 1e-3, "{what}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_heavy_box_on_a_light_one_stays_on_a_floor_two_centimetres_thin() {
+        for heavy in [10.0, 100.0, 1000.0, 10_000.0] {
+            let mut world = crate::with_sleeping(&World::default(), false);
+            world.set_parallel(false);
+            let floor = BodyDef::new_static(Vec2::new(0.0, -0.01), Shape::rect(20.0, 0.02));
+            world.add_body(floor).unwrap();
+            let light = body(&mut world, Vec2::new(0.0, 0.5), Shape::rect(1.0, 1.0), 1.0);
+            body(
+                &mut world,
+                Vec2::new(0.0, 1.5),
+                Shape::rect(1.0, 1.0),
+                heavy,
+            );
+            for _ in 0..600 {
+                world.step(1.0 / HZ);
+            }
+            let y = world.body(light).unwrap().position.y;
+            assert!(
+                (y - 0.5).abs() < 0.005,
+                "{heavy} kg on 1 kg: the light box at {y}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_suites_stacks_rest_within_half_a_second_without_sinking() {
+        for name in [
+            "stack_30",
+            "mass_up_1.2",
+            "mass_up_1000",
+            "mass_down_1000",
+            "heavy_on_light",
+            "small_5cm",
+            "big_5m",
+        ] {
+            let o = outcome(name);
+            assert!(o.rest.is_some_and(|t| t <= 0.5), "{name}: {o:?}");
+            assert!(o.peak_overlap <= 0.005, "{name}: {o:?}");
+            assert!(o.energy_gain <= 1e-3, "{name}: {o:?}");
+        }
+    }
+
+    #[test]
+    fn a_heavy_ball_dropped_on_a_light_pyramid_stops_without_bouncing() {
+        let o = outcome("ball_on_pyramid");
+        assert!(o.returned.unwrap() <= 0.01, "{o:?}");
+        assert!(o.rest.is_some_and(|t| t <= 1.5), "{o:?}");
+        assert!(o.rest_overlap <= 0.02 && o.escaped == 0, "{o:?}");
+    }
+
+    #[test]
+    fn a_heavy_ball_landing_on_a_bed_of_circles_stops_on_it() {
+        let o = outcome("heavy_on_circles");
+        assert!(o.returned.unwrap() <= 0.01, "{o:?}");
+        assert!(o.rest.is_some_and(|t| t <= 1.0), "{o:?}");
+        assert!(o.peak_overlap <= 0.01 && o.escaped == 0, "{o:?}");
+        assert!(o.energy_gain <= 1e-3, "{o:?}");
+    }
+
+    #[test]
+    fn piles_heaps_and_bins_settle_within_two_and_a_half_seconds_without_sinking() {
+        for name in [
+            "big_among_small",
+            "packed_container",
+            "bouncy_pile",
+            "thrown_into_heap",
+            "plank_over_gap",
+        ] {
+            let o = outcome(name);
+            assert!(o.rest.is_some_and(|t| t <= 2.5), "{name}: {o:?}");
+            assert!(o.rest_overlap <= 0.01, "{name}: {o:?}");
+            assert!(o.energy_gain <= 0.01 && o.escaped == 0, "{name}: {o:?}");
+        }
+    }
+
+    #[test]
+    fn without_warm_starting_stacks_still_stand_at_any_mass_ratio() {
+        for masses in [
+            vec![1.0; 30],
+            vec![1.0, 1000.0],
+            growing(1.0, 1000f32.powf(1.0 / 9.0), 10),
+        ] {
+            let case = stack_of(&masses, |c| c.warm_starting = false);
+            let o = run(&case, &mut Passo(case.world.clone()));
+            let what = format!("{} boxes: {o:?}", masses.len());
+            assert!(o.rest.is_some_and(|t| t <= 0.5), "{what}");
+            assert!(o.peak_overlap <= 0.005, "{what}");
+        }
+    }
+
     #[test]
     fn every_case_builds_and_starts_without_overlaps_deeper_than_the_slop() {
         for case in cases() {

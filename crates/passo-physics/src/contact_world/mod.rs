@@ -19,6 +19,7 @@ use crate::contact_world::state::{ContactState, names_bodies};
 use crate::solver::continuous::Sweeps;
 use crate::solver::motion::Motion;
 use crate::solver::regions::ContactRegions;
+use crate::solver::shock::Supports;
 use crate::switches::TestSwitches;
 use crate::{BodyId, ContactEvents, ContactSettings, SensorPair};
 use glam::Vec2;
@@ -80,6 +81,8 @@ pub(crate) struct ContactWorld {
     pub motion: Motion,
     /// The solved contacts by region and colour, as the substeps solve them.
     pub regions: ContactRegions,
+    /// The contacts that hold bodies up, for shock propagation.
+    pub supports: Supports,
     sweeps: Sweeps,
     events: EventTracker,
     /// Room for merging contacts found again, kept between steps.

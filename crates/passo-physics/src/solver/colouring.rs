@@ -61,6 +61,9 @@ pub(crate) struct Colouring {
     left_over: usize,
     /// Builds that took the last build's colours (see `StepCounters`).
     pub(crate) reused: u64,
+    /// Whether the last build kept the colours of the build before it, so
+    /// that every row kept its [`Slot`].
+    pub(crate) kept: bool,
     /// The shortcuts turned off (`blocks_always`).
     pub(crate) switches: TestSwitches,
 }
@@ -114,6 +117,7 @@ impl Colouring {
         self.overflow_rows.clear();
         // The masks are set only when the colours are worked out anew.
         let coloured_now = !self.same_bodies(rows, picked.clone());
+        self.kept = !coloured_now;
         if coloured_now {
             self.colour(rows, picked.clone());
         } else {
@@ -247,8 +251,58 @@ impl Colouring {
         }
     }
 
+    /// Notes in `slot_of` (indexed by row) where each of this colouring's
+    /// rows keeps its impulses while the passes run; `group` names this
+    /// colouring among the regions' (see [`Slot`]).
+    pub(crate) fn note_slots(&self, group: u8, slot_of: &mut [Slot]) {
+        for (b, block) in self.blocks.iter().enumerate() {
+            for (l, &row) in block.row.iter().enumerate() {
+                if row != NONE {
+                    slot_of[row as usize] = Slot::Lane {
+                        group,
+                        block: b as u32,
+                        lane: l as u8,
+                    };
+                }
+            }
+        }
+        for (k, &row) in self.overflow_rows.iter().enumerate() {
+            slot_of[row as usize] = Slot::Overflow {
+                group,
+                index: k as u32,
+            };
+        }
+    }
+
+    /// The normal, push and greatest normal impulses of the row at `slot`
+    /// (one of this colouring's).
+    pub(crate) fn impulses_mut(&mut self, slot: Slot) -> [&mut f32; 3] {
+        match slot {
+            Slot::Lane { block, lane, .. } => {
+                let (k, l) = (&mut self.blocks[block as usize], lane as usize);
+                [
+                    &mut k.normal_impulse[l],
+                    &mut k.push_impulse[l],
+                    &mut k.max_normal_impulse[l],
+                ]
+            }
+            Slot::Overflow { index, .. } => {
+                let c = &mut self.overflow[index as usize];
+                [
+                    &mut c.normal_impulse,
+                    &mut c.push_impulse,
+                    &mut c.max_normal_impulse,
+                ]
+            }
+            Slot::None => unreachable!("a row no colouring holds"),
+        }
+    }
+
     /// Holds no contact.
     pub(crate) fn clear(&mut self) {
+        // An empty colouring's rows (none) keep their slots; whether the
+        // rows it held moved elsewhere, the colouring that took them tells.
+        self.kept = true;
         self.blocks.clear();
         self.colours.clear();
         self.overflow.clear();
@@ -351,6 +405,35 @@ impl Colouring {
             })
             .copied()
             .filter(|&i| i != NONE)
+    }
+}
+
+/// Where a row keeps its impulses while a substep's passes run: a lane of
+/// a block, or the contacts left over, of one of the regions' colourings
+/// (`group`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) enum Slot {
+    /// No colouring holds the row.
+    #[default]
+    None,
+    Lane {
+        group: u8,
+        block: u32,
+        lane: u8,
+    },
+    Overflow {
+        group: u8,
+        index: u32,
+    },
+}
+
+impl Slot {
+    /// The colouring that holds the row.
+    pub(crate) fn group(self) -> usize {
+        match self {
+            Slot::Lane { group, .. } | Slot::Overflow { group, .. } => group as usize,
+            Slot::None => unreachable!("a row no colouring holds"),
+        }
     }
 }
 

@@ -1,4 +1,4 @@
-//! Solving contacts: the scalar and wide passes, colouring, regions, the substep buffers and continuous collision.
+//! Solving contacts: the scalar and wide passes, colouring, regions, the substep buffers, shock propagation and continuous collision.
 
 pub(crate) mod scalar;
 pub(crate) mod lanes;
@@ -6,4 +6,5 @@ pub(crate) mod colouring;
 pub(crate) mod crush;
 pub(crate) mod motion;
 pub(crate) mod regions;
+pub(crate) mod shock;
 pub(crate) mod continuous;

@@ -48,8 +48,7 @@ impl Homes {
         }
     }
 
-    /// Body `i`'s home (for tests and checks).
-    #[cfg(test)]
+    /// Body `i`'s home: a binary search of the runs.
     pub(crate) fn of(&self, i: usize) -> Home {
         let r = self.runs.partition_point(|&(start, _)| start as usize <= i);
         self.runs[r - 1].1

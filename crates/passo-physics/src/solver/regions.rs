@@ -35,7 +35,7 @@
 
 use crate::contact::constraint::Constraint;
 use crate::parallel::{for_chunks, goes_parallel, halfway, join};
-use crate::solver::colouring::{Colouring, Pass};
+use crate::solver::colouring::{Colouring, Pass, Slot};
 use crate::solver::lanes::Bodies;
 use crate::solver::motion::{Home, Homes};
 use crate::solver::scalar::{BodyState, SolverBodies};
@@ -326,6 +326,29 @@ impl ContactRegions {
         for &i in &self.far_between {
             self.far[i as usize] = bodies.state[i as usize];
         }
+    }
+
+    /// Whether every row kept its [`Slot`] since the build before the last
+    /// (each colouring kept its colours).
+    pub(crate) fn slots_kept(&self) -> bool {
+        self.groups.iter().all(|g| g.kept)
+    }
+
+    /// Notes in `slot_of` (one per row) where each row keeps its impulses
+    /// while the passes run.
+    pub(crate) fn note_slots(&self, slot_of: &mut [Slot]) {
+        for (g, group) in self.groups.iter().enumerate() {
+            group.note_slots(g as u8, slot_of);
+        }
+    }
+
+    /// The colourings, whose rows' impulses a [`Slot`] names, and while
+    /// the step splits each body's home and the far array.
+    pub(crate) fn parts_mut(
+        &mut self,
+    ) -> (&mut [Colouring; 3], Option<(&Homes, &mut [BodyState])>) {
+        let far = self.split.then_some((&self.homes, &mut self.far[..]));
+        (&mut self.groups, far)
     }
 
     /// Copies the far bodies' states into the solver's array (for tests:

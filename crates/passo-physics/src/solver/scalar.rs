@@ -68,7 +68,7 @@ impl SolverParams {
         Self {
             h: 1.0 / 240.0,
             warm_starting: true,
-            iterations: 2,
+            iterations: 1,
             relax_iterations: 1,
             position_correction: 0.2,
             push_out_speed: 3.0,
@@ -141,7 +141,7 @@ pub(crate) struct SolverBodies<'a> {
 /// What `get` reads of a contact's two bodies in `bodies` (per dynamic
 /// body: a velocity, a state, a displacement); zero for a static B.
 #[inline(always)]
-fn of_pair<T>(bodies: &[T], c: &Constraint, get: impl Fn(&T) -> Vec2) -> (Vec2, Vec2) {
+pub(crate) fn of_pair<T>(bodies: &[T], c: &Constraint, get: impl Fn(&T) -> Vec2) -> (Vec2, Vec2) {
     let b = c.b.dynamic_index().map_or(Vec2::ZERO, |b| get(&bodies[b]));
     (get(&bodies[c.a as usize]), b)
 }
@@ -150,7 +150,7 @@ fn of_pair<T>(bodies: &[T], c: &Constraint, get: impl Fn(&T) -> Vec2) -> (Vec2, 
 /// along the normal since the step began (exact for boxes, first order
 /// for circles; bodies do not rotate).
 #[inline(always)]
-fn separation(delta: &[Vec2], c: &Constraint) -> f32 {
+pub(crate) fn separation(delta: &[Vec2], c: &Constraint) -> f32 {
     let (da, db) = of_pair(delta, c, |d| *d);
     c.base_separation + (db - da).dot(c.normal)
 }

@@ -11,13 +11,13 @@ use crate::forces::kernel::PointMassKernel;
 use crate::parallel::for_chunks;
 use crate::solver::colouring::Pass;
 use crate::solver::motion::{Homes, Motion, Start};
-use crate::solver::scalar::{self, BodyState, SolverParams};
+use crate::solver::scalar::{self, BodyState, SolverBodies, SolverParams};
 use crate::world::{World, step_forces};
 use crate::{ContactSettings, Integrator};
 use glam::Vec2;
 
 /// One stage of the contact step, in the order [`World::contact_stages`]
-/// lists them: the first seven run in every substep, the last four once
+/// lists them: the first eight run in every substep, the last four once
 /// after the substeps. The step runs the stages from that list, one
 /// function each.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -36,6 +36,12 @@ pub enum ContactStage {
     /// (after the pass that clears the pushes and measures the
     /// separations, when there is no warm start to do it).
     Solve,
+    /// The contacts that hold bodies up against gravity solved once more,
+    /// layer by layer from the ground up, each as if its lower body could
+    /// not move: shock propagation (only with
+    /// [`ContactSettings::shock_propagation`] and gravity). No body then
+    /// sinks into the one under it, whatever their masses.
+    PropagateShock,
     /// Speed limits, then positions moved by velocity plus push.
     IntegratePositions,
     /// Velocity passes at the new positions.
@@ -64,6 +70,7 @@ impl ContactStage {
                 | HoldKinematic
                 | WarmStart
                 | Solve
+                | PropagateShock
                 | IntegratePositions
                 | Relax
         )
@@ -73,7 +80,10 @@ impl ContactStage {
     /// (see `Motion::load`) rather than on the body arrays.
     fn on_solver_copy(self) -> bool {
         use ContactStage::*;
-        matches!(self, WarmStart | Solve | IntegratePositions | Relax)
+        matches!(
+            self,
+            WarmStart | Solve | PropagateShock | IntegratePositions | Relax
+        )
     }
 }
 
@@ -81,19 +91,19 @@ impl ContactStage {
 /// step allocates nothing to make it.
 #[derive(Clone, Copy, Debug)]
 struct StageList {
-    stages: [ContactStage; 11],
+    stages: [ContactStage; 12],
     len: usize,
 }
 
 impl StageList {
     /// No stage.
     const EMPTY: Self = Self {
-        stages: [ContactStage::Solve; 11],
+        stages: [ContactStage::Solve; 12],
         len: 0,
     };
 
     /// The stages whose condition holds, in order.
-    fn new(steps: [(bool, ContactStage); 11]) -> Self {
+    fn new(steps: [(bool, ContactStage); 12]) -> Self {
         let mut list = Self::EMPTY;
         for (on, stage) in steps {
             if on {
@@ -140,6 +150,9 @@ struct SubstepPlan {
     restitution: bool,
     /// Continuous collision: fast bodies are swept.
     sweep: bool,
+    /// Shock propagation: on, and there is gravity to hold bodies up
+    /// against.
+    shock: bool,
     /// The substeps after the first warm start by replaying each body's
     /// velocity change of the last substep (see [`Start::Replay`]): with a
     /// warm start, with a relax pass to measure the separations (the warm
@@ -182,6 +195,12 @@ impl SubstepPlan {
             },
             restitution: world.census.bouncy > 0,
             sweep: settings.continuous,
+            shock: settings.shock_propagation
+                && world
+                    .settings()
+                    .forces
+                    .gravity
+                    .is_some_and(|g| g != Vec2::ZERO),
             replay: settings.warm_starting && settings.relax_iterations > 0 && substeps > 1,
             // Filled in from the rest of the plan just below.
             stages: StageList::EMPTY,
@@ -199,6 +218,7 @@ impl SubstepPlan {
             (self.substeps > 0 && self.hold_kinematic, HoldKinematic),
             (self.substeps > 0 && s.warm_starting, WarmStart),
             (self.substeps > 0, Solve),
+            (self.substeps > 0 && self.shock, PropagateShock),
             (self.substeps > 0, IntegratePositions),
             (self.substeps > 0 && s.relax_iterations > 0, Relax),
             (self.substeps > 0 && self.sweep, SweepFastBodies),
@@ -282,6 +302,17 @@ impl World {
             &cw.motion.piles.deep,
             plan.hold_sleepers || plan.hold_kinematic,
             self.parallel,
+        );
+        let gravity = if plan.shock {
+            params.gravity
+        } else {
+            Vec2::ZERO
+        };
+        (cw.supports).build(
+            &cw.solved.rows,
+            gravity,
+            self.dynamic.len(),
+            &mut cw.regions,
         );
         if plan.hold_kinematic {
             self.note_kinematic_motion();
@@ -370,6 +401,7 @@ impl World {
         match stage {
             WarmStart => self.warm_start(cw, plan, pass),
             Solve => self.solve(cw, plan, pass),
+            PropagateShock => self.propagate_shock(cw, plan),
             IntegratePositions => {
                 let far = cw.regions.far_states();
                 self.integrate_positions(&mut cw.motion, far, plan, correction);
@@ -519,6 +551,29 @@ impl World {
             let p = if fresh && k == 0 { &first } else { &solve };
             regions.run(&mut bodies, p, self.parallel);
         }
+    }
+
+    /// Substep stage: the contacts that hold bodies up solved once more,
+    /// from the ground up, each with its lower body held still (see
+    /// `solver::shock`).
+    fn propagate_shock(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan) {
+        let ContactWorld {
+            regions,
+            motion,
+            supports,
+            ..
+        } = cw;
+        let replay = if plan.replay {
+            Some(&mut motion.replay[..])
+        } else {
+            None
+        };
+        let mut bodies = SolverBodies {
+            state: &mut motion.state,
+            delta: &motion.delta,
+            deep: &motion.piles.deep,
+        };
+        supports.run(regions, &mut bodies, &plan.solver, replay);
     }
 
     /// Substep stage: speed limits, then positions moved by velocity plus

