@@ -650,6 +650,47 @@ mod tests {
     }
 
     #[test]
+    fn no_contact_setting_makes_a_pile_gain_energy_or_throw_a_body_out() {
+        // Each setting a scene file can name, at its extremes (shock
+        // propagation off is the exception its documentation states).
+        type Change = fn(&mut passo_physics::ContactSettings);
+        let changes: [(&str, Change); 9] = [
+            ("one substep", |c| c.substeps = 1),
+            ("no relax", |c| c.relax_iterations = 0),
+            ("full correction", |c| c.position_correction = 1.0),
+            ("fast push", |c| c.push_out_speed = 100.0),
+            ("no slop", |c| c.slop = 0.0),
+            ("no reuse", |c| c.reuse_distance = 0.0),
+            ("no continuous", |c| c.continuous = false),
+            ("many passes", |c| {
+                (c.iterations, c.relax_iterations) = (8, 8)
+            }),
+            ("bare", |c| {
+                (c.substeps, c.relax_iterations, c.warm_starting) = (1, 0, false)
+            }),
+        ];
+        let names = [
+            "stack_30",
+            "heavy_on_light",
+            "heavy_on_circles",
+            "bouncy_pile",
+            "thrown_into_heap",
+        ];
+        for case in cases().into_iter().filter(|c| names.contains(&c.name)) {
+            for (what, change) in changes {
+                let mut world = case.world.clone();
+                let mut settings = *world.settings();
+                change(settings.contacts.as_mut().unwrap());
+                world.set_settings(settings).unwrap();
+                let o = run(&case, &mut Passo(world));
+                let name = case.name;
+                assert!(o.energy_gain <= 0.01, "{name}, {what}: {o:?}");
+                assert_eq!(o.escaped, 0, "{name}, {what}: {o:?}");
+            }
+        }
+    }
+
+    #[test]
     fn every_case_builds_and_starts_without_overlaps_deeper_than_the_slop() {
         for case in cases() {
             assert!(case.seconds > 0.0 && case.world.len() > 1, "{}", case.name);
