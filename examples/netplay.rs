@@ -20,6 +20,23 @@ use std::time::{Duration, Instant};
 /// One player's input for a tick: bit 0 left, bit 1 right, bit 2 jump.
 pub type Input = u8;
 
+/// The bits an [`Input`] may set: left, right and jump.
+pub const KEYS: Input = 0b111;
+
+/// Checks the inputs GGRS hands the game for a tick: a peer that sends
+/// bits no key makes (a bug, or garbage on the wire that happened to
+/// decode) is named in an error rather than played.
+pub fn check_inputs(inputs: &[Input]) -> Result<(), String> {
+    match inputs.iter().position(|&input| input & !KEYS != 0) {
+        None => Ok(()),
+        Some(player) => Err(format!(
+            "player {player} sent the input {:#010b}: only the bits {KEYS:#05b} \
+             (left, right, jump) are keys",
+            inputs[player]
+        )),
+    }
+}
+
 /// The GGRS configuration of the game.
 pub struct Netplay;
 
@@ -109,7 +126,9 @@ impl Game {
         requests.into_iter().try_for_each(|r| self.handle_one(r))
     }
 
-    /// Carries out one GGRS request: save, load or advance.
+    /// Carries out one GGRS request: save, load or advance. An advance
+    /// whose inputs set bits no key makes is refused (see
+    /// [`check_inputs`]): the session should end with that error.
     pub fn handle_one(&mut self, request: GgrsRequest<Netplay>) -> Result<(), String> {
         match request {
             GgrsRequest::SaveGameState { cell, frame } => {
@@ -123,7 +142,14 @@ impl Game {
                     .map_err(|e| e.to_string())?;
                 self.tick = tick;
             }
-            GgrsRequest::AdvanceFrame { inputs } => self.advance([inputs[0].0, inputs[1].0]),
+            GgrsRequest::AdvanceFrame { inputs } => {
+                let inputs: Vec<Input> = inputs.iter().map(|&(input, _)| input).collect();
+                check_inputs(&inputs)?;
+                let [a, b] = inputs[..] else {
+                    return Err(format!("GGRS gave {} inputs for 2 players", inputs.len()));
+                };
+                self.advance([a, b]);
+            }
         }
         Ok(())
     }
@@ -225,14 +251,20 @@ pub struct PeerReport {
     pub rollbacks: usize,
     /// Desyncs GGRS reported (checksums the peers exchanged that differ).
     pub desyncs: usize,
+    /// Packets the link delivered to this peer before one sent earlier.
+    pub overtaken: u64,
 }
 
 /// A simulated network between the peers of [`p2p_loopback`]: every
-/// packet arrives `latency` late, and `loss_percent` of them never do.
+/// packet arrives `latency` late, plus up to `jitter` more (so packets
+/// overtake each other), and `loss_percent` of them never do.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Link {
     /// One-way delay of every packet.
     pub latency: Duration,
+    /// Extra delay, from zero to this, drawn per packet: a packet sent
+    /// later may arrive first.
+    pub jitter: Duration,
     /// Packets dropped, percent (chosen by a seeded generator, so a run
     /// drops the same share each time).
     pub loss_percent: u32,
@@ -302,8 +334,16 @@ impl NonBlockingSocket<SocketAddr> for LoopbackSocket {
 struct LinkSocket {
     socket: LoopbackSocket,
     link: Link,
-    /// Packets arrived and not yet delivered, in arrival order.
-    held: std::collections::VecDeque<(Instant, SocketAddr, Message)>,
+    /// Packets arrived and not yet delivered, in arrival order, each with
+    /// when it is due and its place in the arrival order.
+    held: Vec<(Instant, u64, SocketAddr, Message)>,
+    /// Packets that arrived so far.
+    arrived: u64,
+    /// The arrival place of the last packet delivered.
+    last_delivered: u64,
+    /// Packets delivered before one that arrived earlier (shared with
+    /// [`p2p_loopback`], which reports them).
+    overtaking: Arc<AtomicU64>,
     rng: u64,
 }
 
@@ -315,21 +355,41 @@ impl NonBlockingSocket<SocketAddr> for LinkSocket {
     fn receive_all_messages(&mut self) -> Vec<(SocketAddr, Message)> {
         let now = Instant::now();
         for (from, msg) in self.socket.receive_all_messages() {
-            // xorshift64*: the same drops on every run.
-            self.rng ^= self.rng >> 12;
-            self.rng ^= self.rng << 25;
-            self.rng ^= self.rng >> 27;
-            let roll = self.rng.wrapping_mul(0x2545_f491_4f6c_dd1d) % 100;
-            if roll >= u64::from(self.link.loss_percent) {
-                self.held.push_back((now + self.link.latency, from, msg));
+            let roll = self.next_random();
+            if roll % 100 >= u64::from(self.link.loss_percent) {
+                let jitter = self
+                    .link
+                    .jitter
+                    .mul_f64((self.next_random() % 1000) as f64 / 1000.0);
+                self.arrived += 1;
+                let due = now + self.link.latency + jitter;
+                self.held.push((due, self.arrived, from, msg));
             }
         }
-        let mut due = Vec::new();
-        while self.held.front().is_some_and(|(at, ..)| *at <= now) {
-            let (_, from, msg) = self.held.pop_front().expect("checked");
-            due.push((from, msg));
+        // Every packet that is due, in the order they fall due.
+        let (mut due, held): (Vec<_>, Vec<_>) =
+            self.held.drain(..).partition(|(at, ..)| *at <= now);
+        self.held = held;
+        due.sort_by_key(|&(at, place, ..)| (at, place));
+        let mut out = Vec::with_capacity(due.len());
+        for (_, place, from, msg) in due {
+            if place < self.last_delivered {
+                self.overtaking.fetch_add(1, Ordering::Relaxed);
+            }
+            self.last_delivered = place;
+            out.push((from, msg));
         }
-        due
+        out
+    }
+}
+
+impl LinkSocket {
+    /// xorshift64*: the same drops and delays on every run.
+    fn next_random(&mut self) -> u64 {
+        self.rng ^= self.rng >> 12;
+        self.rng ^= self.rng << 25;
+        self.rng ^= self.rng >> 27;
+        self.rng.wrapping_mul(0x2545_f491_4f6c_dd1d)
     }
 }
 
@@ -348,6 +408,7 @@ pub fn p2p_loopback(frames: u64, link: Link) -> Result<[PeerReport; 2], String> 
     let address = |s: &LoopbackSocket| s.local_addr().map_err(|e| e.to_string());
     let addresses = [address(&sockets[0])?, address(&sockets[1])?];
     let mut sessions = Vec::new();
+    let overtaking = [Arc::new(AtomicU64::new(0)), Arc::new(AtomicU64::new(0))];
     for (me, socket) in sockets.into_iter().enumerate() {
         let other = 1 - me;
         let remote = addresses[other];
@@ -355,6 +416,9 @@ pub fn p2p_loopback(frames: u64, link: Link) -> Result<[PeerReport; 2], String> 
             socket,
             link,
             held: Default::default(),
+            arrived: 0,
+            last_delivered: 0,
+            overtaking: overtaking[me].clone(),
             rng: 0x9e37_79b9_7f4a_7c15 ^ me as u64,
         };
         let session = SessionBuilder::<Netplay>::new()
@@ -422,6 +486,9 @@ pub fn p2p_loopback(frames: u64, link: Link) -> Result<[PeerReport; 2], String> 
             next_frame += Duration::from_secs_f32(DT);
             std::thread::sleep(next_frame.saturating_duration_since(Instant::now()));
         }
+    }
+    for (report, overtaken) in reports.iter_mut().zip(&overtaking) {
+        report.overtaken = overtaken.load(Ordering::Relaxed);
     }
     Ok(reports)
 }

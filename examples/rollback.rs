@@ -34,6 +34,7 @@ fn main() {
     let link = Link {
         latency: Duration::from_millis(80),
         loss_percent: 5,
+        ..Link::default()
     };
     println!("two peers, {frames} frames at 60 Hz over a link of 80 ms and 5 % loss...");
     match p2p_loopback(frames, link) {

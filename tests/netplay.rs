@@ -3,12 +3,14 @@
 //! compare checksums), ends where a straight run ends, and a force model
 //! that is not deterministic is caught; two peer-to-peer sessions over the
 //! loopback interface roll back and agree, tick by tick, with a straight
-//! run, also through a link of 80 ms latency and 5 % packet loss.
+//! run, also through a link of 80 ms latency and 5 % packet loss, and one
+//! whose packets overtake each other; a peer sending input bits no key
+//! makes ends the session with an error naming it.
 
-use ggrs::{GgrsError, NonBlockingSocket};
+use ggrs::{GgrsError, GgrsRequest, InputStatus, NonBlockingSocket};
 use passo_examples::netplay::{
-    Game, Link, LoopbackSocket, p2p_loopback, scripted_input, straight_checksums, straight_run,
-    sync_test,
+    Game, Link, LoopbackSocket, check_inputs, p2p_loopback, scripted_input, straight_checksums,
+    straight_run, sync_test,
 };
 use std::time::Duration;
 
@@ -76,6 +78,13 @@ fn anyone_touching(game: &Game) -> bool {
 
 fn two_peers_agree_with_a_straight_run_tick_by_tick(frames: u64, link: Link) {
     let reports = p2p_loopback(frames, link).expect("the peers play");
+    if !link.jitter.is_zero() {
+        assert!(
+            reports.iter().all(|r| r.overtaken > 10),
+            "packets overtook each other: {:?}",
+            reports.iter().map(|r| r.overtaken).collect::<Vec<_>>()
+        );
+    }
     let straight = straight_checksums(frames);
     for (peer, report) in reports.iter().enumerate() {
         assert_eq!(
@@ -103,8 +112,43 @@ fn two_peers_80_ms_apart_losing_5_percent_of_packets_agree_for_1000_ticks() {
     let link = Link {
         latency: Duration::from_millis(80),
         loss_percent: 5,
+        ..Link::default()
     };
     two_peers_agree_with_a_straight_run_tick_by_tick(1_000, link);
+}
+
+#[test]
+fn two_peers_whose_packets_overtake_each_other_agree_for_300_ticks() {
+    // 20-80 ms one way: a packet often arrives before one sent a frame or
+    // two earlier. Runs at 60 frames a second of wall time: about 5 s.
+    let link = Link {
+        latency: Duration::from_millis(20),
+        jitter: Duration::from_millis(60),
+        loss_percent: 2,
+    };
+    two_peers_agree_with_a_straight_run_tick_by_tick(300, link);
+}
+
+#[test]
+fn input_bits_no_key_makes_end_the_session_with_an_error_naming_the_peer() {
+    for bad in [0b1000u8, 0x80, 0xff] {
+        for player in 0..2 {
+            let mut inputs = [(scripted_input(0, 0), InputStatus::Confirmed); 2];
+            inputs[player].0 = bad;
+            let mut game = Game::new();
+            let error = game
+                .handle_one(GgrsRequest::AdvanceFrame {
+                    inputs: inputs.to_vec(),
+                })
+                .unwrap_err();
+            assert!(error.contains(&format!("player {player}")), "{error}");
+            assert_eq!(game.tick, 0, "nothing was played");
+        }
+    }
+    // Every input a key makes is played.
+    for input in 0..=0b111 {
+        assert_eq!(check_inputs(&[input, 0]), Ok(()));
+    }
 }
 
 /// The peers listen on the loopback interface alone. Datagrams that do not
