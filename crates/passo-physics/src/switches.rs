@@ -17,4 +17,7 @@ pub struct TestSwitches {
     /// Lay the contacts out in blocks however empty, rather than solve
     /// mostly-padding groups one by one.
     pub blocks_always: bool,
+    /// Work out the order of shock propagation every step: never keep the
+    /// last step's.
+    pub order_supports_always: bool,
 }

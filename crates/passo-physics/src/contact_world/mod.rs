@@ -49,6 +49,10 @@ pub struct StepCounters {
     /// Colourings of the contacts that took the last step's colours (a
     /// step that splits its contacts in regions colours each).
     pub colourings_reused: u64,
+    /// Steps whose shock propagation kept the last step's order of the
+    /// contacts that hold bodies up (the same contacts, each holding the
+    /// same body up).
+    pub supports_reused: u64,
 }
 
 /// What a step tells the contact stage.
@@ -478,6 +482,7 @@ impl ContactWorld {
         self.proxies.switches = switches;
         self.narrow.switches = switches;
         self.regions.set_switches(switches);
+        self.supports.switches = switches;
     }
 
     /// What the step's shortcuts saved, and the work they did not save.
@@ -489,6 +494,7 @@ impl ContactWorld {
         counters.pair_sorts = n.pair_sorts;
         counters.contacts_reused_in_place = n.contacts_reused_in_place;
         counters.colourings_reused = self.regions.colourings_reused();
+        counters.supports_reused = self.supports.reused;
     }
 
     /// The proxies and their pairs, to change (for tests).

@@ -489,3 +489,113 @@ fn bouncy_boxes_crossing_diagonally_keep_their_energy() {
         assert!(now <= before * (1.0 + 1e-5), "{now} J from {before} J");
     }
 }
+
+#[test]
+fn a_box_sliding_into_another_on_frictionless_ground_shares_its_momentum() {
+    // Shock propagation solves again only the contacts that hold a body up:
+    // a sideways blow between two boxes on the ground keeps its momentum,
+    // m1 v = (m1 + m2) v' after an inelastic blow, at any mass ratio, and
+    // whichever box was added first (the contact's A).
+    for (m1, m2) in [
+        (1.0, 1.0),
+        (1.0, 10.0),
+        (10.0, 1.0),
+        (1.0, 1000.0),
+        (1000.0, 1.0),
+    ] {
+        for mover_first in [true, false] {
+            // Sleeping off: at 3 mm/s the pair would fall asleep.
+            let mut settings = WorldSettings::default();
+            settings.contacts.as_mut().unwrap().sleeping = false;
+            let mut w = World::new(settings).unwrap();
+            let ground = BodyDef {
+                friction: 0.0,
+                ..BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0))
+            };
+            w.add_body(ground).unwrap();
+            let def = |x: f32, mass: f32, v: f32| BodyDef {
+                position: Vec2::new(x, 0.5),
+                velocity: Vec2::new(v, 0.0),
+                mass,
+                friction: 0.0,
+                shape: Some(Shape::rect(1.0, 1.0)),
+                ..Default::default()
+            };
+            let (mover, target) = if mover_first {
+                let a = w.add_body(def(0.0, m1, 3.0)).unwrap();
+                (a, w.add_body(def(2.0, m2, 0.0)).unwrap())
+            } else {
+                let b = w.add_body(def(2.0, m2, 0.0)).unwrap();
+                (w.add_body(def(0.0, m1, 3.0)).unwrap(), b)
+            };
+            run(&mut w, 1.0, |_| {});
+            let v = |id| w.body(id).unwrap().velocity;
+            let momentum = m1 * v(mover).x + m2 * v(target).x;
+            let case = format!("{m1} kg into {m2} kg, mover first {mover_first}");
+            assert!(
+                (momentum - 3.0 * m1).abs() <= 1e-4 * 3.0 * m1,
+                "{case}: momentum {momentum}, was {}",
+                3.0 * m1
+            );
+            let shared = 3.0 * m1 / (m1 + m2);
+            for id in [mover, target] {
+                assert!((v(id).x - shared).abs() < 1e-3, "{case}: {:?}", v(id));
+                assert!(v(id).y.abs() < 1e-3, "{case}: {:?}", v(id));
+            }
+        }
+    }
+}
+
+#[test]
+fn a_box_thrown_into_a_frictionless_row_keeps_the_momentum_it_brings() {
+    // The blow is sideways, from a box in the air (just above the ground)
+    // into a row of boxes resting on it: shock propagation leaves it to the
+    // passes, so the x momentum of all the bodies stays what the thrown box
+    // brought, whichever body was added first and however long the row.
+    for thrown_first in [true, false] {
+        for row in [1, 3, 6] {
+            let mut settings = WorldSettings::default();
+            settings.contacts.as_mut().unwrap().sleeping = false;
+            let mut w = World::new(settings).unwrap();
+            let slippery = |def: BodyDef| BodyDef {
+                friction: 0.0,
+                ..def
+            };
+            let thrown_def = slippery(BodyDef {
+                position: Vec2::new(-1.0, 0.52),
+                velocity: Vec2::new(6.0, 0.0),
+                mass: 2.0,
+                shape: Some(Shape::rect(1.0, 1.0)),
+                ..Default::default()
+            });
+            let mut bodies = Vec::new();
+            if thrown_first {
+                bodies.push(w.add_body(thrown_def).unwrap());
+            }
+            let ground = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0));
+            w.add_body(slippery(ground)).unwrap();
+            for i in 0..row {
+                let at = Vec2::new(0.6 + i as f32, 0.5);
+                let def = BodyDef::new_dynamic(at, Shape::rect(1.0, 1.0));
+                bodies.push(w.add_body(slippery(def)).unwrap());
+            }
+            if !thrown_first {
+                bodies.push(w.add_body(thrown_def).unwrap());
+            }
+            let momentum = |w: &World| -> f32 {
+                let x = |b: BodyId| {
+                    let body = w.body(b).unwrap();
+                    body.mass * body.velocity.x
+                };
+                bodies.iter().map(|&b| x(b)).sum()
+            };
+            let brought = momentum(&w);
+            run(&mut w, 0.5, |_| {});
+            let now = momentum(&w);
+            assert!(
+                (now - brought).abs() <= 1e-3 * brought,
+                "thrown first {thrown_first}, a row of {row}: {now} of {brought}"
+            );
+        }
+    }
+}
