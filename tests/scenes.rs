@@ -307,3 +307,21 @@ fn a_file_that_validates_builds_its_generated_bodies_too() {
     let err = Scene::parse(world, "world.ron").unwrap_err().to_string();
     assert!(err.contains("min_speed"), "{err}");
 }
+
+#[test]
+fn a_scene_turns_shock_propagation_off_and_lists_its_stage_only_when_on() {
+    let with = |collisions: &str| {
+        let text = format!(
+            r#"(name: "s", forces: (gravity: (0, -9.81)), collisions: {collisions}, bodies: [(kind: Static, shape: Box(half_extents: (5, 0.5)), position: (0, -0.5)), (shape: Box(half_extents: (0.5, 0.5)), position: (0, 0.5))])"#
+        );
+        Scene::parse(&text, "s.ron").unwrap().build().unwrap().world
+    };
+    let on = with("()");
+    let off = with("(shock_propagation: false, iterations: 2)");
+    let settings = off.settings().contacts.unwrap();
+    assert!(!settings.shock_propagation && settings.iterations == 2);
+    assert!(on.settings().contacts.unwrap().shock_propagation);
+    let shock = passo_physics::ContactStage::PropagateShock;
+    assert!(on.contact_stages().contains(&shock));
+    assert!(!off.contact_stages().contains(&shock));
+}
