@@ -271,11 +271,18 @@ impl Motion {
 
     /// The solver's view of the bodies.
     pub(crate) fn bodies(&mut self) -> SolverBodies<'_> {
-        SolverBodies {
+        self.bodies_and_replay().0
+    }
+
+    /// [`bodies`](Self::bodies), and beside them each body's velocity
+    /// before the contacts acted in this substep (see [`Motion::replay`]).
+    pub(crate) fn bodies_and_replay(&mut self) -> (SolverBodies<'_>, &mut [Vec2]) {
+        let bodies = SolverBodies {
             state: &mut self.state,
             delta: &self.delta,
             deep: &self.piles.deep,
-        }
+        };
+        (bodies, &mut self.replay)
     }
 }
 

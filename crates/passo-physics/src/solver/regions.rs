@@ -342,6 +342,12 @@ impl ContactRegions {
         }
     }
 
+    /// While the step splits: where each body's state lives during the
+    /// passes.
+    pub(crate) fn homes(&self) -> Option<&Homes> {
+        self.split.then_some(&self.homes)
+    }
+
     /// The colourings, whose rows' impulses a [`Slot`] names, and while
     /// the step splits each body's home and the far array.
     pub(crate) fn parts_mut(

@@ -141,7 +141,7 @@ pub(crate) struct SolverBodies<'a> {
 /// What `get` reads of a contact's two bodies in `bodies` (per dynamic
 /// body: a velocity, a state, a displacement); zero for a static B.
 #[inline(always)]
-pub(crate) fn of_pair<T>(bodies: &[T], c: &Constraint, get: impl Fn(&T) -> Vec2) -> (Vec2, Vec2) {
+fn of_pair<T>(bodies: &[T], c: &Constraint, get: impl Fn(&T) -> Vec2) -> (Vec2, Vec2) {
     let b = c.b.dynamic_index().map_or(Vec2::ZERO, |b| get(&bodies[b]));
     (get(&bodies[c.a as usize]), b)
 }
@@ -150,7 +150,7 @@ pub(crate) fn of_pair<T>(bodies: &[T], c: &Constraint, get: impl Fn(&T) -> Vec2)
 /// along the normal since the step began (exact for boxes, first order
 /// for circles; bodies do not rotate).
 #[inline(always)]
-pub(crate) fn separation(delta: &[Vec2], c: &Constraint) -> f32 {
+fn separation(delta: &[Vec2], c: &Constraint) -> f32 {
     let (da, db) = of_pair(delta, c, |d| *d);
     c.base_separation + (db - da).dot(c.normal)
 }

@@ -189,14 +189,12 @@ impl Supports {
         rows: &[Constraint],
         gravity: Vec2,
         bodies: usize,
-        regions: &mut ContactRegions,
+        regions: &ContactRegions,
     ) {
         let g = gravity.length();
         // (A NaN gravity counts as none.)
         if g.is_nan() || g <= 0.0 || rows.is_empty() {
-            self.held.clear();
-            self.order.clear();
-            self.classes.clear();
+            self.clear();
             return;
         }
         let up = -gravity / g;
@@ -340,9 +338,16 @@ impl Supports {
         self.refresh(rows, bodies, regions);
     }
 
+    /// Holds no support (shock propagation off, or no gravity).
+    pub(crate) fn clear(&mut self) {
+        self.held.clear();
+        self.order.clear();
+        self.classes.clear();
+    }
+
     /// Takes each support's numbers from its row, and where its bodies
     /// live (see [`Homes`]).
-    fn refresh(&mut self, rows: &[Constraint], bodies: usize, regions: &mut ContactRegions) {
+    fn refresh(&mut self, rows: &[Constraint], bodies: usize, regions: &ContactRegions) {
         for s in &mut self.order {
             let c = &rows[s.row as usize];
             (s.n, s.inv_mass) = if s.upper_is_b {
@@ -353,7 +358,7 @@ impl Supports {
             s.mass = 1.0 / s.inv_mass;
             s.base_separation = c.base_separation;
         }
-        let homes = regions.parts_mut().1.map(|(homes, _)| homes);
+        let homes = regions.homes();
         let far =
             |i: u32| homes.is_some_and(|h| (i as usize) < bodies && h.of(i as usize) == Home::Far);
         for h in &mut self.held {

@@ -11,7 +11,7 @@ use crate::forces::kernel::PointMassKernel;
 use crate::parallel::for_chunks;
 use crate::solver::colouring::Pass;
 use crate::solver::motion::{Homes, Motion, Start};
-use crate::solver::scalar::{self, BodyState, SolverBodies, SolverParams};
+use crate::solver::scalar::{self, BodyState, SolverParams};
 use crate::world::{World, step_forces};
 use crate::{ContactSettings, Integrator};
 use glam::Vec2;
@@ -303,17 +303,16 @@ impl World {
             plan.hold_sleepers || plan.hold_kinematic,
             self.parallel,
         );
-        let gravity = if plan.shock {
-            params.gravity
+        if plan.shock {
+            (cw.supports).build(
+                &cw.solved.rows,
+                params.gravity,
+                self.dynamic.len(),
+                &cw.regions,
+            );
         } else {
-            Vec2::ZERO
-        };
-        (cw.supports).build(
-            &cw.solved.rows,
-            gravity,
-            self.dynamic.len(),
-            &mut cw.regions,
-        );
+            cw.supports.clear();
+        }
         if plan.hold_kinematic {
             self.note_kinematic_motion();
         }
@@ -563,16 +562,8 @@ impl World {
             supports,
             ..
         } = cw;
-        let replay = if plan.replay {
-            Some(&mut motion.replay[..])
-        } else {
-            None
-        };
-        let mut bodies = SolverBodies {
-            state: &mut motion.state,
-            delta: &motion.delta,
-            deep: &motion.piles.deep,
-        };
+        let (mut bodies, replay) = motion.bodies_and_replay();
+        let replay = plan.replay.then_some(replay);
         supports.run(regions, &mut bodies, &plan.solver, replay);
     }
 
