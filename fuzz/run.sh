@@ -9,7 +9,7 @@ seconds="${1:-60}"
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-    targets=(scene snapshot_postcard snapshot_ron tmx tmj tsx ascii)
+    targets=(scene snapshot_postcard snapshot_ron replay tmx tmj tsx ascii)
 fi
 cargo run --quiet --release --bin seed
 for target in "${targets[@]}"; do

@@ -2,6 +2,7 @@
 //! scenes, the levels, snapshots of the built scenes in both forms, and an
 //! ASCII map. Run by `fuzz/run.sh` before the targets.
 
+use passo::demo::{Command, Input, Replay, run_replay};
 use passo_physics::World;
 use std::fs;
 use std::path::Path;
@@ -48,4 +49,52 @@ fn main() {
 </tileset>"#;
     put("tsx", "set.tsx", set);
     put("ascii", "level.txt", b"....^...\n..--....\n#~~#####\n");
+    for (name, replay) in replays() {
+        put("replay", name, replay.to_ron().as_bytes());
+    }
+}
+
+/// Short replays of two scenes, each with every kind of command.
+fn replays() -> Vec<(&'static str, Replay)> {
+    let right = Input {
+        right: true,
+        jump: true,
+        ..Default::default()
+    };
+    let mut seeds = Vec::new();
+    for scene in ["playground", "platformer"] {
+        let mut replay = Replay {
+            scene: scene.into(),
+            ticks: 90,
+            inputs: vec![(0, right), (40, Input::default())],
+            commands: vec![
+                (
+                    0,
+                    Command::Integrator(passo_physics::Integrator::VelocityVerlet),
+                ),
+                (
+                    10,
+                    Command::Spawn {
+                        at: [2.0, 6.0],
+                        round: true,
+                    },
+                ),
+                (
+                    12,
+                    Command::Fling {
+                        index: 0,
+                        generation: 0,
+                        velocity: [3.0, 4.0],
+                    },
+                ),
+                (20, Command::Rate(120.0)),
+                (30, Command::Reset),
+                (60, Command::RainCount(100)),
+            ],
+            final_hash: 0,
+        };
+        replay.final_hash = run_replay(&replay).expect("a seed replay plays");
+        seeds.push((scene, replay));
+    }
+    seeds
 }
