@@ -1,6 +1,43 @@
 #![doc = include_str!("../README.md")]
 //! Helpers shared by the cross-crate tests.
 
+/// The user guide's chapters (`docs/guide/src/`): their Rust snippets are
+/// compiled and run as doc tests, so they cannot drift from the code.
+/// Run one chapter's with `cargo test -p passo-tests --doc guide::loop_`.
+#[cfg(doctest)]
+pub mod guide {
+    #[doc = include_str!("../docs/guide/src/introduction.md")]
+    pub mod introduction {}
+    #[doc = include_str!("../docs/guide/src/loop.md")]
+    pub mod loop_ {}
+    #[doc = include_str!("../docs/guide/src/bodies-and-forces.md")]
+    pub mod bodies_and_forces {}
+    #[doc = include_str!("../docs/guide/src/integrators.md")]
+    pub mod integrators {}
+    #[doc = include_str!("../docs/guide/src/collisions.md")]
+    pub mod collisions {}
+    #[doc = include_str!("../docs/guide/src/platforms-and-tiles.md")]
+    pub mod platforms_and_tiles {}
+    #[doc = include_str!("../docs/guide/src/tiled.md")]
+    pub mod tiled {}
+    #[doc = include_str!("../docs/guide/src/character-mover.md")]
+    pub mod character_mover {}
+    #[doc = include_str!("../docs/guide/src/queries-and-events.md")]
+    pub mod queries_and_events {}
+    #[doc = include_str!("../docs/guide/src/determinism.md")]
+    pub mod determinism {}
+    #[doc = include_str!("../docs/guide/src/scenes-and-cli.md")]
+    pub mod scenes_and_cli {}
+    #[doc = include_str!("../docs/guide/src/scene-format.md")]
+    pub mod scene_format {}
+    #[doc = include_str!("../docs/guide/src/rendering-and-demo.md")]
+    pub mod rendering_and_demo {}
+    #[doc = include_str!("../docs/guide/src/performance.md")]
+    pub mod performance {}
+    #[doc = include_str!("../docs/guide/src/bad-input.md")]
+    pub mod bad_input {}
+}
+
 use std::time::Duration;
 
 // The physics-only helpers live beside the physics' behaviour tests.

@@ -17,7 +17,7 @@
 //! assert_eq!(built.world.len(), 1);
 //! ```
 //!
-//! Every field, its unit and its default are listed in `docs/scenes.md`.
+//! Every field, its unit and its default are listed in the guide's scene format chapter (`docs/guide/src/scene-format.md`).
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
