@@ -9,6 +9,7 @@ use std::time::Instant;
 #[cfg(feature = "box2d")]
 pub mod box2d;
 pub mod stability;
+pub mod tables;
 
 /// The density that gives a body its Passo mass (1 for immovable ones), for
 /// peers that take densities.

@@ -36,6 +36,14 @@ pub mod guide {
     pub mod performance {}
     #[doc = include_str!("../docs/guide/src/bad-input.md")]
     pub mod bad_input {}
+    #[doc = include_str!("../crates/passo-physics/README.md")]
+    pub mod physics_readme {}
+    #[doc = include_str!("../crates/passo-loop/README.md")]
+    pub mod loop_readme {}
+    #[doc = include_str!("../crates/passo-render/README.md")]
+    pub mod render_readme {}
+    #[doc = include_str!("../crates/passo-scene/README.md")]
+    pub mod scene_readme {}
 }
 
 use std::time::Duration;

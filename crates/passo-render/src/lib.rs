@@ -45,6 +45,9 @@ pub use camera::Camera2D;
 pub use draw_list::{
     DrawList, LineInstance, SHAPE_BOX, SHAPE_CIRCLE, ShapeInstance, srgb_to_linear,
 };
+/// The maths types the draw list and camera take (`glam::Vec2`), re-exported
+/// so a game uses the same version.
+pub use glam;
 pub use gpu::{AdapterChoice, Gpu, RenderError};
 pub use image::RgbaImage;
 pub use offscreen::{OffscreenTarget, read_texture};
