@@ -110,6 +110,28 @@ impl Frame {
 ///
 /// With the `serde` feature the whole state (tick, accumulator, settings)
 /// serializes, for snapshots.
+///
+/// ```
+/// use passo_loop::FixedTimestep;
+/// use std::time::Duration;
+///
+/// let mut timestep = FixedTimestep::from_hz(60.0).unwrap(); // 16 666 667 ns
+/// let mut ticks = 0;
+/// // One second of frames at 144 FPS: 60 ticks run, whatever the frame rate.
+/// for _ in 0..144 {
+///     let frame = timestep.advance(Duration::from_nanos(6_944_445));
+///     for _tick in frame.tick_numbers() {
+///         ticks += 1; // world.step(frame.dt) here
+///     }
+///     assert!((0.0..1.0).contains(&frame.alpha)); // draw this far between ticks
+/// }
+/// assert_eq!(ticks, 60);
+///
+/// // A 2 s hitch is cut to `max_frame_time` (250 ms): 15 ticks, not 120.
+/// let frame = timestep.advance(Duration::from_secs(2));
+/// assert_eq!(frame.ticks, 15);
+/// assert!(frame.dropped >= Duration::from_millis(1750));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FixedTimestep {

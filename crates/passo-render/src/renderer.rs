@@ -31,6 +31,25 @@ pub struct Globals {
 
 /// Draws [`DrawList`]s into texture views of one format.
 ///
+/// ```
+/// use passo_render::{AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer};
+/// use passo_render::glam::Vec2;
+///
+/// // Mesa's software adapter (lavapipe) works on a machine without a GPU.
+/// let gpu = Gpu::headless(AdapterChoice::Software)?;
+/// let target = OffscreenTarget::new(&gpu, 200, 100);
+/// let mut renderer = Renderer::new(&gpu, target.format());
+/// let mut list = DrawList::new([0, 0, 0, 255]);
+/// list.rect(Vec2::new(-1.0, 0.0), Vec2::new(0.5, 0.5), [40, 200, 90, 255]);
+/// // A 4 m × 2 m view: 50 px per metre, (0, 0) at the picture's centre.
+/// let camera = Camera2D::fit(Vec2::new(-2.0, -1.0), Vec2::new(2.0, 1.0), target.size());
+/// renderer.render(target.view(), target.size(), &camera, &list);
+/// let image = target.read(&gpu)?;
+/// assert_eq!(image.get(50, 50), Some([40, 200, 90, 255])); // the box, at x = -1 m
+/// assert_eq!(image.get(150, 50), Some([0, 0, 0, 255])); // the background
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
 /// Owns its pipelines and buffers. Instance buffers grow to the largest
 /// list seen and are reused, so frames that draw no more than before
 /// allocate nothing. A list longer than the device's largest buffer

@@ -46,6 +46,32 @@ pub use save::scene_from_world;
 use std::path::Path;
 
 /// A parsed and validated scene file.
+///
+/// ```
+/// use passo_scene::Scene;
+///
+/// let text = r#"(
+///     name: "Crates",
+///     forces: (gravity: (0, -9.81)),
+///     collisions: (),
+///     bodies: [
+///         (kind: Static, position: (0, -0.5), shape: Box(half_extents: (5, 0.5))),
+///         (position: (0, 2), mass: 2, shape: Box(half_extents: (0.25, 0.25))),
+///     ],
+/// )"#;
+/// let scene = Scene::parse(text, "crates.ron").unwrap();
+/// let mut built = scene.build().unwrap();
+/// let dt = (1.0 / scene.file.rate_hz) as f32; // 60 Hz unless the file says
+/// for tick in 1..=120 {
+///     built.step(tick, dt);
+/// }
+/// let top = built.world.bodies().map(|b| b.position.y).fold(f32::MIN, f32::max);
+/// assert!((top - 0.25).abs() < 0.006, "the crate rests on the ground, at {top}");
+///
+/// // A mistake is an error naming the line and the field.
+/// let error = Scene::parse("(name: \"x\", bodies: [(mass: -1)])", "bad.ron").unwrap_err();
+/// assert!(error.to_string().contains("mass"), "{error}");
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     /// What the file says, defaults filled in.

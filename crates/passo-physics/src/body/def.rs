@@ -37,6 +37,33 @@ pub enum BodyKind {
 
 /// Everything needed to create a body. Start from [`Default`] and set what
 /// differs: `BodyDef { position, ..Default::default() }`.
+///
+/// ```
+/// use passo_physics::{BodyDef, Shape, World, glam::Vec2};
+///
+/// let mut world = World::default();
+/// // The ground: static, 10 m wide, its top at y = 0.
+/// world.add_body(BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(10.0, 1.0))).unwrap();
+/// // A 2 kg crate, 0.5 m wide, dropped from 1 m, a little slippery.
+/// let crate_ = world
+///     .add_body(BodyDef {
+///         position: Vec2::new(0.0, 1.25),
+///         mass: 2.0,
+///         shape: Some(Shape::rect(0.5, 0.5)),
+///         friction: 0.3,
+///         ..Default::default()
+///     })
+///     .unwrap();
+/// for _ in 0..120 {
+///     world.step(1.0 / 60.0);
+/// }
+/// // It rests on the ground, its centre half its height above it.
+/// let y = world.body(crate_).unwrap().position.y;
+/// assert!((y - 0.25).abs() < 0.006, "at {y}");
+///
+/// // A body that cannot be is refused with an error, not a panic.
+/// assert!(world.add_body(BodyDef { mass: -1.0, ..Default::default() }).is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BodyDef {

@@ -38,6 +38,33 @@ use crate::{BodyId, PhysicsError, QueryFilter, Shape, World};
 use glam::Vec2;
 
 /// How a character moves: see [`World::move_character`].
+///
+/// A kinematic player walking right over a floor, with the game's own
+/// gravity, one call a tick before the step:
+///
+/// ```
+/// use passo_physics::{BodyDef, CharacterMover, Shape, World, glam::Vec2};
+///
+/// let mut world = World::default();
+/// world.add_body(BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0))).unwrap();
+/// let player = world
+///     .add_body(BodyDef::new_kinematic(Vec2::new(0.0, 0.5), Shape::rect(0.4, 0.8), Vec2::ZERO))
+///     .unwrap();
+/// let mover = CharacterMover::default(); // 1 cm skin, 0.3 m steps
+/// let dt = 1.0 / 60.0;
+/// let mut velocity = Vec2::ZERO;
+/// let mut on_ground = false;
+/// for _ in 0..60 {
+///     velocity.x = 3.0; // walk right at 3 m/s
+///     velocity.y = if on_ground { 0.0 } else { velocity.y - 9.81 * dt };
+///     let out = world.move_character(player, velocity * dt, &mover, dt).unwrap();
+///     on_ground = out.on_ground;
+///     world.step(dt);
+/// }
+/// let at = world.body(player).unwrap().position;
+/// assert!(on_ground);
+/// assert!((at.x - 3.0).abs() < 0.01, "3 m in 1 s, at {at}");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CharacterMover {
     /// Gap kept between the character and what it touches, metres, > 0.
