@@ -10,7 +10,7 @@ pub const SHAPE_CIRCLE: u32 = 0;
 pub const SHAPE_BOX: u32 = 1;
 
 /// One circle or box, as the GPU reads it. Mirrors `Instance` in
-/// `shaders/shapes.wgsl` field for field (`tests/shaders.rs` compares them).
+/// `crates/passo-render/shaders/shapes.wgsl` field for field (`tests/shaders.rs` compares them).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct ShapeInstance {
@@ -50,7 +50,7 @@ impl ShapeInstance {
 }
 
 /// One line segment, as the GPU reads it. Mirrors `Instance` in
-/// `shaders/lines.wgsl` field for field (`tests/shaders.rs` compares them).
+/// `crates/passo-render/shaders/lines.wgsl` field for field (`tests/shaders.rs` compares them).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct LineInstance {

@@ -5,10 +5,10 @@ use crate::{Camera2D, DrawList, Gpu};
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec2, Vec2};
 
-/// The shape pipeline's WGSL (`shaders/shapes.wgsl`), built in.
-pub const SHAPES_WGSL: &str = include_str!("../../../shaders/shapes.wgsl");
-/// The line pipeline's WGSL (`shaders/lines.wgsl`), built in.
-pub const LINES_WGSL: &str = include_str!("../../../shaders/lines.wgsl");
+/// The shape pipeline's WGSL (`crates/passo-render/shaders/shapes.wgsl`), built in.
+pub const SHAPES_WGSL: &str = include_str!("../shaders/shapes.wgsl");
+/// The line pipeline's WGSL (`crates/passo-render/shaders/lines.wgsl`), built in.
+pub const LINES_WGSL: &str = include_str!("../shaders/lines.wgsl");
 
 /// Per-frame constants, the uniform at `@group(0) @binding(0)`. Mirrors
 /// `Globals` in each WGSL file field for field; `tests/shaders.rs` compares
