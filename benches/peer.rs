@@ -5,7 +5,8 @@
 //! 1/60 s, gravity 9.81 m/s², restitution 0, friction 0.6 (both engines
 //! combine two equal coefficients to the same value), 4 substeps each
 //! (rapier's default `num_solver_iterations` = 4 with one PGS and one
-//! stabilisation pass each; Passo's 4 substeps with 2 passes and one relax).
+//! stabilisation pass each; Passo's defaults: 4 substeps, each with one pass, the shock
+//! propagation pass and one relax pass).
 //! Rotations are locked in rapier (Passo's bodies do not rotate), CCD is off
 //! in rapier (Passo's speculative contacts are always on). Sleeping is off
 //! in both engines for the main comparison; two more columns let both
