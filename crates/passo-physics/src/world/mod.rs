@@ -528,7 +528,8 @@ impl World {
     }
 
     /// The contact settings if the contact stage runs: contacts are on, a
-    /// shaped dynamic body exists and something else is shaped.
+    /// shaped dynamic or kinematic body exists and something else is
+    /// shaped.
     pub(crate) fn contact_settings(&self) -> Option<ContactSettings> {
         let contacts = self.settings().contacts?;
         (self.census.shaped_dynamic > 0

@@ -31,8 +31,8 @@ pub struct WorldSettings {
     pub interpolation: bool,
     /// How contacts between shaped bodies are solved; `None` turns
     /// collisions off. Default `Some(ContactSettings::default())`. The
-    /// contact stage runs only while the world holds a shaped dynamic body
-    /// and another shaped body; it then advances in
+    /// contact stage runs only while the world holds a shaped dynamic or
+    /// kinematic body and another shaped body; it then advances in
     /// [`ContactSettings::substeps`] substeps.
     pub contacts: Option<ContactSettings>,
 }
