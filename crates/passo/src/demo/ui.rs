@@ -81,8 +81,9 @@ pub(crate) fn panel(
 }
 
 /// The panel's sections. The plot comes right after the scene, so it is
-/// whole in a window of any height (at 1280 × 800 it was cut off at the
-/// bottom); the rest scrolls, with its bar always shown.
+/// whole in a window of any height; the rest are sections that fold, in a
+/// scroll area whose bar is always drawn (egui's default bars float and
+/// show only under the pointer, so a cut-off panel looked complete).
 fn panel_contents(
     ui: &mut egui::Ui,
     sim: &mut Sim,
@@ -90,31 +91,34 @@ fn panel_contents(
     input: &PanelInput<'_>,
     actions: &mut Actions,
 ) {
+    ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
     let bar = egui::scroll_area::ScrollBarVisibility::AlwaysVisible;
     egui::ScrollArea::vertical()
         .scroll_bar_visibility(bar)
         .show(ui, |ui| {
             scene_section(ui, sim, input, actions);
             plot(ui, sim);
-            ui.separator();
-            loop_section(ui, sim, actions);
-            ui.separator();
-            rewind_section(ui, sim);
-            ui.separator();
-            forces_section(ui, sim, actions);
-            ui.separator();
-            stats_section(ui, sim, input.fps);
-            ui.separator();
-            ui.label(egui::RichText::new("Draw").strong());
-            ui.horizontal(|ui| {
-                ui.checkbox(&mut view.velocities, "velocities");
-                ui.checkbox(&mut view.forces, "forces");
-                ui.checkbox(&mut view.contacts, "contacts");
-                ui.checkbox(&mut view.sleeping, "dim sleeping");
+            section(ui, "Loop", true, |ui| loop_section(ui, sim, actions));
+            section(ui, "Rewind", true, |ui| rewind_section(ui, sim));
+            section(ui, "Forces", true, |ui| forces_section(ui, sim, actions));
+            section(ui, "Stats", true, |ui| stats_section(ui, sim, input.fps));
+            section(ui, "Draw", true, |ui| {
+                ui.horizontal_wrapped(|ui| {
+                    ui.checkbox(&mut view.velocities, "velocities");
+                    ui.checkbox(&mut view.forces, "forces");
+                    ui.checkbox(&mut view.contacts, "contacts");
+                    ui.checkbox(&mut view.sleeping, "dim sleeping");
+                });
             });
-            ui.separator();
-            help(ui);
+            section(ui, "Controls", false, help);
         });
+}
+
+/// A section of the panel that folds under its heading.
+fn section(ui: &mut egui::Ui, title: &str, open: bool, contents: impl FnOnce(&mut egui::Ui)) {
+    egui::CollapsingHeader::new(egui::RichText::new(title).strong())
+        .default_open(open)
+        .show(ui, contents);
 }
 
 fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actions: &mut Actions) {
@@ -181,7 +185,6 @@ fn scene_section(ui: &mut egui::Ui, sim: &mut Sim, input: &PanelInput<'_>, actio
 /// The timeline of kept states: drag back to rewind, step with the
 /// arrows, resume from any point (which discards the states after it).
 fn rewind_section(ui: &mut egui::Ui, sim: &mut Sim) {
-    ui.label(egui::RichText::new("Rewind").strong());
     let kept = sim.scene.rewindable();
     let scrubbing = sim.scene.scrubbing();
     // Scrubbing keeps the present as the newest state; before, the present
@@ -234,7 +237,6 @@ fn rewind_section(ui: &mut egui::Ui, sim: &mut Sim) {
 }
 
 fn loop_section(ui: &mut egui::Ui, sim: &mut Sim, actions: &mut Actions) {
-    ui.label(egui::RichText::new("Loop").strong());
     ui.horizontal(|ui| {
         let paused = sim.session.timestep.is_paused();
         if ui.button(if paused { "resume" } else { "pause" }).clicked() {
@@ -296,7 +298,6 @@ fn loop_section(ui: &mut egui::Ui, sim: &mut Sim, actions: &mut Actions) {
 }
 
 fn forces_section(ui: &mut egui::Ui, sim: &Sim, actions: &mut Actions) {
-    ui.label(egui::RichText::new("Forces").strong());
     let mut k = sim.session.knobs;
     let mut changed = false;
     changed |= ui
@@ -356,7 +357,6 @@ fn forces_section(ui: &mut egui::Ui, sim: &Sim, actions: &mut Actions) {
 }
 
 fn stats_section(ui: &mut egui::Ui, sim: &Sim, fps: f64) {
-    ui.label(egui::RichText::new("Stats").strong());
     let s = sim.session.stats;
     egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
         let mut row = |name: &str, value: String| {
@@ -471,23 +471,19 @@ fn plot(ui: &mut egui::Ui, sim: &Sim) {
 }
 
 fn help(ui: &mut egui::Ui) {
-    egui::CollapsingHeader::new("Controls")
-        .default_open(true)
-        .show(ui, |ui| {
-            for line in [
-                "A / D or the left / right arrows: walk (Shift: run)",
-                "Space: jump (when standing)",
-                "G (hold): glide, W: wind on/off",
-                "P: pause, N: single step, R: reset",
-                "Backspace (hold): rewind (up to 10 s); or drag the timeline",
-                "left click: spawn (Shift: box)",
-                "left drag on a body: fling it",
-                "right drag: pan, wheel: zoom, F: fit",
-                "V: velocity arrows",
-            ] {
-                ui.label(line);
-            }
-        });
+    for line in [
+        "A / D or the left / right arrows: walk (Shift: run)",
+        "Space: jump (when standing)",
+        "G (hold): glide, W: wind on/off",
+        "P: pause, N: single step, R: reset",
+        "Backspace (hold): rewind (up to 10 s); or drag the timeline",
+        "left click: spawn (Shift: box)",
+        "left drag on a body: fling it",
+        "right drag: pan, wheel: zoom, F: fit",
+        "V: velocity arrows",
+    ] {
+        ui.label(line);
+    }
 }
 
 /// Names of side-by-side lanes, under each lane.
