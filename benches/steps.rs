@@ -18,8 +18,8 @@ struct SolverPasses(u32, u32, u32);
 
 /// The settings `tuning` and `rest` compare: the default first.
 const SOLVER_PASSES: [SolverPasses; 8] = [
-    SolverPasses(4, 2, 1),
     SolverPasses(4, 1, 1),
+    SolverPasses(4, 2, 1),
     SolverPasses(4, 1, 2),
     SolverPasses(4, 1, 3),
     SolverPasses(5, 1, 1),

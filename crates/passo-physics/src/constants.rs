@@ -52,12 +52,12 @@ pub const MAX_FRICTION: f32 = 1.0e3;
 
 /// Farthest a body may be placed from the origin along either axis,
 /// metres: 10⁷ (10 000 km). `f32` positions there are 1 m apart, far too
-/// coarse for contacts (keep play within a few kilometres, see the README),
-/// and the broad phase's cell indices stay well inside `i32` for any body
-/// size. Positions beyond it are refused where they enter (definitions,
-/// `set_position`, kinematic targets); a body that flies past it keeps
-/// flying, and a snapshot of it loads back (a restored position need only
-/// be finite).
+/// coarse for contacts (keep play within a few kilometres: the guide's
+/// "Bad input and limits"), and the broad phase's cell indices stay well
+/// inside `i32` for any body size. Positions beyond it are refused where
+/// they enter (definitions, `set_position`, kinematic targets); a body
+/// that flies past it keeps flying, and a snapshot of it loads back (a
+/// restored position need only be finite).
 pub const MAX_COORDINATE: f32 = 1.0e7;
 
 /// Longest step [`World::step`](crate::World::step) takes, seconds: an

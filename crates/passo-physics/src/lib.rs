@@ -4,8 +4,9 @@
 //! velocity and an accumulated force; force models (gravity, quadratic and
 //! linear drag, friction, force fields, springs, central gravity, your own);
 //! integrators (semi-implicit Euler by default, explicit Euler, velocity
-//! Verlet, RK4) and speed limits. Depends on `glam` and `std` only, so it
-//! runs on a server with no GPU; `serde` support is behind the `serde`
+//! Verlet, RK4) and speed limits. Depends on `glam`, `libm` (the same
+//! maths on every platform) and `std` only, so it runs on a server with no
+//! GPU; `serde` support is behind the `serde`
 //! feature.
 //!
 //! Drive [`World::step`] from a fixed-timestep loop (the `passo-loop` crate)

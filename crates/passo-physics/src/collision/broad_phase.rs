@@ -373,8 +373,8 @@ impl BroadPhase {
     /// dense grid of at most [`CORNER_CELLS_PER_PROXY`] cells a proxy (before
     /// padding), a
     /// coordinate not finite, or a cell holding more than `CROWDED_CELL + 1`
-    /// proxies (the hashed grid bounds their pairs). Its cells are at most
-    /// half the hashed grid's, so a pile can crowd a hashed cell and no
+    /// proxies (the hashed grid bounds their pairs). Its cells are no larger
+    /// than the hashed grid's, so a pile can crowd a hashed cell and no
     /// corner cell: the corner grid then finds all of its pairs, where the
     /// hashed grid would have bounded each proxy's to `CROWDED_CELL`.
     fn find_pairs_by_corner(

@@ -232,7 +232,8 @@ pub(crate) fn begin_substep(
     }
 }
 
-/// One Gauss-Seidel pass over every contact: friction, the normal row, and
+/// One Gauss-Seidel pass over every contact: the normal row, then friction,
+/// and
 /// (with `push`) the split-impulse push out of overlap deeper than the slop.
 /// Each contact reads its two bodies' velocities once, updates them in
 /// registers and writes them back once.

@@ -239,7 +239,7 @@ impl World {
         Ok(())
     }
 
-    /// Sets a body's friction coefficient `mu` (>= 0), for surface friction
+    /// Sets a body's friction coefficient `mu` (0 to [`MAX_FRICTION`](crate::MAX_FRICTION)), for surface friction
     /// and contacts.
     pub fn try_set_friction(&mut self, id: BodyId, mu: f32) -> Result<(), PhysicsError> {
         check_friction("friction", mu)?;

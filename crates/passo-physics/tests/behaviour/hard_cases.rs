@@ -71,7 +71,7 @@ fn stack_a_kilometre_from_the_origin() {
 fn stack_ten_kilometres_from_the_origin_meets_its_documented_limit() {
     // f32 positions near 10 000 m are 0.98 mm apart: motions smaller than
     // half of that round away and each box settles up to about one step of
-    // that grid low. The README documents the limit measured here: the
+    // that grid low. The guide documents the limit measured here: the
     // 15-box stack sinks under 2.5 cm (not 1 cm) but stays upright.
     let (drift, sink, pen) = check_stack(Vec2::new(10_000.0, 10_000.0));
     println!("stack at 10 km: drift {drift} m, sink {sink} m, max penetration {pen} m");

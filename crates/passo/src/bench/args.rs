@@ -93,7 +93,7 @@ pub struct QueriesBenchArgs {
     pub rays: u32,
 }
 
-/// Options of `passo bench platforms`.
+/// Options of `passo bench tiles`.
 #[derive(clap::Args, Debug)]
 pub struct TilesBenchArgs {
     /// Rain size (bodies).
