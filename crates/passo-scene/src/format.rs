@@ -551,7 +551,11 @@ mod tests {
             ),
             (
                 "(name: \"x\", collisions: (substeps: 0))",
-                "`collisions` field substeps must be in [1, 1024], got 0",
+                "`collisions.substeps` must be in [1, 64], got 0",
+            ),
+            (
+                "(name: \"x\", collisions: (substeps: 65))",
+                "`collisions.substeps` must be in [1, 64], got 65",
             ),
             (
                 "(name: \"x\", generators: [Grid(origin: (0,0), columns: 0, rows: 1, spacing: (1,1), body: ())])",

@@ -92,15 +92,17 @@ impl SceneFile {
             }
         }
         if let Some(contacts) = &self.collisions {
-            contacts
-                .validate()
-                .map_err(|e| c.fail("collisions", physics_message(&e)))?;
-            if contacts.substeps > 64 {
+            // A scene's own range first, so `substeps: 0` is told the
+            // range a scene allows, not the wider one the physics does.
+            if !(1..=64).contains(&contacts.substeps) {
                 return Err(c.fail(
                     "collisions.substeps",
                     format!("must be in [1, 64], got {}", contacts.substeps),
                 ));
             }
+            contacts
+                .validate()
+                .map_err(|e| c.fail("collisions", physics_message(&e)))?;
         }
         if let Some(camera) = &self.camera {
             c.finite_vec("camera.min", camera.min)?;
