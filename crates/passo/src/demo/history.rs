@@ -4,7 +4,7 @@
 
 use super::lanes::Lane;
 use crate::scenes::Plot;
-use passo_physics::BodyKind;
+use passo_physics::{BodyId, BodyKind};
 use std::collections::VecDeque;
 
 /// Samples kept for the plot: 10 s at 60 Hz.
@@ -21,6 +21,13 @@ pub struct History {
     pub series: Vec<(String, VecDeque<f32>)>,
     /// Named horizontal reference lines (closed-form values).
     pub lines: Vec<(String, f32)>,
+    /// The colour (sRGB) of each series and of the line of the same
+    /// index: the body's own in the speed plot, so the legend matches
+    /// the balls; empty for the energy plot, whose lanes take the panel's
+    /// colours.
+    pub colours: Vec<[u8; 4]>,
+    /// The bodies of the speed plot, one per series.
+    tracked: Vec<BodyId>,
     plot: Plot,
 }
 
@@ -28,6 +35,7 @@ impl History {
     /// An empty plot of `plot` with one series per lane (energy) or per
     /// dynamic body of lane 0 (speeds).
     pub(crate) fn new(plot: Plot, lanes: &[Lane]) -> Self {
+        let (mut colours, mut tracked) = (Vec::new(), Vec::new());
         let (title, series) = match plot {
             Plot::Energy => (
                 "total energy (J)",
@@ -53,7 +61,11 @@ impl History {
                                 .body(b.id)
                                 .is_some_and(|b| b.kind == BodyKind::Dynamic)
                         })
-                        .map(|b| b.name.clone().unwrap_or_default())
+                        .map(|b| {
+                            colours.push(b.colour.0);
+                            tracked.push(b.id);
+                            b.name.clone().unwrap_or_default()
+                        })
                         .collect(),
                 )
             }
@@ -63,6 +75,8 @@ impl History {
             time: VecDeque::new(),
             series: series.into_iter().map(|s| (s, VecDeque::new())).collect(),
             lines: Vec::new(),
+            colours,
+            tracked,
             plot,
         }
     }
@@ -79,11 +93,17 @@ impl History {
                 .iter()
                 .map(|l| l.world.total_energy() as f32)
                 .collect(),
-            Plot::TerminalSpeed => lanes[0]
-                .world
-                .bodies()
-                .filter(|b| b.kind == BodyKind::Dynamic)
-                .map(|b| b.velocity.length())
+            // By id, so a body spawned or removed since does not shift
+            // the series.
+            Plot::TerminalSpeed => self
+                .tracked
+                .iter()
+                .map(|&id| {
+                    lanes[0]
+                        .world
+                        .body(id)
+                        .map_or(f32::NAN, |b| b.velocity.length())
+                })
                 .collect(),
         };
         if self.time.len() == HISTORY {
@@ -106,15 +126,17 @@ impl History {
             return;
         }
         let (g, rho) = (gravity.abs(), density);
-        self.lines = lanes[0]
-            .world
-            .bodies()
-            .filter(|b| b.kind == BodyKind::Dynamic)
-            .map(|b| {
-                let vt = (2.0 * b.mass * g / (rho * b.drag_area)).sqrt();
+        // One line per series, in its colour; a speed with no bound (no
+        // air) is infinite, and the plot leaves it out.
+        self.lines = self
+            .tracked
+            .iter()
+            .map(|&id| {
+                let vt = lanes[0].world.body(id).map_or(f32::NAN, |b| {
+                    (2.0 * b.mass * g / (rho * b.drag_area)).sqrt()
+                });
                 (format!("{:.1} m/s", vt), vt)
             })
-            .filter(|(_, v)| v.is_finite())
             .collect();
     }
 }

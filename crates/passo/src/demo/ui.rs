@@ -3,6 +3,7 @@
 
 use super::catalogue::Entry;
 use super::controls::Knobs;
+use super::history::History;
 use super::replay::{Command, Replay};
 use super::sim::Sim;
 use crate::draw::BACKGROUND;
@@ -395,6 +396,47 @@ const SERIES: [Color32; 6] = [
     Color32::from_rgb(58, 200, 192),
 ];
 
+/// The colour of series `i` (and of its reference line): the body's own
+/// when the plot follows bodies, else the panel's palette.
+fn series_colour(h: &History, i: usize) -> Color32 {
+    h.colours
+        .get(i)
+        .map_or(SERIES[i % SERIES.len()], |&[r, g, b, _]| {
+            Color32::from_rgb(r, g, b)
+        })
+}
+
+/// The smallest and largest finite values, or infinities when none is.
+fn finite_range(values: impl Iterator<Item = f32>) -> (f32, f32) {
+    values
+        .filter(|v| v.is_finite())
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        })
+}
+
+/// The series that run away from the rest (explicit Euler's energy, which
+/// grows without bound): their span is more than ten times the median
+/// span of three or more series. The plot's range leaves them out, so the
+/// others stay readable, and they leave through the top.
+fn runaway_series(h: &History) -> Vec<bool> {
+    let spans: Vec<f32> = h
+        .series
+        .iter()
+        .map(|(_, s)| {
+            let (lo, hi) = finite_range(s.iter().copied());
+            if lo.is_finite() { hi - lo } else { 0.0 }
+        })
+        .collect();
+    if spans.len() < 3 {
+        return vec![false; spans.len()];
+    }
+    let mut sorted = spans.clone();
+    sorted.sort_by(f32::total_cmp);
+    let median = sorted[sorted.len() / 2];
+    spans.iter().map(|&span| span > 10.0 * median).collect()
+}
+
 /// A line chart of the history, drawn with egui's painter.
 fn plot(ui: &mut egui::Ui, sim: &Sim) {
     let h = &sim.scene.history;
@@ -405,16 +447,15 @@ fn plot(ui: &mut egui::Ui, sim: &Sim) {
     );
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 2.0, Color32::from_gray(20));
+    let runaway = runaway_series(h);
     let values = h
         .series
         .iter()
-        .flat_map(|(_, s)| s.iter().copied())
+        .enumerate()
+        .filter(|(i, _)| !runaway[*i])
+        .flat_map(|(_, (_, s))| s.iter().copied())
         .chain(h.lines.iter().map(|(_, v)| *v));
-    let (mut lo, mut hi) = values
-        .filter(|v| v.is_finite())
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), v| {
-            (a.min(v), b.max(v))
-        });
+    let (mut lo, mut hi) = finite_range(values);
     if !lo.is_finite() || h.time.len() < 2 {
         return;
     }
@@ -430,7 +471,10 @@ fn plot(ui: &mut egui::Ui, sim: &Sim) {
         )
     };
     for (i, (_, v)) in h.lines.iter().enumerate() {
-        let colour = SERIES[i % SERIES.len()].gamma_multiply(0.6);
+        if !v.is_finite() {
+            continue;
+        }
+        let colour = series_colour(h, i).gamma_multiply(0.6);
         painter.line_segment(
             [to_screen(t0, *v), to_screen(t1, *v)],
             Stroke::new(1.0, colour),
@@ -446,7 +490,7 @@ fn plot(ui: &mut egui::Ui, sim: &Sim) {
             .collect();
         painter.add(egui::Shape::line(
             points,
-            Stroke::new(1.5, SERIES[i % SERIES.len()]),
+            Stroke::new(1.5, series_colour(h, i)),
         ));
     }
     painter.text(
@@ -465,7 +509,11 @@ fn plot(ui: &mut egui::Ui, sim: &Sim) {
     );
     ui.horizontal_wrapped(|ui| {
         for (i, (name, _)) in h.series.iter().enumerate() {
-            ui.colored_label(SERIES[i % SERIES.len()], name);
+            if runaway[i] {
+                ui.colored_label(series_colour(h, i), format!("{name} (off the top)"));
+            } else {
+                ui.colored_label(series_colour(h, i), name);
+            }
         }
     });
 }
@@ -543,5 +591,67 @@ mod glyph_tests {
             }
         }
         assert!(missing.is_empty(), "not in the fonts: {missing:?}");
+    }
+}
+
+#[cfg(test)]
+mod plot_tests {
+    use super::*;
+    use crate::demo::{Entry, load};
+
+    /// Ten seconds of the integrators' springs: explicit Euler's energy
+    /// runs away and leaves the plot's range; the other three set it.
+    #[test]
+    fn only_explicit_euler_runs_off_the_integrators_plot() {
+        let mut sim = load(&Entry::Integrators).unwrap();
+        let names: Vec<String> = sim
+            .scene
+            .history
+            .series
+            .iter()
+            .map(|(n, _)| n.clone())
+            .collect();
+        assert_eq!(names.len(), 4, "{names:?}");
+        for _ in 0..600 {
+            sim.session.timestep.advance_ticks(1);
+            sim.tick();
+        }
+        let runaway = runaway_series(&sim.scene.history);
+        let off: Vec<&String> = names
+            .iter()
+            .zip(&runaway)
+            .filter(|(_, r)| **r)
+            .map(|(n, _)| n)
+            .collect();
+        assert_eq!(off.len(), 1, "{names:?} {runaway:?}");
+        assert!(off[0].to_lowercase().contains("explicit"), "{off:?}");
+    }
+
+    /// The drag race's speeds all stay on the plot, each in its ball's
+    /// colour.
+    #[test]
+    fn the_drag_race_plots_every_ball_in_its_own_colour() {
+        let mut sim = load(&Entry::File("drag_race".into())).unwrap();
+        for _ in 0..300 {
+            sim.session.timestep.advance_ticks(1);
+            sim.tick();
+        }
+        let h = &sim.scene.history;
+        assert_eq!(h.series.len(), 6);
+        assert!(runaway_series(h).iter().all(|r| !r));
+        let lane = &sim.scene.lanes[0];
+        for (i, (name, _)) in h.series.iter().enumerate() {
+            let body = lane
+                .bodies
+                .iter()
+                .find(|b| b.name.as_deref() == Some(name))
+                .unwrap();
+            let [r, g, b, _] = body.colour.0;
+            assert_eq!(series_colour(h, i), Color32::from_rgb(r, g, b), "{name}");
+            let speed = lane.world.body(body.id).unwrap().velocity.length();
+            assert_eq!(h.series[i].1.back(), Some(&speed), "{name}");
+        }
+        // The terminal-speed lines match the series, one each.
+        assert_eq!(h.lines.len(), 6);
     }
 }
