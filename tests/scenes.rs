@@ -325,3 +325,57 @@ fn a_scene_turns_shock_propagation_off_and_lists_its_stage_only_when_on() {
     assert!(on.contact_stages().contains(&shock));
     assert!(!off.contact_stages().contains(&shock));
 }
+
+/// The tunnelling scene shows what it says: with continuous collision every
+/// bullet stops at the wall, one after the other; without it every one
+/// passes through, each moving ten wall thicknesses a tick.
+#[test]
+fn the_tunnelling_scene_s_bullets_stop_at_the_wall_only_with_continuous_collision() {
+    for continuous in [true, false] {
+        let mut scene = load("tunnelling");
+        if let Some(contacts) = scene.file.collisions.as_mut() {
+            contacts.continuous = continuous;
+        }
+        let mut built = scene.build().unwrap();
+        let wall = built
+            .world
+            .bodies()
+            .find(|b| b.kind == passo_physics::BodyKind::Static)
+            .unwrap()
+            .position
+            .x
+            - 0.05;
+        let bullets: Vec<_> = built
+            .world
+            .bodies()
+            .filter(|b| b.kind == passo_physics::BodyKind::Dynamic)
+            .map(|b| b.id)
+            .collect();
+        assert_eq!(bullets.len(), 9);
+        // The nearest arrives after 15 ticks and the farthest after 55:
+        // the flight is seen.
+        let mut arrived = Vec::new();
+        for tick in 1..=90 {
+            built.step(tick, 1.0 / 60.0);
+            let past = bullets
+                .iter()
+                .filter(|&&id| built.world.body(id).unwrap().position.x > wall - 0.5)
+                .count();
+            arrived.push(past);
+        }
+        assert_eq!(arrived[10], 0, "none at the wall after 10 ticks");
+        assert!(
+            arrived[30] > 0 && arrived[30] < 9,
+            "some, not all, at the wall after 30 ticks: {}",
+            arrived[30]
+        );
+        for &id in &bullets {
+            let x = built.world.body(id).unwrap().position.x;
+            if continuous {
+                assert!(x < wall && x > wall - 0.2, "stopped at the wall: {x}");
+            } else {
+                assert!(x > wall + 0.1, "passed through: {x}");
+            }
+        }
+    }
+}
