@@ -1,6 +1,7 @@
 //! A small platformer in a window: the level made in the Tiled editor
 //! (`assets/levels/first.tmx`), a player moved by the character mover,
-//! a lift, a crate, coins and a goal, and a camera that follows.
+//! a lift, a crate, coins and a goal, a camera that follows the player
+//! inside the level's edges, and a HUD of the coins and the time.
 //!
 //! ```text
 //! cargo run --release -p passo-examples --example platformer
@@ -13,9 +14,10 @@
 //! as the goal is reached); `--screenshot FILE` saves the last frame as a
 //! PNG; `--software` draws on Mesa's lavapipe.
 
-use passo_examples::platformer::{Keys, Platformer};
+use passo_examples::platformer::{Keys, Platformer, follow_camera};
 use passo_loop::{FixedTimestep, RealClock};
 use passo_physics::Shape;
+use passo_physics::glam::Vec2;
 use passo_render::{
     AdapterChoice, Camera2D, DrawList, Gpu, Renderer, RgbaImage, WindowSurface, read_texture,
 };
@@ -29,8 +31,12 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 const BACKGROUND: [u8; 4] = [0x1b, 0x1d, 0x22, 0xff];
-/// How much of the level the camera shows: 9 m tall.
-const VIEW_HEIGHT: f32 = 9.0;
+/// How much of the level the camera shows: 8 m tall (the shipped level
+/// is 7.5 m tall, so it fits, and the camera scrolls along it).
+const VIEW_HEIGHT: f32 = 8.0;
+/// The HUD's colours: the coins' gold and a light grey for the time.
+const HUD_GOLD: [u8; 4] = [0xf0, 0xc0, 0x30, 0xff];
+const HUD_TEXT: [u8; 4] = [0xe8, 0xe8, 0xe8, 0xff];
 
 #[derive(Default)]
 struct Options {
@@ -155,9 +161,16 @@ impl App {
         let Some(r) = self.running.as_mut() else {
             return Ok(());
         };
-        // The camera follows the player, a little behind.
-        let target = self.game.player_position();
-        r.camera.centre += (target - r.camera.centre) * 0.1;
+        // The camera follows the player, a little behind, and never looks
+        // past the level's edges.
+        let (w, h) = r.surface.size();
+        let view = Vec2::new(VIEW_HEIGHT * w as f32 / h.max(1) as f32, VIEW_HEIGHT);
+        r.camera.centre = follow_camera(
+            r.camera.centre,
+            self.game.player_position(),
+            view,
+            self.game.bounds,
+        );
         r.list.clear(BACKGROUND);
         for body in self.game.world.bodies() {
             let Some(colour) = self.game.bodies.iter().find(|b| b.id == body.id) else {
@@ -174,6 +187,13 @@ impl App {
                 None => {}
             }
         }
+        draw_hud(
+            &mut r.list,
+            &r.camera,
+            r.surface.size(),
+            (self.game.coins, self.game.coins_total),
+            self.game.seconds(frame.dt),
+        );
         let Some(texture) = r.surface.acquire(&r.gpu.device) else {
             return Ok(());
         };
@@ -279,4 +299,77 @@ fn main() -> Result<(), String> {
         g.player_position().y
     );
     Ok(())
+}
+
+/// The HUD, in the top-left corner: a coin and the coins taken of all
+/// (`3/5`), then the seconds played (`12.4`), in seven-segment digits
+/// drawn with the renderer's lines, so no font is needed. Sizes are in
+/// pixels, turned into world points through the camera.
+fn draw_hud(
+    list: &mut DrawList,
+    camera: &Camera2D,
+    size: (u32, u32),
+    (coins, total): (u32, u32),
+    seconds: f32,
+) {
+    let at = |x: f32, y: f32| camera.pixel_to_world(Vec2::new(x, y), size);
+    let metres_per_pixel = camera.height / size.1.max(1) as f32;
+    list.circle(at(28.0, 28.0), 11.0 * metres_per_pixel, HUD_GOLD);
+    let x = draw_text(list, &at, 50.0, 16.0, &format!("{coins}/{total}"), HUD_GOLD);
+    draw_text(
+        list,
+        &at,
+        x + 24.0,
+        16.0,
+        &format!("{seconds:.1}"),
+        HUD_TEXT,
+    );
+}
+
+/// Draws `text` (digits, `/` and `.`) from the pixel `(x, y)`, its top
+/// left, 24 px tall; returns the pixel x after it.
+fn draw_text(
+    list: &mut DrawList,
+    at: &impl Fn(f32, f32) -> Vec2,
+    mut x: f32,
+    y: f32,
+    text: &str,
+    colour: [u8; 4],
+) -> f32 {
+    // Segments a to g of a digit 12 px wide and 24 tall, as pixel offsets.
+    const SEGMENTS: [((f32, f32), (f32, f32)); 7] = [
+        ((0.0, 0.0), (12.0, 0.0)),    // a, top
+        ((12.0, 0.0), (12.0, 12.0)),  // b, upper right
+        ((12.0, 12.0), (12.0, 24.0)), // c, lower right
+        ((0.0, 24.0), (12.0, 24.0)),  // d, bottom
+        ((0.0, 12.0), (0.0, 24.0)),   // e, lower left
+        ((0.0, 0.0), (0.0, 12.0)),    // f, upper left
+        ((0.0, 12.0), (12.0, 12.0)),  // g, middle
+    ];
+    // Which segments each digit lights, a as bit 0.
+    const DIGITS: [u8; 10] = [0x3f, 0x06, 0x5b, 0x4f, 0x66, 0x6d, 0x7d, 0x07, 0x7f, 0x6f];
+    const WIDTH: f32 = 3.0;
+    for c in text.chars() {
+        match c {
+            '0'..='9' => {
+                let lit = DIGITS[c as usize - '0' as usize];
+                for (i, ((x0, y0), (x1, y1))) in SEGMENTS.iter().enumerate() {
+                    if lit & (1 << i) != 0 {
+                        list.line(at(x + x0, y + y0), at(x + x1, y + y1), WIDTH, colour);
+                    }
+                }
+                x += 20.0;
+            }
+            '/' => {
+                list.line(at(x + 10.0, y), at(x, y + 24.0), WIDTH, colour);
+                x += 18.0;
+            }
+            '.' => {
+                list.line(at(x, y + 23.0), at(x + 1.0, y + 23.0), WIDTH + 1.0, colour);
+                x += 9.0;
+            }
+            _ => x += 12.0,
+        }
+    }
+    x
 }

@@ -7,7 +7,7 @@
 //! time, jump buffering and variable jump height.
 
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, BodyId, CharacterMover, Shape, World};
+use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, CharacterMover, Shape, World};
 use passo_scene::{BuiltScene, Platform, Scene, SceneBody};
 use std::path::Path;
 
@@ -74,6 +74,11 @@ pub struct Platformer {
     rising_from_jump: bool,
     /// Coins collected.
     pub coins: u32,
+    /// Coins in the level.
+    pub coins_total: u32,
+    /// The box around the level's static bodies, metres: where the camera
+    /// may look.
+    pub bounds: Aabb,
     goal: Option<BodyId>,
     /// The tick the player reached the goal.
     pub reached: Option<u64>,
@@ -103,6 +108,18 @@ impl Platformer {
             colour: passo_scene::Colour([0xe4, 0x6c, 0x3a, 0xff]),
         });
         let goal = built.body_named("goal");
+        let coins_total = built
+            .bodies
+            .iter()
+            .filter(|b| b.name.as_deref().is_some_and(|n| n.starts_with("coin")))
+            .count() as u32;
+        let bounds = built
+            .world
+            .bodies()
+            .filter(|b| b.kind == BodyKind::Static)
+            .filter_map(|b| Some(Aabb::from_centre(b.position, b.shape?.half_extents())))
+            .reduce(|a, b| a.union(&b))
+            .ok_or("the level has no static bodies")?;
         Ok(Self {
             world: built.world,
             bodies: built.bodies,
@@ -117,6 +134,8 @@ impl Platformer {
             jump_was_held: false,
             rising_from_jump: false,
             coins: 0,
+            coins_total,
+            bounds,
             goal,
             reached: None,
             tick: 0,
@@ -128,6 +147,11 @@ impl Platformer {
         self.world
             .body(self.player)
             .map_or(Vec2::ZERO, |b| b.position)
+    }
+
+    /// Seconds played.
+    pub fn seconds(&self, dt: f32) -> f32 {
+        self.tick as f32 * dt
     }
 
     /// One fixed tick of `dt` seconds with `keys` held.
@@ -269,4 +293,24 @@ impl Platformer {
             ..Keys::default()
         }
     }
+}
+
+/// Where a camera showing `view` (width, height in metres) looks next: a
+/// tenth of the way from `centre` towards `player`, so it follows a little
+/// behind, then moved so the view stays inside `bounds`. Along an axis
+/// where the level is smaller than the view, the level is centred.
+pub fn follow_camera(centre: Vec2, player: Vec2, view: Vec2, bounds: Aabb) -> Vec2 {
+    let wanted = centre + (player - centre) * 0.1;
+    let clamp_axis = |c: f32, half: f32, lo: f32, hi: f32| {
+        if hi - lo <= 2.0 * half {
+            0.5 * (lo + hi)
+        } else {
+            c.clamp(lo + half, hi - half)
+        }
+    };
+    let half = 0.5 * view;
+    Vec2::new(
+        clamp_axis(wanted.x, half.x, bounds.min.x, bounds.max.x),
+        clamp_axis(wanted.y, half.y, bounds.min.y, bounds.max.y),
+    )
 }

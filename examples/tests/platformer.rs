@@ -3,8 +3,9 @@
 //! they say.
 
 use passo_examples::platformer::{
-    COYOTE_TIME, GRAVITY, JUMP_CUT, JUMP_SPEED, Keys, Platformer, WALK_SPEED,
+    COYOTE_TIME, GRAVITY, JUMP_CUT, JUMP_SPEED, Keys, Platformer, WALK_SPEED, follow_camera,
 };
+use passo_physics::glam::Vec2;
 use std::path::PathBuf;
 
 const DT: f32 = 1.0 / 60.0;
@@ -183,4 +184,49 @@ fn a_crushed_player_starts_again_at_the_spawn_point() {
         (at - start).length() < 0.02,
         "back at the start {start}: {at}"
     );
+}
+
+/// The camera follows the player through the whole level, and its view
+/// never shows past the level's edges: the shipped level is 15 m wide and
+/// 7.5 m tall, and the view 8 m tall, so the level fills it from top to
+/// bottom wherever the player is.
+#[test]
+fn the_camera_follows_the_player_and_stays_inside_the_level() {
+    let mut game = level();
+    let bounds = game.bounds;
+    assert_eq!(game.coins_total, 3, "the level's coins");
+    assert!(
+        (bounds.size() - Vec2::new(15.0, 7.5)).length() < 1e-4,
+        "{bounds:?}"
+    );
+    for aspect in [4.0 / 3.0, 16.0 / 10.0, 0.5] {
+        let view = Vec2::new(8.0 * aspect, 8.0);
+        let mut centre = game.player_position();
+        let mut game = level();
+        let mut seen = (f32::INFINITY, f32::NEG_INFINITY);
+        for _ in 0..60 * 20 {
+            let keys = game.autopilot();
+            game.update(keys, DT);
+            centre = follow_camera(centre, game.player_position(), view, bounds);
+            // Taller than the level: centred on it.
+            assert_eq!(centre.y, bounds.centre().y);
+            if view.x < bounds.size().x {
+                assert!(centre.x - view.x / 2.0 >= bounds.min.x - 1e-4, "{centre}");
+                assert!(centre.x + view.x / 2.0 <= bounds.max.x + 1e-4, "{centre}");
+            } else {
+                assert_eq!(centre.x, bounds.centre().x);
+            }
+            seen = (seen.0.min(centre.x), seen.1.max(centre.x));
+            if game.reached.is_some() {
+                break;
+            }
+        }
+        assert!(game.reached.is_some());
+        if view.x < bounds.size().x {
+            // It scrolled from one end of the level to the other.
+            assert!(seen.1 - seen.0 > bounds.size().x - view.x - 1.0, "{seen:?}");
+        }
+    }
+    game.update(Keys::default(), DT);
+    assert!((game.seconds(DT) - DT).abs() < 1e-6);
 }

@@ -55,4 +55,17 @@ fn the_scripted_player_reaches_the_goal_in_a_window() {
         })
         .count();
     assert!(orange > 100, "{orange} orange pixels");
+    // The HUD: the coin's gold at the top left, and the coins taken of
+    // the three as gold digits beside it (lit pixels between x 50 and 110).
+    let gold = |p: Option<[u8; 4]>| p.is_some_and(|p| p[0] > 200 && p[1] > 150 && p[2] < 100);
+    assert!(
+        gold(image.get(28, 28)),
+        "the HUD's coin: {:?}",
+        image.get(28, 28)
+    );
+    let digits = (50..110)
+        .flat_map(|x| (14..42).map(move |y| (x, y)))
+        .filter(|&(x, y)| gold(image.get(x, y)))
+        .count();
+    assert!(digits > 60, "{digits} gold pixels of the HUD's digits");
 }
