@@ -309,7 +309,7 @@ impl Running {
         let mut panel_width = 0.0;
         let mut full = self.egui.ctx.run_ui(raw, |ui| {
             panel_width = ui::panel(ui, &mut self.sim, &mut self.view, &panel, &mut actions);
-            ui::lane_labels(ui, &self.sim, &camera, size, ppp);
+            ui::lane_labels(ui, &self.sim, &camera, size, ppp, panel_width);
         });
         self.panel_px = panel_width * full.pixels_per_point;
         self.egui

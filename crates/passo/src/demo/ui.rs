@@ -534,13 +534,17 @@ fn help(ui: &mut egui::Ui) {
     }
 }
 
-/// Names of side-by-side lanes, under each lane.
+/// Names of side-by-side lanes, under each lane, and a marker at the
+/// edge of the scene for each lane's body that left the view (explicit
+/// Euler's spring swings ever wider), with how far beyond the edge it is.
+/// `scene_left` is where the scene starts, right of the panel, in points.
 pub(crate) fn lane_labels(
     ui: &mut egui::Ui,
     sim: &Sim,
     camera: &Camera2D,
     size: (u32, u32),
     pixels_per_point: f32,
+    scene_left: f32,
 ) {
     if sim.scene.lanes.len() < 2 {
         return;
@@ -560,6 +564,52 @@ pub(crate) fn lane_labels(
             SERIES[i % SERIES.len()],
         );
     }
+    const MARGIN: f32 = 16.0;
+    let view = egui::Rect::from_min_max(
+        egui::pos2(scene_left + MARGIN, MARGIN),
+        egui::pos2(
+            size.0 as f32 / pixels_per_point - MARGIN,
+            size.1 as f32 / pixels_per_point - MARGIN,
+        ),
+    );
+    let metres_per_point = camera.height / size.1.max(1) as f32 * pixels_per_point;
+    for (i, lane) in sim.scene.lanes.iter().enumerate() {
+        let colour = SERIES[i % SERIES.len()];
+        let dynamic = lane
+            .world
+            .bodies()
+            .filter(|b| b.kind == passo_physics::BodyKind::Dynamic);
+        for body in dynamic {
+            let px = camera.world_to_pixel(body.position + lane.offset, size) / pixels_per_point;
+            let Some((at, out)) = edge_marker(egui::pos2(px.x, px.y), view) else {
+                continue;
+            };
+            let (side, tip) = (out.rot90() * 7.0, at + out * 9.0);
+            painter.add(egui::Shape::convex_polygon(
+                vec![tip, at - out * 3.0 + side, at - out * 3.0 - side],
+                colour,
+                Stroke::NONE,
+            ));
+            let beyond = (egui::pos2(px.x, px.y) - at).length() * metres_per_point;
+            painter.text(
+                at - out * 10.0,
+                egui::Align2::CENTER_CENTER,
+                format!("{beyond:.0} m"),
+                egui::FontId::proportional(13.0),
+                colour,
+            );
+        }
+    }
+}
+
+/// Where to mark a point `p` that lies outside `view`: the nearest point of
+/// `view` and the unit direction from it towards `p`; `None` inside.
+fn edge_marker(p: egui::Pos2, view: egui::Rect) -> Option<(egui::Pos2, egui::Vec2)> {
+    if view.contains(p) || !p.x.is_finite() || !p.y.is_finite() {
+        return None;
+    }
+    let at = view.clamp(p);
+    Some((at, (p - at).normalized()))
 }
 
 #[cfg(test)]
@@ -597,6 +647,25 @@ mod glyph_tests {
 #[cfg(test)]
 mod plot_tests {
     use super::*;
+
+    #[test]
+    fn a_point_off_the_view_is_marked_at_the_nearest_edge_facing_it() {
+        let view = egui::Rect::from_min_max(egui::pos2(300.0, 0.0), egui::pos2(1000.0, 600.0));
+        assert_eq!(edge_marker(egui::pos2(500.0, 300.0), view), None);
+        assert_eq!(
+            edge_marker(egui::pos2(500.0, -200.0), view),
+            Some((egui::pos2(500.0, 0.0), egui::vec2(0.0, -1.0)))
+        );
+        assert_eq!(
+            edge_marker(egui::pos2(1400.0, 300.0), view),
+            Some((egui::pos2(1000.0, 300.0), egui::vec2(1.0, 0.0)))
+        );
+        // Past a corner: at the corner, pointing along the diagonal.
+        let (at, out) = edge_marker(egui::pos2(1100.0, 700.0), view).unwrap();
+        assert_eq!(at, egui::pos2(1000.0, 600.0));
+        assert!((out - egui::vec2(1.0, 1.0).normalized()).length() < 1e-6);
+        assert_eq!(edge_marker(egui::pos2(f32::NAN, 0.0), view), None);
+    }
     use crate::demo::{Entry, load};
 
     /// Ten seconds of the integrators' springs: explicit Euler's energy
