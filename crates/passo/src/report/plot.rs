@@ -1,5 +1,6 @@
 //! The work-precision picture: error against cost, log-log, one panel per
-//! case, one line per method.
+//! case, one line per method, and one legend for all of them in the panel
+//! left after the cases (a legend inside each panel covered its lines).
 
 use super::Report;
 use super::cases::{METHODS, cases, methods_for};
@@ -15,6 +16,35 @@ const COLOURS: [RGBColor; 6] = [
     RGBColor(92, 184, 92),
     RGBColor(163, 92, 214),
 ];
+
+/// The methods' colours and names, one a line, in `panel`.
+fn legend<DB: DrawingBackend>(panel: &DrawingArea<DB, plotters::coord::Shift>) -> Result<()> {
+    let (x, mut y) = (40, 70);
+    panel
+        .draw(&Text::new("method", (x, y - 40), ("sans-serif", 20)))
+        .map_err(|e| anyhow!("{e:?}"))?;
+    for (i, method) in METHODS.iter().enumerate() {
+        let colour = COLOURS[i % COLOURS.len()];
+        panel
+            .draw(&PathElement::new(
+                vec![(x, y + 9), (x + 36, y + 9)],
+                colour.stroke_width(3),
+            ))
+            .map_err(|e| anyhow!("{e:?}"))?;
+        panel
+            .draw(&Text::new(method.name, (x + 48, y), ("sans-serif", 18)))
+            .map_err(|e| anyhow!("{e:?}"))?;
+        y += 32;
+    }
+    panel
+        .draw(&Text::new(
+            "_plain: drag and friction in their plain explicit form",
+            (x, y + 10),
+            ("sans-serif", 14),
+        ))
+        .map_err(|e| anyhow!("{e:?}"))?;
+    Ok(())
+}
 
 /// Draws the panels into a PNG at `path`.
 pub(crate) fn work_precision(report: &Report, path: &Path) -> Result<()> {
@@ -86,23 +116,14 @@ pub(crate) fn work_precision(report: &Report, path: &Path) -> Result<()> {
                     .collect();
                 chart
                     .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))
-                    .map_err(|e| anyhow!("{e}"))?
-                    .label(method.name)
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2))
-                    });
+                    .map_err(|e| anyhow!("{e}"))?;
                 chart
                     .draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
                     .map_err(|e| anyhow!("{e}"))?;
             }
-            chart
-                .configure_series_labels()
-                .label_font(("sans-serif", 11))
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .position(SeriesLabelPosition::UpperRight)
-                .draw()
-                .map_err(|e| anyhow!("{e}"))?;
+        }
+        if let Some(panel) = panels.get(all.len()) {
+            legend(panel)?;
         }
         root.present().map_err(|e| anyhow!("{e}"))?;
     }
