@@ -81,6 +81,55 @@ impl LineInstance {
         instance_layout::<Self>(&Self::ATTRIBUTES);
 }
 
+/// One textured quad, as the GPU reads it. Mirrors `Instance` in
+/// `crates/passo-render/shaders/sprites.wgsl` field for field
+/// (`tests/shaders.rs` compares them).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct SpriteInstance {
+    /// Centre, metres.
+    pub centre: [f32; 2],
+    /// Half extents, metres.
+    pub half_extents: [f32; 2],
+    /// The texture rectangle's top-left corner, 0 to 1 across the image
+    /// (v runs down its rows).
+    pub uv_min: [f32; 2],
+    /// Its bottom-right corner.
+    pub uv_max: [f32; 2],
+}
+
+impl SpriteInstance {
+    /// The vertex attributes of the instance buffer.
+    const ATTRIBUTES: [wgpu::VertexAttribute; 4] = [
+        attribute(0, offset_of!(Self, centre), wgpu::VertexFormat::Float32x2),
+        attribute(
+            1,
+            offset_of!(Self, half_extents),
+            wgpu::VertexFormat::Float32x2,
+        ),
+        attribute(2, offset_of!(Self, uv_min), wgpu::VertexFormat::Float32x2),
+        attribute(3, offset_of!(Self, uv_max), wgpu::VertexFormat::Float32x2),
+    ];
+
+    /// The layout of a buffer of instances, one per drawn quad, as the
+    /// sprite pipeline reads it.
+    pub const LAYOUT: wgpu::VertexBufferLayout<'static> =
+        instance_layout::<Self>(&Self::ATTRIBUTES);
+}
+
+/// A texture the renderer holds, from [`Renderer::add_texture`](crate::Renderer::add_texture).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct TextureId(pub(crate) u32);
+
+/// A sprite in a [`DrawList`]: which texture, and where.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sprite {
+    /// The texture it shows part of.
+    pub texture: TextureId,
+    /// Where, and which part.
+    pub instance: SpriteInstance,
+}
+
 /// A buffer of `T`s read once per instance.
 const fn instance_layout<T>(
     attributes: &'static [wgpu::VertexAttribute],
@@ -129,8 +178,9 @@ fn outline_of(fill: [f32; 4]) -> [f32; 4] {
     [fill[0] * 0.35, fill[1] * 0.35, fill[2] * 0.35, fill[3]]
 }
 
-/// Everything one frame draws: a clear colour, shapes (drawn first, in
-/// order) and lines (drawn over them). Colours are given as 8-bit sRGB with
+/// Everything one frame draws: a clear colour, sprites (drawn first, in
+/// order: tiles behind everything), shapes (over them, in order) and lines
+/// (over both). Colours are given as 8-bit sRGB with
 /// straight alpha, as in scene files; the list stores linear light.
 ///
 /// Keep one list and [`clear`](Self::clear) it each frame: its buffers keep
@@ -140,6 +190,8 @@ fn outline_of(fill: [f32; 4]) -> [f32; 4] {
 pub struct DrawList {
     /// Background, linear RGBA.
     pub clear_colour: [f32; 4],
+    /// Textured quads: tiles.
+    pub sprites: Vec<Sprite>,
     /// Circles and boxes.
     pub shapes: Vec<ShapeInstance>,
     /// Line segments.
@@ -161,6 +213,7 @@ impl DrawList {
     pub fn new(background: [u8; 4]) -> Self {
         Self {
             clear_colour: linear(background),
+            sprites: Vec::new(),
             shapes: Vec::new(),
             lines: Vec::new(),
             clip: None,
@@ -171,9 +224,33 @@ impl DrawList {
     /// draws on the whole target again (no [`clip`](Self::clip)).
     pub fn clear(&mut self, background: [u8; 4]) {
         self.clear_colour = linear(background);
+        self.sprites.clear();
         self.shapes.clear();
         self.lines.clear();
         self.clip = None;
+    }
+
+    /// A quad centred on `centre` showing the rectangle from `uv_min` to
+    /// `uv_max` of `texture` (0 to 1 across the image, v down its rows):
+    /// a tile of a tileset image. Colours come from the texture as they
+    /// are; texels with alpha 0 are not drawn.
+    pub fn sprite(
+        &mut self,
+        texture: TextureId,
+        centre: Vec2,
+        half_extents: Vec2,
+        uv_min: Vec2,
+        uv_max: Vec2,
+    ) {
+        self.sprites.push(Sprite {
+            texture,
+            instance: SpriteInstance {
+                centre: centre.to_array(),
+                half_extents: half_extents.to_array(),
+                uv_min: uv_min.to_array(),
+                uv_max: uv_max.to_array(),
+            },
+        });
     }
 
     /// A filled circle with a darker outline.
@@ -238,6 +315,12 @@ mod tests {
         assert_eq!(std::mem::size_of::<LineInstance>(), 48);
         let offsets: Vec<u64> = LineInstance::ATTRIBUTES.iter().map(|a| a.offset).collect();
         assert_eq!(offsets, [0, 8, 16, 32]);
+        assert_eq!(std::mem::size_of::<SpriteInstance>(), 32);
+        let offsets: Vec<u64> = SpriteInstance::ATTRIBUTES
+            .iter()
+            .map(|a| a.offset)
+            .collect();
+        assert_eq!(offsets, [0, 8, 16, 24]);
     }
 
     #[test]

@@ -43,7 +43,8 @@ mod surface;
 
 pub use camera::Camera2D;
 pub use draw_list::{
-    DrawList, LineInstance, SHAPE_BOX, SHAPE_CIRCLE, ShapeInstance, srgb_to_linear,
+    DrawList, LineInstance, SHAPE_BOX, SHAPE_CIRCLE, ShapeInstance, Sprite, SpriteInstance,
+    TextureId, srgb_to_linear,
 };
 /// The maths types the draw list and camera take (`glam::Vec2`), re-exported
 /// so a game uses the same version.
@@ -53,6 +54,6 @@ pub use image::RgbaImage;
 pub use offscreen::{OffscreenTarget, read_texture};
 #[doc(hidden)]
 pub use renderer::Globals;
-pub use renderer::{LINES_WGSL, Renderer, SHAPES_WGSL};
+pub use renderer::{LINES_WGSL, Renderer, SHAPES_WGSL, SPRITES_WGSL};
 pub use surface::WindowSurface;
 pub use wgpu;

@@ -1,7 +1,7 @@
 //! The renderer: pipelines and buffers for one target format.
 
-use crate::draw_list::{LineInstance, ShapeInstance};
-use crate::{Camera2D, DrawList, Gpu};
+use crate::draw_list::{LineInstance, ShapeInstance, SpriteInstance, TextureId};
+use crate::{Camera2D, DrawList, Gpu, RenderError, RgbaImage};
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec2, Vec2};
 
@@ -9,6 +9,8 @@ use glam::{DVec2, Vec2};
 pub const SHAPES_WGSL: &str = include_str!("../shaders/shapes.wgsl");
 /// The line pipeline's WGSL (`crates/passo-render/shaders/lines.wgsl`), built in.
 pub const LINES_WGSL: &str = include_str!("../shaders/lines.wgsl");
+/// The sprite pipeline's WGSL (`crates/passo-render/shaders/sprites.wgsl`), built in.
+pub const SPRITES_WGSL: &str = include_str!("../shaders/sprites.wgsl");
 
 /// Per-frame constants, the uniform at `@group(0) @binding(0)`. Mirrors
 /// `Globals` in each WGSL file field for field; `tests/shaders.rs` compares
@@ -62,6 +64,16 @@ pub struct Renderer {
     format: wgpu::TextureFormat,
     shapes: wgpu::RenderPipeline,
     lines: wgpu::RenderPipeline,
+    sprites: wgpu::RenderPipeline,
+    /// The layout of a texture's bind group (`@group(1)` of the sprites).
+    texture_layout: wgpu::BindGroupLayout,
+    nearest: wgpu::Sampler,
+    /// One bind group per texture added, by [`TextureId`].
+    textures: Vec<wgpu::BindGroup>,
+    sprite_buffer: wgpu::Buffer,
+    sprite_capacity: usize,
+    /// The frame's sprite instances, gathered for upload.
+    sprite_instances: Vec<SpriteInstance>,
     globals: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     shape_buffer: wgpu::Buffer,
@@ -119,14 +131,43 @@ impl Renderer {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = |label: &str, source: &str, instances: wgpu::VertexBufferLayout<'static>| {
+        let texture_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("passo texture layout"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let sprite_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("passo sprite pipeline layout"),
+            bind_group_layouts: &[Some(&layout), Some(&texture_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |label: &str,
+                        source: &str,
+                        pipeline_layout: &wgpu::PipelineLayout,
+                        instances: wgpu::VertexBufferLayout<'static>| {
             let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(label),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
-                layout: Some(&pipeline_layout),
+                layout: Some(pipeline_layout),
                 vertex: wgpu::VertexState {
                     module: &module,
                     entry_point: Some("vs_main"),
@@ -150,8 +191,29 @@ impl Renderer {
                 cache: None,
             })
         };
-        let shapes = pipeline("passo shapes", SHAPES_WGSL, ShapeInstance::LAYOUT);
-        let lines = pipeline("passo lines", LINES_WGSL, LineInstance::LAYOUT);
+        let shapes = pipeline(
+            "passo shapes",
+            SHAPES_WGSL,
+            &pipeline_layout,
+            ShapeInstance::LAYOUT,
+        );
+        let lines = pipeline(
+            "passo lines",
+            LINES_WGSL,
+            &pipeline_layout,
+            LineInstance::LAYOUT,
+        );
+        let sprites = pipeline(
+            "passo sprites",
+            SPRITES_WGSL,
+            &sprite_layout,
+            SpriteInstance::LAYOUT,
+        );
+        // Nearest texels: tiles of pixel art stay sharp at any zoom.
+        let nearest = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("passo nearest sampler"),
+            ..Default::default()
+        });
         let shape_buffer = instance_buffer(device, "passo shape instances", 256 * 64);
         let line_buffer = instance_buffer(device, "passo line instances", 256 * 48);
         Self {
@@ -160,6 +222,13 @@ impl Renderer {
             format,
             shapes,
             lines,
+            sprites,
+            texture_layout,
+            nearest,
+            textures: Vec::new(),
+            sprite_buffer: instance_buffer(device, "passo sprite instances", 256 * 32),
+            sprite_capacity: 256,
+            sprite_instances: Vec::new(),
             globals,
             bind_group,
             shape_buffer,
@@ -174,6 +243,79 @@ impl Renderer {
     /// The target format the pipelines were built for.
     pub fn format(&self) -> wgpu::TextureFormat {
         self.format
+    }
+
+    /// Uploads `image` (8-bit sRGB RGBA, as [`RgbaImage::load_png`]
+    /// reads a PNG) as a texture that [`DrawList::sprite`] can show parts
+    /// of: a tileset image. Textures live as long as the renderer.
+    ///
+    /// # Errors
+    /// [`RenderError::Image`] for an empty image, one whose pixels do not
+    /// match its size, or one larger than the device's largest texture.
+    pub fn add_texture(&mut self, image: &RgbaImage) -> Result<TextureId, RenderError> {
+        let (w, h) = (image.width, image.height);
+        let most = self.device.limits().max_texture_dimension_2d;
+        if w == 0 || h == 0 || w > most || h > most {
+            return Err(RenderError::Image(format!(
+                "a {w} × {h} texture: each side must be 1 to {most} pixels"
+            )));
+        }
+        if image.pixels.len() != w as usize * h as usize * 4 {
+            return Err(RenderError::Image(format!(
+                "a {w} × {h} texture needs {} bytes of pixels, it has {}",
+                w as usize * h as usize * 4,
+                image.pixels.len()
+            )));
+        }
+        let size = wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        };
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("passo sprite texture"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            // sRGB: sampling gives linear light, as the shapes' colours are.
+            format: wgpu::TextureFormat::Rgba8UnormSrgb,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        self.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            &image.pixels,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * w),
+                rows_per_image: Some(h),
+            },
+            size,
+        );
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("passo sprite texture bind group"),
+            layout: &self.texture_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&self.nearest),
+                },
+            ],
+        });
+        let id = TextureId(u32::try_from(self.textures.len()).unwrap_or(u32::MAX));
+        self.textures.push(group);
+        Ok(id)
     }
 
     /// Draws `list` into `view` (of `size` pixels) and submits the work.
@@ -220,6 +362,23 @@ impl Renderer {
         };
         self.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+        // Sprites of a texture this renderer does not hold are left out.
+        let known = self.textures.len();
+        self.sprite_instances.clear();
+        self.sprite_instances.extend(
+            list.sprites
+                .iter()
+                .filter(|s| (s.texture.0 as usize) < known)
+                .map(|s| s.instance),
+        );
+        let sprites = upload(
+            &self.device,
+            &self.queue,
+            &mut self.sprite_buffer,
+            &mut self.sprite_capacity,
+            "passo sprite instances",
+            &self.sprite_instances,
+        );
         let shapes = upload(
             &self.device,
             &self.queue,
@@ -273,6 +432,33 @@ impl Renderer {
                 return; // nothing of the target is left to draw on
             };
             pass.set_scissor_rect(x, y, w, h);
+        }
+        if sprites > 0 {
+            pass.set_pipeline(&self.sprites);
+            pass.set_vertex_buffer(0, self.sprite_buffer.slice(..));
+            // One draw per run of sprites of the same texture, in order.
+            let mut drawn = list
+                .sprites
+                .iter()
+                .filter(|s| (s.texture.0 as usize) < known);
+            let mut start = 0u32;
+            while start < sprites {
+                let Some(first) = drawn.next() else { break };
+                let texture = first.texture;
+                let mut end = start + 1;
+                while end < sprites {
+                    match drawn.clone().next() {
+                        Some(next) if next.texture == texture => {
+                            drawn.next();
+                            end += 1;
+                        }
+                        _ => break,
+                    }
+                }
+                pass.set_bind_group(1, &self.textures[texture.0 as usize], &[]);
+                pass.draw(0..6, start..end);
+                start = end;
+            }
         }
         if shapes > 0 {
             pass.set_pipeline(&self.shapes);

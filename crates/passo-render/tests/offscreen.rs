@@ -476,3 +476,109 @@ fn a_target_larger_than_the_largest_buffer_is_read_in_bands() {
         }
     }
 }
+
+/// A 4 × 2 texel image of two 2 × 2 tiles: the left tile red over blue,
+/// the right green with a transparent bottom row.
+fn tileset() -> RgbaImage {
+    const CLEAR: [u8; 4] = [0, 0, 0, 0];
+    let rows = [[RED, RED, GREEN, GREEN], [BLUE, BLUE, CLEAR, CLEAR]];
+    RgbaImage {
+        width: 4,
+        height: 2,
+        pixels: rows.iter().flatten().flatten().copied().collect(),
+    }
+}
+
+#[test]
+fn sprites_show_their_part_of_the_texture_upright_and_sharp() {
+    let gpu = gpu();
+    // Both target formats: the texture is sRGB, so each gives the bytes.
+    for format in [
+        wgpu::TextureFormat::Rgba8UnormSrgb,
+        wgpu::TextureFormat::Rgba8Unorm,
+    ] {
+        let target = OffscreenTarget::with_format(&gpu, 200, 100, format);
+        let mut renderer = Renderer::new(&gpu, format);
+        let texture = renderer.add_texture(&tileset()).unwrap();
+        // 4 m × 2 m: 50 pixels a metre, y up, (0, 0) at the centre.
+        let camera = Camera2D::fit(Vec2::new(-2.0, -1.0), Vec2::new(2.0, 1.0), target.size());
+        let mut list = DrawList::new(BACKGROUND);
+        // The left tile on a 1 m square at x = -1, the right one at x = 1.
+        let half = Vec2::splat(0.5);
+        list.sprite(
+            texture,
+            Vec2::new(-1.0, 0.0),
+            half,
+            Vec2::ZERO,
+            Vec2::new(0.5, 1.0),
+        );
+        list.sprite(
+            texture,
+            Vec2::new(1.0, 0.0),
+            half,
+            Vec2::new(0.5, 0.0),
+            Vec2::ONE,
+        );
+        // A box drawn over the left sprite: shapes come after sprites.
+        list.rect(Vec2::new(-1.25, 0.25), Vec2::splat(0.1), BLUE);
+        renderer.render(target.view(), target.size(), &camera, &list);
+        let image = target.read(&gpu).unwrap();
+        // The left sprite spans pixels 25..75 across and 25..75 down: its
+        // top half (the image's top row) red, its bottom half blue, with
+        // no blur at the texels' border (rows 49 and 50).
+        assert_eq!(image.get(60, 30), Some(RED), "{format:?}");
+        assert_eq!(image.get(60, 49), Some(RED), "{format:?}");
+        assert_eq!(image.get(60, 50), Some(BLUE), "{format:?}");
+        assert_eq!(image.get(30, 70), Some(BLUE), "{format:?}");
+        // The box over it.
+        assert_eq!(image.get(37, 37), Some(BLUE), "{format:?}");
+        // The right sprite: green on top, and its transparent bottom half
+        // shows the background.
+        assert_eq!(image.get(150, 30), Some(GREEN), "{format:?}");
+        assert_eq!(image.get(150, 70), Some(BACKGROUND), "{format:?}");
+        // Outside both.
+        assert_eq!(image.get(100, 50), Some(BACKGROUND), "{format:?}");
+        assert_eq!(image.get(60, 80), Some(BACKGROUND), "{format:?}");
+    }
+}
+
+#[test]
+fn bad_textures_are_errors_and_unknown_ones_draw_nothing() {
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 40, 40);
+    let mut renderer = Renderer::new(&gpu, target.format());
+    let empty = RgbaImage {
+        width: 0,
+        height: 4,
+        pixels: Vec::new(),
+    };
+    assert!(renderer.add_texture(&empty).is_err());
+    let short = RgbaImage {
+        width: 2,
+        height: 2,
+        pixels: vec![255; 12],
+    };
+    let message = renderer.add_texture(&short).unwrap_err().to_string();
+    assert!(message.contains("16 bytes"), "{message}");
+    let huge = RgbaImage {
+        width: 1 << 20,
+        height: 1,
+        pixels: Vec::new(),
+    };
+    assert!(renderer.add_texture(&huge).is_err());
+    // A texture id from another renderer, with no texture here: skipped.
+    let mut other = Renderer::new(&gpu, target.format());
+    let foreign = other.add_texture(&tileset()).unwrap();
+    let mut list = DrawList::new(BACKGROUND);
+    list.sprite(
+        foreign,
+        Vec2::ZERO,
+        Vec2::splat(10.0),
+        Vec2::ZERO,
+        Vec2::ONE,
+    );
+    let camera = Camera2D::fit(Vec2::splat(-1.0), Vec2::splat(1.0), target.size());
+    renderer.render(target.view(), target.size(), &camera, &list);
+    let image = target.read(&gpu).unwrap();
+    assert_eq!(image.get(20, 20), Some(BACKGROUND));
+}

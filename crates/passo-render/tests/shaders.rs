@@ -6,7 +6,9 @@
 
 use naga::{AddressSpace, Binding, ResourceBinding, ScalarKind, TypeInner};
 use passo_render::wgpu::{VertexBufferLayout, VertexFormat, VertexStepMode};
-use passo_render::{Globals, LINES_WGSL, LineInstance, SHAPES_WGSL, ShapeInstance};
+use passo_render::{
+    Globals, LINES_WGSL, LineInstance, SHAPES_WGSL, SPRITES_WGSL, ShapeInstance, SpriteInstance,
+};
 use std::mem::{offset_of, size_of};
 
 /// The Rust struct's listed fields, checked to cover the whole struct with
@@ -58,7 +60,7 @@ fn every_shader_in_the_shaders_directory_validates() {
         checked.push(path.file_name().unwrap().to_string_lossy().into_owned());
     }
     checked.sort();
-    assert_eq!(checked, ["lines.wgsl", "shapes.wgsl"]);
+    assert_eq!(checked, ["lines.wgsl", "shapes.wgsl", "sprites.wgsl"]);
 }
 
 #[test]
@@ -70,7 +72,11 @@ fn globals_match_in_rust_and_in_every_shader() {
         encode_srgb,
         _pad
     });
-    for (file, source) in [("shapes.wgsl", SHAPES_WGSL), ("lines.wgsl", LINES_WGSL)] {
+    for (file, source) in [
+        ("shapes.wgsl", SHAPES_WGSL),
+        ("lines.wgsl", LINES_WGSL),
+        ("sprites.wgsl", SPRITES_WGSL),
+    ] {
         let module = parse(file, source);
         let (members, span) = uniform_struct(&module, 0, 0)
             .unwrap_or_else(|| panic!("{file} has no uniform struct at @group(0) @binding(0)"));
@@ -120,6 +126,23 @@ fn line_instances_match_the_shader_and_the_vertex_layout() {
         &rust,
         size_of::<LineInstance>(),
         &LineInstance::LAYOUT,
+    );
+}
+
+#[test]
+fn sprite_instances_match_the_shader_and_the_vertex_layout() {
+    let rust = rust_struct!(SpriteInstance {
+        centre,
+        half_extents,
+        uv_min,
+        uv_max
+    });
+    check_instances(
+        "sprites.wgsl",
+        SPRITES_WGSL,
+        &rust,
+        size_of::<SpriteInstance>(),
+        &SpriteInstance::LAYOUT,
     );
 }
 
