@@ -239,8 +239,9 @@ impl World {
         Ok(())
     }
 
-    /// Sets a body's friction coefficient `mu` (0 to [`MAX_FRICTION`](crate::MAX_FRICTION)), for surface friction
-    /// and contacts.
+    /// Sets a body's friction coefficient `mu` (0 to
+    /// [`MAX_FRICTION`](crate::constants::MAX_FRICTION)), for surface
+    /// friction and contacts.
     pub fn try_set_friction(&mut self, id: BodyId, mu: f32) -> Result<(), PhysicsError> {
         check_friction("friction", mu)?;
         let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
