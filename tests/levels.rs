@@ -96,6 +96,72 @@ fn the_tmx_and_tmj_forms_of_a_map_give_the_same_level() {
     assert_eq!(tmx.bodies.len(), 6);
 }
 
+/// Every solid cell of the shipped level shows its tile of `blocks.png`
+/// (64 × 16 px: solid, ice, bouncy, one-way, 16 px each), from either form
+/// of the map.
+#[test]
+fn each_solid_cell_shows_its_tile_of_the_tileset_image() {
+    let scene = assets().join("scenes/platformer.ron").display().to_string();
+    for file in ["../levels/first.tmx", "../levels/first.tmj"] {
+        let level = level_ref(file).load(&scene).unwrap();
+        let art = &level.art;
+        assert_eq!(art.images.len(), 1, "{file}");
+        assert_eq!(
+            art.images[0].canonicalize().unwrap(),
+            assets().join("levels/blocks.png").canonicalize().unwrap()
+        );
+        assert!(art.complete, "{file}");
+        let solid = (0..level.map.width())
+            .flat_map(|x| (0..level.map.height()).map(move |y| (x, y)))
+            .filter(|&(x, y)| level.map.get(x, y).is_some())
+            .count();
+        assert_eq!(art.tiles.len(), solid, "{file}");
+        for tile in &art.tiles {
+            assert_eq!(tile.half_extents, Vec2::splat(0.25));
+            // The cell under the quad has the kind of the quad's tile:
+            // the tile's column of the image is its id.
+            let cell = (tile.centre / 0.5 - 0.5).round();
+            let kind = level.map.get(cell.x as u32, cell.y as u32).unwrap();
+            let column = (tile.uv_min.x * 4.0).round() as usize;
+            let kinds = level.map.kinds();
+            let expected = match column {
+                0 => TileKind::SOLID,
+                1 => TileKind::ICE,
+                2 => TileKind::BOUNCY,
+                _ => TileKind::ONE_WAY,
+            };
+            assert_eq!(kinds[kind as usize], expected, "{file}: {tile:?}");
+            assert_eq!(tile.uv_max - tile.uv_min, Vec2::new(0.25, 1.0));
+            assert_eq!(tile.uv_min.y, 0.0);
+        }
+    }
+}
+
+/// A tileset image outside the map's folder, or missing, is left out, and
+/// so are the quads that show it; the level still loads.
+#[test]
+fn a_tileset_image_outside_the_folder_or_missing_is_left_out() {
+    for source in ["../elsewhere.png", "missing.png"] {
+        let map = format!(
+            r#"<?xml version="1.0" encoding="UTF-8"?>
+<map version="1.10" orientation="orthogonal" renderorder="right-down" width="2" height="1" tilewidth="16" tileheight="16" infinite="0">
+ <tileset firstgid="1" name="t" tilewidth="16" tileheight="16" tilecount="2" columns="2">
+  <image source="{source}" width="32" height="16"/>
+ </tileset>
+ <layer id="1" name="solid" width="2" height="1"><data encoding="csv">1,2</data></layer>
+</map>"#
+        );
+        let scene = map_file("art.tmx", &map);
+        let dir = PathBuf::from(&scene).parent().unwrap().to_path_buf();
+        // The file outside exists: it is refused for where it is.
+        std::fs::write(dir.join("../elsewhere.png"), b"not read").unwrap();
+        let level = level_ref("art.tmx").load(&scene).unwrap();
+        assert_eq!(level.map.rects().len(), 1, "the cells are still there");
+        assert!(level.art.images.is_empty(), "{source}: {:?}", level.art);
+        assert!(level.art.tiles.is_empty() && !level.art.complete);
+    }
+}
+
 #[test]
 fn an_ascii_tilemap_in_a_scene_file_is_a_level() {
     let text = r#"(

@@ -3,6 +3,7 @@
 use crate::error::SceneError;
 use crate::format::{BodySpec, Colour, MAX_BODIES, SceneFile};
 use crate::generate::generate;
+use crate::level::LevelArt;
 use crate::map_ref::PlatformPath;
 use passo_physics::glam::Vec2;
 use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, ForceModels, World, WorldSettings};
@@ -72,6 +73,12 @@ pub struct BuiltScene {
     pub platforms: Vec<Platform>,
     /// Spawn points of the scene's tile map, by name, metres.
     pub spawns: Vec<(String, Vec2)>,
+    /// How the tile map's cells look (empty without a map or images).
+    pub art: LevelArt,
+    /// The bodies made of the tile map's cells: a game that draws
+    /// [`art`](Self::art) when it is [complete](LevelArt::complete) draws
+    /// these no more.
+    pub cell_bodies: Vec<BodyId>,
 }
 
 /// A kinematic body on a back-and-forth path.
@@ -194,6 +201,7 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
     let mut bodies = Vec::new();
     let mut platforms = Vec::new();
     let mut bounds: Option<Aabb> = None;
+    let mut cell_bodies = Vec::new();
     // The level's cells first, as boxes coloured by their kind.
     let level = file.tilemap.as_ref().map(|t| t.load(source)).transpose()?;
     if let (Some(level), Some(tilemap)) = (&level, &file.tilemap) {
@@ -213,6 +221,7 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         let ids = world
             .add_tile_rects(&level.map, &rects, tilemap.kind)
             .map_err(|e| invalid("tilemap".into(), e))?;
+        cell_bodies.extend(&ids);
         for (id, rect) in ids.into_iter().zip(&rects) {
             let aabb = level.map.rect_aabb(rect);
             bounds = Some(bounds.map_or(aabb, |b| b.union(&aabb)));
@@ -264,7 +273,9 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         add(spec, spec.position, &|| format!("bodies[{i}]"))?;
     }
     let mut spawns = Vec::new();
+    let mut art = LevelArt::default();
     if let Some(level) = level {
+        art = level.art;
         for (i, spec) in level.bodies.iter().enumerate() {
             let name = spec.name.clone().unwrap_or_default();
             add(spec, spec.position, &|| {
@@ -302,5 +313,7 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         camera,
         platforms,
         spawns,
+        art,
+        cell_bodies,
     })
 }

@@ -41,6 +41,42 @@ pub struct Level {
     pub bodies: Vec<BodySpec>,
     /// Spawn points by name (an unnamed one is `"spawn"`), metres.
     pub spawns: Vec<(String, Vec2)>,
+    /// How the solid cells look, from the tilesets' images.
+    pub art: LevelArt,
+}
+
+/// How a level's solid cells look: a rectangle of a tileset image for each
+/// cell whose tile has one. Empty for ASCII maps. Passo reads no image: a
+/// game loads [`images`](Self::images) itself (as PNG, for
+/// `passo_render::RgbaImage::load_png`) and draws each of
+/// [`tiles`](Self::tiles) as a textured quad.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LevelArt {
+    /// The image files the tiles show, each a regular file inside the
+    /// map's folder (or the scene's `root`): an image elsewhere, or
+    /// missing, is left out, and its tiles with it.
+    pub images: Vec<PathBuf>,
+    /// One quad per solid cell that has an image.
+    pub tiles: Vec<TileSprite>,
+    /// Every solid cell has a quad in [`tiles`](Self::tiles), so a game
+    /// can draw the quads instead of the level's boxes.
+    pub complete: bool,
+}
+
+/// One cell's quad: where, and which part of which image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TileSprite {
+    /// The cell's centre, metres.
+    pub centre: Vec2,
+    /// Half the cell's size, metres.
+    pub half_extents: Vec2,
+    /// The index of its image in [`LevelArt::images`].
+    pub image: usize,
+    /// The top-left corner of its rectangle of the image, 0 to 1 (v runs
+    /// down the image's rows).
+    pub uv_min: Vec2,
+    /// The bottom-right corner.
+    pub uv_max: Vec2,
 }
 
 impl TileMapRef {
@@ -59,6 +95,7 @@ impl TileMapRef {
                 map,
                 bodies: Vec::new(),
                 spawns: Vec::new(),
+                art: LevelArt::default(),
             });
         }
         let Some(file) = &self.file else {
@@ -78,7 +115,32 @@ impl TileMapRef {
             Some("tmj") | Some("json") => read_tmj(&path, &self.layer, &root)?,
             _ => read_tmx(&path, &self.layer, &root)?,
         };
-        raw.into_level(self, &shown)
+        let mut level = raw.into_level(self, &shown)?;
+        // Only images a map may name: regular files inside its folder.
+        let budget = crate::limits::MapBudget::new(&root);
+        let usable: Vec<bool> = level
+            .art
+            .images
+            .iter()
+            .map(|image| budget.check_place(image).is_ok())
+            .collect();
+        if usable.iter().any(|u| !u) {
+            let mut renumbered = Vec::with_capacity(usable.len());
+            let mut images = Vec::new();
+            for (image, ok) in level.art.images.drain(..).zip(&usable) {
+                renumbered.push(images.len());
+                if *ok {
+                    images.push(image);
+                }
+            }
+            level.art.tiles.retain(|t| usable[t.image]);
+            for tile in &mut level.art.tiles {
+                tile.image = renumbered[tile.image];
+            }
+            level.art.images = images;
+            level.art.complete = false;
+        }
+        Ok(level)
     }
 }
 
@@ -180,6 +242,42 @@ fn role(class: &str) -> Result<ObjectRole, String> {
 }
 
 impl RawMap {
+    /// The quads of the solid cells whose tiles have an image.
+    fn art(&self, cells: &[Option<u32>], wanted: &TileMapRef) -> LevelArt {
+        let mut art = LevelArt {
+            complete: true,
+            ..LevelArt::default()
+        };
+        let half = Vec2::splat(0.5 * wanted.cell);
+        for (i, &tile) in cells.iter().enumerate() {
+            let Some(tile) = tile else { continue };
+            let Some(look) = &self.tiles[tile as usize].art else {
+                art.complete = false;
+                continue;
+            };
+            let image = match art.images.iter().position(|p| *p == look.image) {
+                Some(at) => at,
+                None => {
+                    art.images.push(look.image.clone());
+                    art.images.len() - 1
+                }
+            };
+            let (x, row) = (i as u32 % self.width, i as u32 / self.width);
+            // Tiled's rows run from the top; the cell's row up from the bottom.
+            let y = self.height - 1 - row;
+            let size = Vec2::new(look.image_size.0 as f32, look.image_size.1 as f32);
+            let [rx, ry, rw, rh] = look.rect.map(|v| v as f32);
+            art.tiles.push(TileSprite {
+                centre: wanted.origin + (Vec2::new(x as f32, y as f32) + 0.5) * wanted.cell,
+                half_extents: half,
+                image,
+                uv_min: Vec2::new(rx, ry) / size,
+                uv_max: Vec2::new(rx + rw, ry + rh) / size,
+            });
+        }
+        art
+    }
+
     fn into_level(self, wanted: &TileMapRef, shown: &str) -> Result<Level, SceneError> {
         let invalid = |field: String, message: String| SceneError::Invalid {
             source_name: shown.to_owned(),
@@ -236,10 +334,12 @@ impl RawMap {
         );
         let top = self.height as f32 * self.tile_height;
         let to_world = |x: f32, y: f32| wanted.origin + Vec2::new(x, top - y) * scale;
+        let art = self.art(cells, wanted);
         let mut level = Level {
             map,
             bodies: Vec::new(),
             spawns: Vec::new(),
+            art,
         };
         let mut checked = 0;
         for object in &self.objects {

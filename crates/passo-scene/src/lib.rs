@@ -35,7 +35,7 @@ mod validate;
 pub use build::{BuiltScene, KINEMATIC_COLOUR, Platform, SceneBody};
 pub use error::SceneError;
 pub use format::{BodySpec, Camera, Colour, Forces, Generator, MAX_BODIES, Material, SceneFile};
-pub use level::Level;
+pub use level::{Level, LevelArt, TileSprite};
 pub use limits::{
     MAX_FILE_BYTES, MAX_JSON_VALUES, MAX_MAP_BYTES, MAX_OBJECTS, MAX_TILE_DATA_BYTES,
     MAX_TILESET_TILES, MAX_XML_DEPTH, read_at_most,

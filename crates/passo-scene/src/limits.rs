@@ -78,7 +78,7 @@ impl MapBudget {
     /// Checks that `path` is a regular file inside the root, before it is
     /// opened: opening a pipe would block, and a device or a file elsewhere
     /// is none of a map's business.
-    fn check_place(&self, path: &Path) -> std::io::Result<()> {
+    pub(crate) fn check_place(&self, path: &Path) -> std::io::Result<()> {
         let refused = |why: String| std::io::Error::new(std::io::ErrorKind::PermissionDenied, why);
         if !std::fs::metadata(path)?.is_file() {
             return Err(refused("is not a regular file".into()));

@@ -6,7 +6,7 @@
 
 use crate::error::SceneError;
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// A property value, as both formats give it.
 #[derive(Clone, Debug, PartialEq)]
@@ -18,11 +18,52 @@ pub(crate) enum Value {
 
 pub(crate) type Properties = Vec<(String, Value)>;
 
-/// A tile of the solid layer: its class and properties.
+/// A tile of the solid layer: its class and properties, and how it looks.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct RawTile {
     pub class: String,
     pub properties: Properties,
+    pub art: Option<RawArt>,
+}
+
+/// How a tile looks: a rectangle of an image, in pixels.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct RawArt {
+    /// The image file, as the map names it, joined to the map's folder.
+    pub image: PathBuf,
+    /// The image's width and height, pixels, as the tileset gives them.
+    pub image_size: (u32, u32),
+    /// `[x, y, width, height]` of the tile in the image, pixels from its
+    /// top-left corner.
+    pub rect: [u32; 4],
+}
+
+/// A `.tmj` tileset's image and how its tiles are laid out in it.
+struct SetImage {
+    image: PathBuf,
+    image_size: (u32, u32),
+    columns: u32,
+    tile_size: (u32, u32),
+    margin: u32,
+    spacing: u32,
+}
+
+/// Where tile `id` of a tileset of `columns` columns lies in its image.
+pub(crate) fn tile_rect(
+    id: u32,
+    columns: u32,
+    size: (u32, u32),
+    margin: u32,
+    spacing: u32,
+) -> [u32; 4] {
+    let columns = columns.max(1);
+    let (col, row) = (id % columns, id / columns);
+    [
+        margin.saturating_add(col.saturating_mul(size.0.saturating_add(spacing))),
+        margin.saturating_add(row.saturating_mul(size.1.saturating_add(spacing))),
+        size.0,
+        size.1,
+    ]
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -152,12 +193,19 @@ fn collect_tmx_layers<'m>(
                     for x in 0..map.width as i32 {
                         cells.push(tiles.get_tile(x, y).map(|t| {
                             let key = (t.tileset_index(), t.id());
-                            palette.index(key, &mut raw.tiles, || match t.get_tile() {
-                                Some(tile) => RawTile {
-                                    class: tile.user_type.clone(),
-                                    properties: tmx_properties(&tile.properties),
-                                },
-                                None => RawTile::default(),
+                            palette.index(key, &mut raw.tiles, || {
+                                let art = tmx_art(t.get_tileset(), t.id(), t.get_tile());
+                                match t.get_tile() {
+                                    Some(tile) => RawTile {
+                                        class: tile.user_type.clone(),
+                                        properties: tmx_properties(&tile.properties),
+                                        art,
+                                    },
+                                    None => RawTile {
+                                        art,
+                                        ..RawTile::default()
+                                    },
+                                }
                             })
                         }));
                     }
@@ -202,6 +250,36 @@ fn collect_tmx_layers<'m>(
             tiled::LayerType::Image(_) => {}
         }
     }
+}
+
+/// How tile `id` of `set` looks: its rectangle of the tileset's image, or
+/// the tile's own image in an image-collection tileset.
+fn tmx_art(set: &tiled::Tileset, id: u32, tile: Option<tiled::Tile<'_>>) -> Option<RawArt> {
+    let size = |image: &tiled::Image| {
+        let w = u32::try_from(image.width).ok().filter(|&w| w > 0)?;
+        let h = u32::try_from(image.height).ok().filter(|&h| h > 0)?;
+        Some((w, h))
+    };
+    if let Some(image) = &set.image {
+        return Some(RawArt {
+            image: image.source.clone(),
+            image_size: size(image)?,
+            rect: tile_rect(
+                id,
+                set.columns,
+                (set.tile_width, set.tile_height),
+                set.margin,
+                set.spacing,
+            ),
+        });
+    }
+    let image = tile?.image.clone()?;
+    let image_size = size(&image)?;
+    Some(RawArt {
+        image: image.source,
+        image_size,
+        rect: [0, 0, image_size.0, image_size.1],
+    })
 }
 
 fn tmx_properties(properties: &tiled::Properties) -> Properties {
@@ -277,8 +355,9 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str, root: &Path) -> Result<R
             raw.width, raw.height
         )));
     }
-    // Tiles by global id: (first gid, tiles of the set sorted by local id).
-    let mut sets: Vec<(u32, Vec<(u32, RawTile)>)> = Vec::new();
+    // Tiles by global id: (first gid, tiles of the set sorted by local id,
+    // the set's image).
+    let mut sets: Vec<(u32, Vec<(u32, RawTile)>, Option<SetImage>)> = Vec::new();
     for set in json
         .get("tilesets")
         .and_then(Json::as_array)
@@ -296,10 +375,38 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str, root: &Path) -> Result<R
                     ))
                 })? as u32,
         };
-        let set = match set.get("source").and_then(Json::as_str) {
-            Some(source) => read(&path.parent().unwrap_or(Path::new("")).join(source))?,
-            None => set.clone(),
+        // Images are named relative to the file that names them.
+        let map_dir = path.parent().unwrap_or(Path::new(""));
+        let (set, dir) = match set.get("source").and_then(Json::as_str) {
+            Some(source) => {
+                let file = map_dir.join(source);
+                let dir = file.parent().unwrap_or(Path::new("")).to_path_buf();
+                (read(&file)?, dir)
+            }
+            None => (set.clone(), map_dir.to_path_buf()),
         };
+        let whole = |v: &Json, key: &str| {
+            v.get(key)
+                .and_then(Json::as_u64)
+                .and_then(|n| u32::try_from(n).ok())
+        };
+        let image_of = |v: &Json| -> Option<(PathBuf, (u32, u32))> {
+            let file = v.get("image").and_then(Json::as_str)?;
+            let w = whole(v, "imagewidth").filter(|&w| w > 0)?;
+            let h = whole(v, "imageheight").filter(|&h| h > 0)?;
+            Some((dir.join(file), (w, h)))
+        };
+        let set_image = image_of(&set).map(|(image, image_size)| SetImage {
+            image,
+            image_size,
+            columns: whole(&set, "columns").unwrap_or(1),
+            tile_size: (
+                whole(&set, "tilewidth").unwrap_or(0),
+                whole(&set, "tileheight").unwrap_or(0),
+            ),
+            margin: whole(&set, "margin").unwrap_or(0),
+            spacing: whole(&set, "spacing").unwrap_or(0),
+        });
         let mut tiles: Vec<(u32, RawTile)> = set
             .get("tiles")
             .and_then(Json::as_array)
@@ -307,17 +414,25 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str, root: &Path) -> Result<R
             .flatten()
             .map(|t| {
                 let class = t.get("class").or_else(|| t.get("type"));
+                let id = number(t, "id").unwrap_or(0.0) as u32;
+                // A tile of an image collection has its own image.
+                let art = image_of(t).map(|(image, image_size)| RawArt {
+                    image,
+                    image_size,
+                    rect: [0, 0, image_size.0, image_size.1],
+                });
                 let tile = RawTile {
                     class: class.and_then(Json::as_str).unwrap_or("").to_owned(),
                     properties: json_properties(t),
+                    art,
                 };
-                (number(t, "id").unwrap_or(0.0) as u32, tile)
+                (id, tile)
             })
             .collect();
         // Stable: of two entries for one id, the first is found, as a
         // search from the front found it.
         tiles.sort_by_key(|t| t.0);
-        sets.push((first, tiles));
+        sets.push((first, tiles, set_image));
     }
     sets.sort_by_key(|s| s.0);
     // A binary search of the set's tiles: a linear one for each distinct
@@ -327,13 +442,23 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str, root: &Path) -> Result<R
         let set = sets.iter().rev().find(|s| s.0 <= gid)?;
         let local = gid - set.0;
         let at = set.1.partition_point(|t| t.0 < local);
-        Some(
-            set.1
-                .get(at)
-                .filter(|t| t.0 == local)
-                .map(|t| t.1.clone())
-                .unwrap_or_default(),
-        )
+        let mut tile = set
+            .1
+            .get(at)
+            .filter(|t| t.0 == local)
+            .map(|t| t.1.clone())
+            .unwrap_or_default();
+        // A tile of the set's image, unless it has an image of its own.
+        if tile.art.is_none()
+            && let Some(i) = &set.2
+        {
+            tile.art = Some(RawArt {
+                image: i.image.clone(),
+                image_size: i.image_size,
+                rect: tile_rect(local, i.columns, i.tile_size, i.margin, i.spacing),
+            });
+        }
+        Some(tile)
     };
     fn layers(json: &Json) -> Vec<&Json> {
         let mut out = Vec::new();
