@@ -19,8 +19,10 @@ use passo_loop::{FixedTimestep, RealClock};
 use passo_physics::Shape;
 use passo_physics::glam::Vec2;
 use passo_render::{
-    AdapterChoice, Camera2D, DrawList, Gpu, Renderer, RgbaImage, WindowSurface, read_texture,
+    AdapterChoice, Camera2D, DrawList, Gpu, Renderer, RgbaImage, TextureId, WindowSurface,
+    read_texture,
 };
+use passo_scene::LevelArt;
 use std::path::PathBuf;
 use std::sync::Arc;
 use winit::application::ApplicationHandler;
@@ -79,6 +81,9 @@ struct Running {
     renderer: Renderer,
     list: DrawList,
     camera: Camera2D,
+    /// The texture of each of the level's images, when they all loaded
+    /// and every cell has a tile; else empty, and the cells are boxes.
+    textures: Vec<TextureId>,
 }
 
 struct App {
@@ -119,7 +124,8 @@ impl App {
         let capture = self.options.screenshot.is_some();
         let surface = WindowSurface::new(&gpu, surface, (size.width, size.height), capture)
             .map_err(|e| e.to_string())?;
-        let renderer = Renderer::new(&gpu, surface.scene_format());
+        let mut renderer = Renderer::new(&gpu, surface.scene_format());
+        let textures = level_textures(&mut renderer, &self.game.art);
         let camera = Camera2D {
             centre: self.game.player_position(),
             height: VIEW_HEIGHT,
@@ -131,6 +137,7 @@ impl App {
             renderer,
             list: DrawList::new(BACKGROUND),
             camera,
+            textures,
         });
         Ok(())
     }
@@ -172,7 +179,23 @@ impl App {
             self.game.bounds,
         );
         r.list.clear(BACKGROUND);
+        // The level's cells as their tiles, behind everything else.
+        let tiled = !r.textures.is_empty();
+        if tiled {
+            for tile in &self.game.art.tiles {
+                r.list.sprite(
+                    r.textures[tile.image],
+                    tile.centre,
+                    tile.half_extents,
+                    tile.uv_min,
+                    tile.uv_max,
+                );
+            }
+        }
         for body in self.game.world.bodies() {
+            if tiled && self.game.cell_bodies.binary_search(&body.id).is_ok() {
+                continue;
+            }
             let Some(colour) = self.game.bodies.iter().find(|b| b.id == body.id) else {
                 continue;
             };
@@ -372,4 +395,25 @@ fn draw_text(
         }
     }
     x
+}
+
+/// Loads the level's tileset images (PNG) into `renderer`. Empty when the
+/// level has no images, a cell has no tile, or an image does not load
+/// (said on stderr): the level is then drawn as boxes.
+fn level_textures(renderer: &mut Renderer, art: &LevelArt) -> Vec<TextureId> {
+    if !art.complete || art.tiles.is_empty() {
+        return Vec::new();
+    }
+    let mut textures = Vec::new();
+    for path in &art.images {
+        let loaded = RgbaImage::load_png(path).and_then(|image| renderer.add_texture(&image));
+        match loaded {
+            Ok(texture) => textures.push(texture),
+            Err(e) => {
+                eprintln!("the level is drawn as boxes: {e}");
+                return Vec::new();
+            }
+        }
+    }
+    textures
 }

@@ -8,7 +8,7 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, CharacterMover, Shape, World};
-use passo_scene::{BuiltScene, Platform, Scene, SceneBody};
+use passo_scene::{BuiltScene, LevelArt, Platform, Scene, SceneBody};
 use std::path::Path;
 
 /// Walking speed, m/s.
@@ -59,6 +59,10 @@ pub struct Platformer {
     pub world: World,
     /// Every body with its colour, for drawing.
     pub bodies: Vec<SceneBody>,
+    /// How the level's cells look: tiles of the tileset image.
+    pub art: LevelArt,
+    /// The bodies of the level's cells, sorted: drawn as their tiles.
+    pub cell_bodies: Vec<BodyId>,
     platforms: Vec<Platform>,
     /// The player's body (kinematic).
     pub player: BodyId,
@@ -120,9 +124,13 @@ impl Platformer {
             .filter_map(|b| Some(Aabb::from_centre(b.position, b.shape?.half_extents())))
             .reduce(|a, b| a.union(&b))
             .ok_or("the level has no static bodies")?;
+        let mut cell_bodies = built.cell_bodies;
+        cell_bodies.sort();
         Ok(Self {
             world: built.world,
             bodies: built.bodies,
+            art: built.art,
+            cell_bodies,
             platforms: built.platforms,
             player,
             start,

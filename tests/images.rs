@@ -8,7 +8,7 @@
 //! `PASSO_UPDATE_REFERENCES=1 cargo test -p passo-tests --test images`
 //! and look at the pictures before committing them.
 
-use passo::draw::{DrawOptions, draw_world};
+use passo::draw::{DrawOptions, LevelTiles, draw_world, draw_world_with_tiles};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, ForceModels, Shape, World, WorldSettings};
 use passo_render::{AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer, RgbaImage};
@@ -44,8 +44,10 @@ fn render_scene(gpu: &Gpu, name: &str, ticks: u32, vectors: bool) -> RgbaImage {
         contact_normals: vectors,
         ..Default::default()
     };
-    draw_world(&mut list, &built.world, &built.bodies, &options);
-    Renderer::new(gpu, target.format()).render(target.view(), target.size(), &camera, &list);
+    let mut renderer = Renderer::new(gpu, target.format());
+    let tiles = LevelTiles::load(&mut renderer, &built);
+    draw_world_with_tiles(&mut list, &built.world, &built.bodies, &tiles, &options);
+    renderer.render(target.view(), target.size(), &camera, &list);
     target.read(gpu).unwrap()
 }
 
@@ -116,10 +118,67 @@ fn scenes_match_their_reference_pictures() {
         ("rain_150", "rain", 150, false),
         ("playground_20_vectors", "playground", 20, true),
         ("projectile_45_vectors", "projectile", 45, true),
+        ("platformer_0", "platformer", 0, false),
     ] {
         let image = render_scene(&gpu, scene, ticks, vectors);
         compare_with_reference(name, &image);
     }
+}
+
+/// The Tiled level's cells are drawn from its tileset image, texel for
+/// pixel: seen 15 m wide in 480 pixels, a 0.5 m cell is 16 pixels, one
+/// per texel of its 16-pixel tile, so every pixel of a cell is the
+/// tile's texel (the background where the tile is transparent), and no
+/// cell is a flat box.
+#[test]
+fn the_tiled_level_is_drawn_from_its_tileset_image_texel_for_pixel() {
+    let gpu = gpu();
+    let assets = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets");
+    let built = Scene::load(&assets.join("scenes/platformer.ron"))
+        .unwrap()
+        .build()
+        .unwrap();
+    let tileset = RgbaImage::load_png(assets.join("levels/blocks.png")).unwrap();
+    let target = OffscreenTarget::new(&gpu, 480, 240);
+    let camera = Camera2D::fit(Vec2::ZERO, Vec2::new(15.0, 7.5), target.size());
+    let mut renderer = Renderer::new(&gpu, target.format());
+    let tiles = LevelTiles::load(&mut renderer, &built);
+    assert_eq!(tiles.len(), built.art.tiles.len());
+    assert!(!tiles.is_empty());
+    let mut list = DrawList::default();
+    draw_world_with_tiles(
+        &mut list,
+        &built.world,
+        &built.bodies,
+        &tiles,
+        &DrawOptions::default(),
+    );
+    renderer.render(target.view(), target.size(), &camera, &list);
+    let image = target.read(&gpu).unwrap();
+    let mut checked = 0;
+    for tile in &built.art.tiles {
+        // The cell's top-left pixel, and its tile's top-left texel.
+        let x0 = ((tile.centre.x - 0.25) * 32.0).round() as u32;
+        let y0 = 240 - ((tile.centre.y + 0.25) * 32.0).round() as u32;
+        let u0 = (tile.uv_min.x * 64.0).round() as u32;
+        for j in 0..16 {
+            for i in 0..16 {
+                let texel = tileset.get(u0 + i, j).unwrap();
+                let pixel = image.get(x0 + i, y0 + j).unwrap();
+                if texel[3] == 0 {
+                    continue; // seen through
+                }
+                let close = pixel.iter().zip(texel).all(|(a, b)| a.abs_diff(b) <= 1);
+                assert!(
+                    close,
+                    "cell at {:?}, texel ({i}, {j}) of tile {u0}: pixel {pixel:?}, texel {texel:?}",
+                    tile.centre
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 100 * 256, "{checked} pixels checked");
 }
 
 #[test]

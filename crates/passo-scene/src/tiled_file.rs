@@ -38,6 +38,10 @@ pub(crate) struct RawArt {
     pub rect: [u32; 4],
 }
 
+/// A `.tmj` tileset: its first global id, its listed tiles sorted by local
+/// id, and its image.
+type TmjSet = (u32, Vec<(u32, RawTile)>, Option<SetImage>);
+
 /// A `.tmj` tileset's image and how its tiles are laid out in it.
 struct SetImage {
     image: PathBuf,
@@ -355,9 +359,8 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str, root: &Path) -> Result<R
             raw.width, raw.height
         )));
     }
-    // Tiles by global id: (first gid, tiles of the set sorted by local id,
-    // the set's image).
-    let mut sets: Vec<(u32, Vec<(u32, RawTile)>, Option<SetImage>)> = Vec::new();
+    // Tiles by global id.
+    let mut sets: Vec<TmjSet> = Vec::new();
     for set in json
         .get("tilesets")
         .and_then(Json::as_array)

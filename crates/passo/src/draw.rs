@@ -1,9 +1,9 @@
 //! Turning a physics world into a draw list.
 
 use glam::Vec2;
-use passo_physics::{BodyKind, Shape, World};
-use passo_render::DrawList;
-use passo_scene::SceneBody;
+use passo_physics::{BodyId, BodyKind, Shape, World};
+use passo_render::{DrawList, Renderer, RgbaImage, TextureId};
+use passo_scene::{BuiltScene, SceneBody, TileSprite};
 
 /// Background of every picture (sRGB).
 pub const BACKGROUND: [u8; 4] = [24, 26, 32, 255];
@@ -58,15 +58,102 @@ impl Default for DrawOptions {
     }
 }
 
+/// A level's tiles as textured quads: the scene's [`LevelArt`] with its
+/// images loaded into a renderer.
+///
+/// [`LevelArt`]: passo_scene::LevelArt
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LevelTiles {
+    /// The quads, each with the texture of its image.
+    tiles: Vec<(TextureId, TileSprite)>,
+    /// The bodies the quads stand for, sorted: not drawn as boxes.
+    hidden: Vec<BodyId>,
+}
+
+impl LevelTiles {
+    /// Loads the images of `built`'s level (PNG files) into `renderer`.
+    /// When every image loads and every solid cell has a tile, the cells
+    /// are drawn as their tiles instead of flat boxes; otherwise (no
+    /// images, or one that does not load, which is logged) the level is
+    /// drawn as boxes, as without tiles.
+    pub fn load(renderer: &mut Renderer, built: &BuiltScene) -> Self {
+        let art = &built.art;
+        if !art.complete || art.tiles.is_empty() {
+            return Self::default();
+        }
+        let mut textures = Vec::with_capacity(art.images.len());
+        for path in &art.images {
+            let loaded = RgbaImage::load_png(path)
+                .map_err(|e| e.to_string())
+                .and_then(|image| renderer.add_texture(&image).map_err(|e| e.to_string()));
+            match loaded {
+                Ok(texture) => textures.push(texture),
+                Err(e) => {
+                    log::warn!("the level's tiles are drawn as boxes: {e}");
+                    return Self::default();
+                }
+            }
+        }
+        let mut hidden = built.cell_bodies.clone();
+        hidden.sort();
+        Self {
+            tiles: art.tiles.iter().map(|t| (textures[t.image], *t)).collect(),
+            hidden,
+        }
+    }
+
+    /// The number of quads.
+    pub fn len(&self) -> usize {
+        self.tiles.len()
+    }
+
+    /// No quads: the level is drawn as boxes.
+    pub fn is_empty(&self) -> bool {
+        self.tiles.is_empty()
+    }
+}
+
 /// Clears `list` (keeping its capacity), then draws the world into it.
 pub fn draw_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], options: &DrawOptions) {
+    draw_world_with_tiles(list, world, bodies, &LevelTiles::default(), options);
+}
+
+/// Clears `list`, then draws the level's tiles and the world over them;
+/// the bodies the tiles stand for are not drawn again.
+pub fn draw_world_with_tiles(
+    list: &mut DrawList,
+    world: &World,
+    bodies: &[SceneBody],
+    tiles: &LevelTiles,
+    options: &DrawOptions,
+) {
     list.clear(BACKGROUND);
-    add_world(list, world, bodies, options);
+    for (texture, tile) in &tiles.tiles {
+        list.sprite(
+            *texture,
+            tile.centre + options.offset,
+            tile.half_extents,
+            tile.uv_min,
+            tile.uv_max,
+        );
+    }
+    add_bodies(list, world, bodies, &tiles.hidden, options);
 }
 
 /// Adds the world's bodies (with their scene colours) and the chosen debug
 /// vectors to `list`.
 pub fn add_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], options: &DrawOptions) {
+    add_bodies(list, world, bodies, &[], options);
+}
+
+/// [`add_world`], leaving out the bodies in `hidden` (sorted).
+fn add_bodies(
+    list: &mut DrawList,
+    world: &World,
+    bodies: &[SceneBody],
+    hidden: &[BodyId],
+    options: &DrawOptions,
+) {
     let colour_of = |body: &passo_physics::Body| {
         let fallback = match body.kind {
             BodyKind::Kinematic => passo_scene::KINEMATIC_COLOUR.0,
@@ -79,7 +166,7 @@ pub fn add_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], optio
     // Static bodies first, so moving ones are drawn over them.
     for pass in [true, false] {
         for body in world.bodies() {
-            if (body.mass == f32::INFINITY) != pass {
+            if (body.mass == f32::INFINITY) != pass || hidden.binary_search(&body.id).is_ok() {
                 continue;
             }
             let p = world

@@ -1,6 +1,6 @@
 //! `passo render`: simulate a scene headlessly and write a picture.
 
-use crate::draw::{DrawOptions, draw_world};
+use crate::draw::{DrawOptions, LevelTiles, draw_world_with_tiles};
 use anyhow::{Context, Result};
 use passo_loop::FixedTimestep;
 use passo_render::{AdapterChoice, Camera2D, DrawList, Gpu, OffscreenTarget, Renderer};
@@ -102,7 +102,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         contact_normals: args.vectors,
         ..Default::default()
     };
-    draw_world(&mut list, &built.world, &built.bodies, &options);
+    let tiles = LevelTiles::load(&mut renderer, &built);
+    draw_world_with_tiles(&mut list, &built.world, &built.bodies, &tiles, &options);
     renderer.render(target.view(), target.size(), &camera, &list);
     let image = target.read(&gpu)?;
     image
