@@ -3,7 +3,8 @@
 use glam::Vec2;
 use passo_physics::{BodyId, BodyKind, Shape, World};
 use passo_render::{DrawList, Renderer, RgbaImage, TextureId};
-use passo_scene::{BuiltScene, SceneBody, TileSprite};
+use passo_scene::{BuiltScene, LevelArt, SceneBody, TileSprite};
+use std::path::Path;
 
 /// Background of every picture (sRGB).
 pub const BACKGROUND: [u8; 4] = [24, 26, 32, 255];
@@ -77,29 +78,58 @@ impl LevelTiles {
     /// images, or one that does not load, which is logged) the level is
     /// drawn as boxes, as without tiles.
     pub fn load(renderer: &mut Renderer, built: &BuiltScene) -> Self {
-        let art = &built.art;
+        Self::from_art(&built.art, &built.cell_bodies, |path| {
+            let image = RgbaImage::load_png(path).map_err(|e| e.to_string())?;
+            renderer.add_texture(&image).map_err(|e| e.to_string())
+        })
+    }
+
+    /// The quads of `art`, with each image's texture from `texture` (which
+    /// loads it, or finds it loaded before); `cell_bodies` are the bodies
+    /// the quads stand for. Empty, so the level is drawn as boxes, when
+    /// `art` is not complete or an image does not load (logged).
+    pub fn from_art(
+        art: &LevelArt,
+        cell_bodies: &[BodyId],
+        mut texture: impl FnMut(&Path) -> Result<TextureId, String>,
+    ) -> Self {
         if !art.complete || art.tiles.is_empty() {
             return Self::default();
         }
         let mut textures = Vec::with_capacity(art.images.len());
         for path in &art.images {
-            let loaded = RgbaImage::load_png(path)
-                .map_err(|e| e.to_string())
-                .and_then(|image| renderer.add_texture(&image).map_err(|e| e.to_string()));
-            match loaded {
-                Ok(texture) => textures.push(texture),
+            match texture(path) {
+                Ok(id) => textures.push(id),
                 Err(e) => {
                     log::warn!("the level's tiles are drawn as boxes: {e}");
                     return Self::default();
                 }
             }
         }
-        let mut hidden = built.cell_bodies.clone();
+        let mut hidden = cell_bodies.to_vec();
         hidden.sort();
         Self {
             tiles: art.tiles.iter().map(|t| (textures[t.image], *t)).collect(),
             hidden,
         }
+    }
+
+    /// Adds the quads to `list`, moved by `offset`.
+    pub fn add_to(&self, list: &mut DrawList, offset: Vec2) {
+        for (texture, tile) in &self.tiles {
+            list.sprite(
+                *texture,
+                tile.centre + offset,
+                tile.half_extents,
+                tile.uv_min,
+                tile.uv_max,
+            );
+        }
+    }
+
+    /// The bodies the quads stand for, sorted.
+    pub fn hidden(&self) -> &[BodyId] {
+        &self.hidden
     }
 
     /// The number of quads.
@@ -128,26 +158,19 @@ pub fn draw_world_with_tiles(
     options: &DrawOptions,
 ) {
     list.clear(BACKGROUND);
-    for (texture, tile) in &tiles.tiles {
-        list.sprite(
-            *texture,
-            tile.centre + options.offset,
-            tile.half_extents,
-            tile.uv_min,
-            tile.uv_max,
-        );
-    }
-    add_bodies(list, world, bodies, &tiles.hidden, options);
+    tiles.add_to(list, options.offset);
+    add_world_hiding(list, world, bodies, &tiles.hidden, options);
 }
 
 /// Adds the world's bodies (with their scene colours) and the chosen debug
 /// vectors to `list`.
 pub fn add_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], options: &DrawOptions) {
-    add_bodies(list, world, bodies, &[], options);
+    add_world_hiding(list, world, bodies, &[], options);
 }
 
-/// [`add_world`], leaving out the bodies in `hidden` (sorted).
-fn add_bodies(
+/// [`add_world`], leaving out the bodies in `hidden` (sorted): those a
+/// level's tiles stand for.
+pub fn add_world_hiding(
     list: &mut DrawList,
     world: &World,
     bodies: &[SceneBody],

@@ -219,6 +219,7 @@ impl App {
             hitch: None,
             record_to: self.args.record.clone(),
             last_replay: None,
+            tiles: Default::default(),
         });
         let r = self.running.as_mut().expect("just made");
         if let Some(path) = &self.args.replay {

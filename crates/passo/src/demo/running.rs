@@ -7,12 +7,17 @@ use super::controls::Input;
 use super::replay::{Command, Replay};
 use super::sim::{Sim, load};
 use super::ui::{self, Actions, ViewOptions};
-use crate::draw::{BACKGROUND, DrawOptions, add_world};
+use crate::draw::{BACKGROUND, DrawOptions, LevelTiles, add_world_hiding};
 use anyhow::Result;
 use glam::Vec2;
 use passo_loop::RealClock;
 use passo_physics::BodyId;
-use passo_render::{Camera2D, DrawList, Gpu, Renderer, RgbaImage, WindowSurface, read_texture};
+use passo_render::{
+    Camera2D, DrawList, Gpu, Renderer, RgbaImage, TextureId, WindowSurface, read_texture,
+};
+use passo_scene::LevelArt;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Duration;
 use winit::dpi::PhysicalSize;
@@ -96,6 +101,43 @@ pub(super) struct Running {
     pub(super) record_to: Option<std::path::PathBuf>,
     /// The last replay saved with the panel's button.
     pub(super) last_replay: Option<Replay>,
+    /// The level's tiles, as textures of the renderer.
+    pub(super) tiles: Tiles,
+}
+
+/// A level's tiles ready to draw, what they were made from, and every
+/// image loaded so far (by path: switching scenes back and forth loads
+/// each image once).
+#[derive(Default)]
+pub(super) struct Tiles {
+    drawn: LevelTiles,
+    made_from: (LevelArt, Vec<passo_physics::BodyId>),
+    textures: BTreeMap<PathBuf, TextureId>,
+}
+
+impl Tiles {
+    /// Makes the tiles again if the scene's art or cell bodies changed.
+    fn refresh(
+        &mut self,
+        renderer: &mut Renderer,
+        art: &LevelArt,
+        cells: &[passo_physics::BodyId],
+    ) {
+        if self.made_from.0 == *art && self.made_from.1 == cells {
+            return;
+        }
+        let textures = &mut self.textures;
+        self.drawn = LevelTiles::from_art(art, cells, |path| {
+            if let Some(&id) = textures.get(path) {
+                return Ok(id);
+            }
+            let image = RgbaImage::load_png(path).map_err(|e| e.to_string())?;
+            let id = renderer.add_texture(&image).map_err(|e| e.to_string())?;
+            textures.insert(path.to_path_buf(), id);
+            Ok(id)
+        });
+        self.made_from = (art.clone(), cells.to_vec());
+    }
 }
 
 impl Running {
@@ -337,7 +379,11 @@ impl Running {
                     .texture
                     .create_view(&wgpu::TextureViewDescriptor::default());
                 self.list.clear(BACKGROUND);
-                for lane in &self.sim.scene.lanes {
+                let scene = &self.sim.scene;
+                self.tiles
+                    .refresh(&mut self.renderer, &scene.art, &scene.cell_bodies);
+                self.tiles.drawn.add_to(&mut self.list, Vec2::ZERO);
+                for (i, lane) in self.sim.scene.lanes.iter().enumerate() {
                     let options = DrawOptions {
                         alpha: self.sim.session.stats.alpha,
                         velocity_vectors: self.view.velocities,
@@ -347,7 +393,12 @@ impl Running {
                         offset: lane.offset,
                         ..Default::default()
                     };
-                    add_world(&mut self.list, &lane.world, &lane.bodies, &options);
+                    let hidden = if i == 0 {
+                        self.tiles.drawn.hidden()
+                    } else {
+                        &[]
+                    };
+                    add_world_hiding(&mut self.list, &lane.world, &lane.bodies, hidden, &options);
                 }
                 // Nothing under the panel, which has no fill of its own.
                 let left = (self.panel_px.floor() as u32).min(size.0);

@@ -10,7 +10,7 @@ use crate::scenes::Plot;
 use anyhow::Result;
 use glam::Vec2;
 use passo_physics::{Aabb, BodyId, BodyKind, Integrator, WorldSnapshot};
-use passo_scene::{BuiltScene, Generator, Platform, Scene, SceneFile};
+use passo_scene::{BuiltScene, Generator, LevelArt, Platform, Scene, SceneFile};
 use std::collections::VecDeque;
 
 /// A scene being run: everything a reset rebuilds.
@@ -34,6 +34,10 @@ pub struct SceneState {
     pub fixed_integrators: bool,
     /// The plot.
     pub history: History,
+    /// How the level's cells look, and the bodies they are (lane 0).
+    pub art: LevelArt,
+    /// The bodies of the level's cells, drawn as its tiles.
+    pub cell_bodies: Vec<BodyId>,
     /// The scene file, to rebuild (reset, body count) from; `None` for the
     /// integrator comparison.
     pub file: Option<SceneFile>,
@@ -125,6 +129,7 @@ impl SceneState {
             .or_else(|| controls::add_character(&mut built));
         let twin = controls::add_physics_player(&mut built);
         let platforms = built.platforms;
+        let (art, cell_bodies) = (built.art, built.cell_bodies);
         let lanes = vec![Lane::new(
             String::new(),
             built.world,
@@ -135,6 +140,8 @@ impl SceneState {
             name: file.name.clone(),
             description: file.description.clone(),
             history: History::new(plot, &lanes),
+            art,
+            cell_bodies,
             lanes,
             bounds: built.camera,
             player,
@@ -162,6 +169,8 @@ impl SceneState {
                           semi-implicit Euler keeps it bounded, Verlet and RK4 follow the cosine."
                     .into(),
             history: History::new(Plot::Energy, &lanes),
+            art: LevelArt::default(),
+            cell_bodies: Vec::new(),
             lanes,
             bounds: Aabb {
                 min: Vec2::new(-6.5, -3.0),
