@@ -160,13 +160,38 @@ pub fn pyramid_world(base: usize) -> World {
     world
 }
 
+/// The rain of the busy scene and the determinism tests: 2 000 circles
+/// into a box with 30 m walls,
+/// kept here rather than read from `assets/scenes/rain.ron`, so the
+/// determinism tests' scene does not move when the demo's does.
+pub const BUSY_RAIN: &str = r#"(
+    name: "Rain",
+    forces: (gravity: (0, -9.81)),
+    collisions: (),
+    bodies: [
+        (name: "floor", kind: Static, shape: Box(half_extents: (10.5, 0.5)), position: (0, -0.5)),
+        (name: "left wall", kind: Static, shape: Box(half_extents: (0.5, 15)), position: (-10, 15)),
+        (name: "right wall", kind: Static, shape: Box(half_extents: (0.5, 15)), position: (10, 15)),
+    ],
+    generators: [
+        Rain(
+            count: 2000,
+            origin: (-8.7, 2),
+            columns: 30,
+            spacing: (0.6, 0.6),
+            jitter: 0.09,
+            seed: 7,
+            body: (shape: Circle(radius: 0.2), density: 1, material: (friction: 0.4)),
+        ),
+    ],
+)"#;
+
 /// The busy scene of the determinism tests: the rain of `rain.ron` (2 000
 /// circles in a box) with a pyramid of 36 boxes beside it and five fast
 /// balls thrown through, so every stage of the step runs.
 pub fn busy_world() -> World {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
-    let scene = passo_scene::Scene::load(&path).expect("the rain scene loads");
-    let mut world = scene.build().expect("the rain scene builds").world;
+    let scene = passo_scene::Scene::parse(BUSY_RAIN, "busy_rain.ron").expect("the rain parses");
+    let mut world = scene.build().expect("the rain builds").world;
     for row in 0..8 {
         for col in 0..(8 - row) {
             let p = Vec2::new(14.0 + col as f32 - (7 - row) as f32 * 0.5, 0.5 + row as f32);

@@ -135,8 +135,8 @@ fn with_platforms_the_same_bits_as_always() {
 /// The rain with `n` circles: large enough that the per-body stages and the
 /// narrow phase go to the thread pool.
 fn big_rain(n: u32) -> World {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
-    let mut scene = Scene::load(&path).unwrap();
+    // The rain of 30 m walls the determinism tests were written for.
+    let mut scene = Scene::parse(passo_benches::BUSY_RAIN, "busy_rain.ron").unwrap();
     for g in &mut scene.file.generators {
         if let passo_scene::Generator::Rain { count, columns, .. } = g {
             *count = n;
