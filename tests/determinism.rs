@@ -17,7 +17,6 @@ use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, Shape, World};
 use passo_scene::Scene;
 use passo_tests::add_ground;
-use std::path::PathBuf;
 
 /// State hash of the scene below after `TICKS` ticks.
 const EXPECTED: u64 = 0x98d4_b56c_24a0_87fc;
