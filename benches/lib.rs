@@ -186,8 +186,8 @@ pub const BUSY_RAIN: &str = r#"(
     ],
 )"#;
 
-/// The busy scene of the determinism tests: the rain of `rain.ron` (2 000
-/// circles in a box) with a pyramid of 36 boxes beside it and five fast
+/// The busy scene of the determinism tests: the rain of [`BUSY_RAIN`]
+/// (2 000 circles in a box) with a pyramid of 36 boxes beside it and five fast
 /// balls thrown through, so every stage of the step runs.
 pub fn busy_world() -> World {
     let scene = passo_scene::Scene::parse(BUSY_RAIN, "busy_rain.ron").expect("the rain parses");
