@@ -160,6 +160,21 @@ pub fn pyramid_world(base: usize) -> World {
     world
 }
 
+/// The scene files (`.ron`) in `dir`, sorted by name: the shipped scenes
+/// are those of `assets/scenes/` ([`SCENES_DIR`]).
+pub fn scene_files(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut paths: Vec<_> = std::fs::read_dir(dir)
+        .expect("the scenes folder")
+        .map(|e| e.expect("a folder entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    paths.sort();
+    paths
+}
+
+/// The folder of the shipped scenes.
+pub const SCENES_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/scenes");
+
 /// The rain of the busy scene and the determinism tests: 2 000 circles
 /// into a box with 30 m walls,
 /// kept here rather than read from `assets/scenes/rain.ron`, so the

@@ -11,15 +11,8 @@ use std::path::PathBuf;
 fn main() {
     let dir = std::env::args()
         .nth(1)
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes"));
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .expect("the scenes folder")
-        .map(|e| e.expect("a folder entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-        .collect();
-    paths.sort();
-    for path in paths {
+        .map_or_else(|| PathBuf::from(passo_benches::SCENES_DIR), PathBuf::from);
+    for path in passo_benches::scene_files(&dir) {
         let scene = Scene::load(&path).expect("a shipped scene loads");
         let mut built = scene.build().expect("a shipped scene builds");
         let dt = (1.0 / scene.file.rate_hz) as f32;

@@ -125,14 +125,7 @@ pub fn shipped_scenes() -> String {
     let mut out = String::from(
         "| scene | bodies | deepest overlap (mm) | state hash |\n|---|---:|---:|---|\n",
     );
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .expect("the scenes folder")
-        .map(|e| e.expect("a folder entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-        .collect();
-    paths.sort();
-    for path in paths {
+    for path in crate::scene_files(Path::new(crate::SCENES_DIR)) {
         let scene = passo_scene::Scene::load(&path).expect("a shipped scene loads");
         let mut built = scene.build().expect("a shipped scene builds");
         let dt = (1.0 / scene.file.rate_hz) as f32;

@@ -1,19 +1,10 @@
 // Instanced line segments (debug vectors, contact normals, arrow shafts
 // and heads): each is a quad around the segment whose fragment shader
 // evaluates the distance to the segment, for an anti-aliased line of a
-// width in pixels at any zoom. Mirrors `Globals` (crates/passo-render/src/renderer.rs)
-// and `LineInstance` (crates/passo-render/src/draw_list.rs) field for field;
+// width in pixels at any zoom. Comes after common.wgsl (`Globals`,
+// `linear_to_srgb`). Mirrors `LineInstance`
+// (crates/passo-render/src/draw_list.rs) field for field;
 // crates/passo-render/tests/shaders.rs compares the layouts.
-
-struct Globals {
-    centre: vec2<f32>,
-    scale: vec2<f32>,
-    pixel_size: f32,
-    encode_srgb: u32,
-    _pad: vec2<f32>,
-};
-
-@group(0) @binding(0) var<uniform> globals: Globals;
 
 struct Instance {
     @location(0) start: vec2<f32>,
@@ -63,12 +54,6 @@ fn vs_main(@builtin(vertex_index) vertex: u32, instance: Instance) -> VsOut {
     out.colour = instance.colour;
     out.half_width = half_width;
     return out;
-}
-
-fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
-    let low = c * 12.92;
-    let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
-    return select(high, low, c <= vec3<f32>(0.0031308));
 }
 
 @fragment

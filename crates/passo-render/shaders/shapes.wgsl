@@ -1,23 +1,9 @@
 // Instanced shapes: every circle and box is a quad whose fragment shader
 // evaluates the shape's signed distance, giving an anti-aliased edge and an
-// outline at any zoom. Mirrors `Globals` (crates/passo-render/src/renderer.rs)
-// and `ShapeInstance` (crates/passo-render/src/draw_list.rs) field for field;
+// outline at any zoom. Comes after common.wgsl (`Globals`,
+// `linear_to_srgb`). Mirrors `ShapeInstance`
+// (crates/passo-render/src/draw_list.rs) field for field;
 // crates/passo-render/tests/shaders.rs compares the layouts.
-
-struct Globals {
-    // world -> clip: clip = (world - centre) * scale
-    centre: vec2<f32>,
-    scale: vec2<f32>,
-    // metres per pixel, for edge widths measured in pixels
-    pixel_size: f32,
-    // 1 when the target stores bytes as they are (a *Unorm format) and the
-    // shader must apply the sRGB transfer function itself; 0 for *Srgb
-    // targets, which encode on write.
-    encode_srgb: u32,
-    _pad: vec2<f32>,
-};
-
-@group(0) @binding(0) var<uniform> globals: Globals;
 
 struct Instance {
     @location(0) centre: vec2<f32>,
@@ -69,12 +55,6 @@ fn vs_main(@builtin(vertex_index) vertex: u32, instance: Instance) -> VsOut {
     out.outline = instance.outline;
     out.kind = instance.kind;
     return out;
-}
-
-fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
-    let low = c * 12.92;
-    let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
-    return select(high, low, c <= vec3<f32>(0.0031308));
 }
 
 @fragment

@@ -1,23 +1,9 @@
 // Instanced sprites: each is a quad that shows a rectangle of a texture
 // (a tile of a tileset image), sampled at the nearest texel so pixel art
-// stays sharp. Mirrors `Globals` (crates/passo-render/src/renderer.rs) and
-// `SpriteInstance` (crates/passo-render/src/draw_list.rs) field for field;
-// crates/passo-render/tests/shaders.rs compares the layouts.
+// stays sharp. Comes after common.wgsl (`Globals`, `linear_to_srgb`).
+// Mirrors `SpriteInstance` (crates/passo-render/src/draw_list.rs) field
+// for field; crates/passo-render/tests/shaders.rs compares the layouts.
 
-struct Globals {
-    // world -> clip: clip = (world - centre) * scale
-    centre: vec2<f32>,
-    scale: vec2<f32>,
-    // metres per pixel
-    pixel_size: f32,
-    // 1 when the target stores bytes as they are (a *Unorm format) and the
-    // shader must apply the sRGB transfer function itself; 0 for *Srgb
-    // targets, which encode on write.
-    encode_srgb: u32,
-    _pad: vec2<f32>,
-};
-
-@group(0) @binding(0) var<uniform> globals: Globals;
 // An sRGB texture: sampling gives linear light.
 @group(1) @binding(0) var image: texture_2d<f32>;
 @group(1) @binding(1) var nearest: sampler;
@@ -52,12 +38,6 @@ fn vs_main(@builtin(vertex_index) vertex: u32, instance: Instance) -> VsOut {
         mix(instance.uv_max.y, instance.uv_min.y, t.y),
     );
     return out;
-}
-
-fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
-    let low = c * 12.92;
-    let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
-    return select(high, low, c <= vec3<f32>(0.0031308));
 }
 
 @fragment

@@ -5,15 +5,25 @@ use crate::{Camera2D, DrawList, Gpu, RenderError, RgbaImage};
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec2, Vec2};
 
-/// The shape pipeline's WGSL (`crates/passo-render/shaders/shapes.wgsl`), built in.
-pub const SHAPES_WGSL: &str = include_str!("../shaders/shapes.wgsl");
-/// The line pipeline's WGSL (`crates/passo-render/shaders/lines.wgsl`), built in.
-pub const LINES_WGSL: &str = include_str!("../shaders/lines.wgsl");
-/// The sprite pipeline's WGSL (`crates/passo-render/shaders/sprites.wgsl`), built in.
-pub const SPRITES_WGSL: &str = include_str!("../shaders/sprites.wgsl");
+/// The shape pipeline's WGSL, built in: `crates/passo-render/shaders/`
+/// `common.wgsl` then `shapes.wgsl`.
+pub const SHAPES_WGSL: &str = concat!(
+    include_str!("../shaders/common.wgsl"),
+    include_str!("../shaders/shapes.wgsl")
+);
+/// The line pipeline's WGSL: `common.wgsl` then `lines.wgsl`.
+pub const LINES_WGSL: &str = concat!(
+    include_str!("../shaders/common.wgsl"),
+    include_str!("../shaders/lines.wgsl")
+);
+/// The sprite pipeline's WGSL: `common.wgsl` then `sprites.wgsl`.
+pub const SPRITES_WGSL: &str = concat!(
+    include_str!("../shaders/common.wgsl"),
+    include_str!("../shaders/sprites.wgsl")
+);
 
 /// Per-frame constants, the uniform at `@group(0) @binding(0)`. Mirrors
-/// `Globals` in each WGSL file field for field; `tests/shaders.rs` compares
+/// `Globals` in `shaders/common.wgsl` field for field; `tests/shaders.rs` compares
 /// the layouts. Public only for that test.
 #[doc(hidden)]
 #[repr(C)]

@@ -42,13 +42,16 @@ macro_rules! rust_struct {
 #[test]
 fn every_shader_in_the_shaders_directory_validates() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
+    let common = std::fs::read_to_string(dir.join("common.wgsl")).unwrap();
     let mut checked = Vec::new();
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "wgsl") {
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if path.extension().is_none_or(|e| e != "wgsl") || name == "common.wgsl" {
             continue;
         }
-        let source = std::fs::read_to_string(&path).unwrap();
+        // Each pipeline's source is the common part, then its own.
+        let source = common.clone() + &std::fs::read_to_string(&path).unwrap();
         let module = parse(&path.display().to_string(), &source);
         for entry in ["vs_main", "fs_main"] {
             assert!(
@@ -57,10 +60,19 @@ fn every_shader_in_the_shaders_directory_validates() {
                 path.display()
             );
         }
-        checked.push(path.file_name().unwrap().to_string_lossy().into_owned());
+        checked.push(name);
     }
     checked.sort();
     assert_eq!(checked, ["lines.wgsl", "shapes.wgsl", "sprites.wgsl"]);
+    // The sources built into the renderer are those files.
+    for (file, built_in) in [
+        ("shapes.wgsl", SHAPES_WGSL),
+        ("lines.wgsl", LINES_WGSL),
+        ("sprites.wgsl", SPRITES_WGSL),
+    ] {
+        let own = std::fs::read_to_string(dir.join(file)).unwrap();
+        assert_eq!(built_in, common.clone() + &own, "{file}");
+    }
 }
 
 #[test]
