@@ -23,3 +23,12 @@ fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
     let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
     return select(high, low, c <= vec3<f32>(0.0031308));
 }
+
+// The two triangles of an instance's quad, corners from -1 to 1.
+const QUAD = array<vec2<f32>, 6>(
+    vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, -1.0), vec2<f32>(1.0, 1.0),
+    vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, 1.0), vec2<f32>(-1.0, 1.0),
+);
+
+// Anti-aliasing fringe, pixels.
+const FRINGE_PX: f32 = 1.0;

@@ -25,14 +25,9 @@ struct VsOut {
     @location(4) @interpolate(flat) half_width: f32,
 };
 
-const FRINGE_PX: f32 = 1.0;
 
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32, instance: Instance) -> VsOut {
-    var corners = array<vec2<f32>, 6>(
-        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, -1.0), vec2<f32>(1.0, 1.0),
-        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, 1.0), vec2<f32>(-1.0, 1.0),
-    );
     let seg = instance.end - instance.start;
     let len = length(seg);
     var dir = vec2<f32>(1.0, 0.0);
@@ -42,7 +37,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, instance: Instance) -> VsOut {
     let normal = vec2<f32>(-dir.y, dir.x);
     let half_width = 0.5 * instance.width * globals.pixel_size;
     let pad = half_width + (FRINGE_PX + 0.5) * globals.pixel_size;
-    let c = corners[vertex];
+    let c = QUAD[vertex];
     // x: -1 at the start, +1 at the end (both extended by the pad); y: across.
     let along = select(instance.start - dir * pad, instance.end + dir * pad, c.x > 0.0);
     let world = along + normal * (c.y * pad);

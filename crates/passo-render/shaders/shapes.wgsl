@@ -27,17 +27,12 @@ struct VsOut {
 
 // Outline width and anti-aliasing fringe, pixels.
 const OUTLINE_PX: f32 = 1.5;
-const FRINGE_PX: f32 = 1.0;
 
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32, instance: Instance) -> VsOut {
-    var corners = array<vec2<f32>, 6>(
-        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, -1.0), vec2<f32>(1.0, 1.0),
-        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, 1.0), vec2<f32>(-1.0, 1.0),
-    );
     // Grow the quad by the fringe so the anti-aliased edge is not clipped.
     let grown = instance.half_extents + vec2<f32>(globals.pixel_size * (FRINGE_PX + 0.5));
-    var local = corners[vertex] * grown;
+    var local = QUAD[vertex] * grown;
     var clip = (instance.centre + local - globals.centre) * globals.scale;
     // A quad far larger than the view (10^8 times its height) rasterised
     // with pixels missing: one reaching past the view is cut to just

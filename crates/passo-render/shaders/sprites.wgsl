@@ -23,11 +23,7 @@ struct VsOut {
 
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32, instance: Instance) -> VsOut {
-    var corners = array<vec2<f32>, 6>(
-        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, -1.0), vec2<f32>(1.0, 1.0),
-        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, 1.0), vec2<f32>(-1.0, 1.0),
-    );
-    let corner = corners[vertex];
+    let corner = QUAD[vertex];
     let world = instance.centre + corner * instance.half_extents;
     // 0 to 1 across the quad; the image's rows run down, the world's y up.
     let t = corner * 0.5 + vec2<f32>(0.5);
