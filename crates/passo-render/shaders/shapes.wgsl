@@ -25,7 +25,7 @@ struct VsOut {
     @location(4) @interpolate(flat) kind: u32,
 };
 
-// Outline width and anti-aliasing fringe, pixels.
+// Outline width, pixels.
 const OUTLINE_PX: f32 = 1.5;
 
 @vertex
