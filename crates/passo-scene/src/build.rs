@@ -1,9 +1,9 @@
 //! Building a physics world from a scene.
 
+use crate::art::LevelArt;
 use crate::error::SceneError;
 use crate::format::{BodySpec, Colour, MAX_BODIES, SceneFile};
 use crate::generate::generate;
-use crate::level::LevelArt;
 use crate::map_ref::PlatformPath;
 use passo_physics::glam::Vec2;
 use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, ForceModels, World, WorldSettings};

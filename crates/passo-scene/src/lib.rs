@@ -21,6 +21,7 @@
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
+mod art;
 mod build;
 mod error;
 mod format;
@@ -32,10 +33,11 @@ mod save;
 mod tiled_file;
 mod validate;
 
+pub use art::{LevelArt, TileSprite};
 pub use build::{BuiltScene, KINEMATIC_COLOUR, Platform, SceneBody};
 pub use error::SceneError;
 pub use format::{BodySpec, Camera, Colour, Forces, Generator, MAX_BODIES, Material, SceneFile};
-pub use level::{Level, LevelArt, TileSprite};
+pub use level::Level;
 pub use limits::{
     MAX_FILE_BYTES, MAX_JSON_VALUES, MAX_MAP_BYTES, MAX_OBJECTS, MAX_TILE_DATA_BYTES,
     MAX_TILESET_TILES, MAX_XML_DEPTH, read_at_most,
