@@ -230,6 +230,9 @@ struct Data {
     depth: usize,
     /// Tiles read so far.
     tiles: u64,
+    /// Its first text or CDATA section has been read: the `tiled` crate
+    /// decodes that one alone and ignores the rest.
+    read: bool,
 }
 
 /// How a `<data>` element writes its tiles.
@@ -280,35 +283,36 @@ impl Encoding {
 /// [`check_xml`] with a budget of `budget` bytes of expanded tile data.
 ///
 /// Names are compared by their local part (`x:data` is a `data`, as the
-/// `tiled` crate reads it), attribute values are unescaped, a `<data>`
-/// lasts until its own end tag (an element inside it does not end it), and
-/// each run of its text (comments and CDATA sections included) is decoded
-/// whole, unescaped, at the next tag.
+/// `tiled` crate reads it), attribute values are unescaped, and a `<data>`
+/// lasts until its own end tag (an element inside it does not end it). Of
+/// a `<data>`'s text, only its first section counts, as the `tiled` crate
+/// decodes that alone: the text up to the first tag, comment or CDATA
+/// section (whitespace included), or the first CDATA section if it comes
+/// first. Its tiles are counted, and compressed data decoded, once.
 fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
     let mut depth = 0usize;
     // The cells of the last `<layer>`, and the `<data>` being read.
     let mut cells: Option<u64> = None;
     let mut data: Option<Data> = None;
-    // Its text since the last tag.
-    let mut run: Vec<u8> = Vec::new();
     let mut expanded = 0u64;
     let mut objects = 0u64;
-    let mut flush = |run: &mut Vec<u8>, data: &mut Option<Data>| {
-        if let Some(Data {
-            encoding: Some(e),
-            tiles,
-            ..
-        }) = data
+    // Counts the tiles of `section` if it is the `<data>`'s first.
+    let mut first = |section: &[u8], data: &mut Option<Data>| {
+        if let Some(d) = data
+            && !d.read
+            && !section.is_empty()
         {
-            *tiles += e.tiles(run, budget, &mut expanded)?;
+            d.read = true;
+            if let Some(e) = d.encoding {
+                d.tiles += e.tiles(section, budget, &mut expanded)?;
+            }
         }
-        run.clear();
         Ok::<(), String>(())
     };
     let mut i = 0;
     while let Some(offset) = bytes[i..].iter().position(|&b| b == b'<') {
         if data.is_some() {
-            run.extend_from_slice(&unescape(&bytes[i..i + offset])?);
+            first(&unescape(&bytes[i..i + offset])?, &mut data)?;
         }
         i += offset;
         let rest = &bytes[i..];
@@ -316,16 +320,13 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
             find(rest, b"-->")? + 3
         } else if rest.starts_with(b"<![CDATA[") {
             let end = find(rest, b"]]>")?;
-            if data.is_some() {
-                run.extend_from_slice(&rest[9..end]);
-            }
+            first(&rest[9..end], &mut data)?;
             end + 3
         } else if rest.starts_with(b"<?") {
             find(rest, b"?>")? + 2
         } else if rest.starts_with(b"<!") {
             tag_end(rest)? + 1
         } else if rest.starts_with(b"</") {
-            flush(&mut run, &mut data)?;
             if data.as_ref().is_some_and(|d| d.depth == depth) {
                 let d = data.take().expect("checked");
                 if let (Some(cells), Some(_)) = (cells, d.encoding)
@@ -340,7 +341,6 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
             depth = depth.saturating_sub(1);
             tag_end(rest)? + 1
         } else {
-            flush(&mut run, &mut data)?;
             let end = tag_end(rest)?;
             let tag = &rest[1..end];
             let element = local(name(tag));
@@ -358,6 +358,7 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
                         encoding: Encoding::of(tag)?,
                         depth,
                         tiles: 0,
+                        read: false,
                     });
                 }
             }
@@ -662,6 +663,36 @@ mod tests {
     }
 
     #[test]
+    fn a_layer_whose_first_section_of_text_is_short_is_refused() {
+        // The `tiled` crate reads a `<data>`'s text up to the first
+        // element, comment or CDATA section, and indexes the layer by its
+        // size: a short first section panicked inside it (found by the
+        // `tmx` fuzz target), though the sections together hold enough.
+        let layer = |data: &str| {
+            format!(
+                r#"<map><layer width="2" height="2"><data encoding="csv">{data}</data></layer></map>"#
+            )
+        };
+        for data in [
+            "1,1<property/>,1,1",
+            "1<!-- -->,1,1,1",
+            "1,1<![CDATA[,1,1]]>",
+            "\n<![CDATA[1,1,1,1]]>",
+        ] {
+            let err = check_xml(layer(data).as_bytes()).unwrap_err();
+            assert!(err.contains("4 cells"), "{data}: {err}");
+        }
+        for data in [
+            "1,1,1,1",
+            "<![CDATA[1,1,1,1]]>",
+            "1,1,1,1<!-- -->",
+            "<!-- -->1,1,1,1",
+        ] {
+            assert_eq!(check_xml(layer(data).as_bytes()), Ok(()), "{data}");
+        }
+    }
+
+    #[test]
     fn prefixes_entities_and_nesting_do_not_hide_compressed_data() {
         // Each of these expands 3 MiB under a budget of 2: the `tiled`
         // crate reads names by their local part, unescapes attribute
@@ -681,14 +712,16 @@ mod tests {
             let err = scan(file.as_bytes(), budget).unwrap_err();
             assert!(err.contains("more than"), "{err}");
         }
-        // A comment or a character reference inside the text is read as
-        // the parser reads it: one run of base64.
+        // The parser decodes the first section of text alone: a comment
+        // ends it, so half a stream is all it reads, and so does the scan.
         let mib1 = zeros(1);
         let (head, tail) = mib1.split_at(mib1.len() / 2);
         let commented = format!(
             r#"<map><data encoding="base64" compression="zlib">{head}<!-- a note -->{tail}</data></map>"#
         );
-        assert_eq!(scan(commented.as_bytes(), budget), Ok(()));
+        let err = scan(commented.as_bytes(), budget).unwrap_err();
+        assert!(err.contains("does not decompress"), "{err}");
+        // A character reference does not end a section.
         let escaped = format!(
             r#"<map><data encoding="base64" compression="zlib">&#10;{mib1}&#10;</data></map>"#
         );
