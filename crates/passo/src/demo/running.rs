@@ -105,25 +105,22 @@ pub(super) struct Running {
     pub(super) tiles: Tiles,
 }
 
-/// A level's tiles ready to draw, what they were made from, and every
+/// A level's tiles ready to draw, the art they were made from, and every
 /// image loaded so far (by path: switching scenes back and forth loads
 /// each image once).
 #[derive(Default)]
 pub(super) struct Tiles {
     drawn: LevelTiles,
-    made_from: (LevelArt, Vec<passo_physics::BodyId>),
+    made_from: Option<Arc<LevelArt>>,
     textures: BTreeMap<PathBuf, TextureId>,
 }
 
 impl Tiles {
-    /// Makes the tiles again if the scene's art or cell bodies changed.
-    fn refresh(
-        &mut self,
-        renderer: &mut Renderer,
-        art: &LevelArt,
-        cells: &[passo_physics::BodyId],
-    ) {
-        if self.made_from.0 == *art && self.made_from.1 == cells {
+    /// Makes the tiles again for a new scene: one whose art is not the
+    /// one they were made from (a rebuilt scene has new art, and its
+    /// images are found loaded).
+    fn refresh(&mut self, renderer: &mut Renderer, art: &Arc<LevelArt>, cells: &[BodyId]) {
+        if self.made_from.as_ref().is_some_and(|a| Arc::ptr_eq(a, art)) {
             return;
         }
         let textures = &mut self.textures;
@@ -136,7 +133,7 @@ impl Tiles {
             textures.insert(path.to_path_buf(), id);
             Ok(id)
         });
-        self.made_from = (art.clone(), cells.to_vec());
+        self.made_from = Some(Arc::clone(art));
     }
 }
 

@@ -12,6 +12,7 @@ use glam::Vec2;
 use passo_physics::{Aabb, BodyId, BodyKind, Integrator, WorldSnapshot};
 use passo_scene::{BuiltScene, Generator, LevelArt, Platform, Scene, SceneFile};
 use std::collections::VecDeque;
+use std::sync::Arc;
 
 /// A scene being run: everything a reset rebuilds.
 #[derive(Debug)]
@@ -34,8 +35,9 @@ pub struct SceneState {
     pub fixed_integrators: bool,
     /// The plot.
     pub history: History,
-    /// How the level's cells look, and the bodies they are (lane 0).
-    pub art: LevelArt,
+    /// How the level's cells look (lane 0). Shared, so the window knows a
+    /// new scene's art by its pointer alone.
+    pub art: Arc<LevelArt>,
     /// The bodies of the level's cells, drawn as its tiles.
     pub cell_bodies: Vec<BodyId>,
     /// The scene file, to rebuild (reset, body count) from; `None` for the
@@ -140,7 +142,7 @@ impl SceneState {
             name: file.name.clone(),
             description: file.description.clone(),
             history: History::new(plot, &lanes),
-            art,
+            art: Arc::new(art),
             cell_bodies,
             lanes,
             bounds: built.camera,
@@ -169,7 +171,7 @@ impl SceneState {
                           semi-implicit Euler keeps it bounded, Verlet and RK4 follow the cosine."
                     .into(),
             history: History::new(Plot::Energy, &lanes),
-            art: LevelArt::default(),
+            art: Arc::default(),
             cell_bodies: Vec::new(),
             lanes,
             bounds: Aabb {
