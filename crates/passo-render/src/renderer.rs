@@ -447,23 +447,18 @@ impl Renderer {
             pass.set_pipeline(&self.sprites);
             pass.set_vertex_buffer(0, self.sprite_buffer.slice(..));
             // One draw per run of sprites of the same texture, in order.
-            let mut drawn = list
+            let mut textures = list
                 .sprites
                 .iter()
-                .filter(|s| (s.texture.0 as usize) < known);
+                .map(|s| s.texture)
+                .filter(|t| (t.0 as usize) < known)
+                .take(sprites as usize)
+                .peekable();
             let mut start = 0u32;
-            while start < sprites {
-                let Some(first) = drawn.next() else { break };
-                let texture = first.texture;
+            while let Some(texture) = textures.next() {
                 let mut end = start + 1;
-                while end < sprites {
-                    match drawn.clone().next() {
-                        Some(next) if next.texture == texture => {
-                            drawn.next();
-                            end += 1;
-                        }
-                        _ => break,
-                    }
+                while textures.next_if_eq(&texture).is_some() {
+                    end += 1;
                 }
                 pass.set_bind_group(1, &self.textures[texture.0 as usize], &[]);
                 pass.draw(0..6, start..end);
