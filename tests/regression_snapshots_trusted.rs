@@ -144,10 +144,18 @@ fn each_untrusted_edit_is_refused_with_a_message() {
             )],
         ),
         (
+            "a contact seen farther apart than it is",
+            &[(",lead:0.0)", ",lead:-0.5)")],
+        ),
+        (
+            "a reused contact with a character's lead",
+            &[("reusable:true,lead:0.0)", "reusable:true,lead:0.5)")],
+        ),
+        (
             "a static bullet",
             &[(
-                "bullet:false,min_speed:None,max_speed:None,user_data:0)]),speed_overrides",
-                "bullet:true,min_speed:None,max_speed:None,user_data:0)]),speed_overrides",
+                "bullet:false,character:false,min_speed:None,max_speed:None,user_data:0)]),speed_overrides",
+                "bullet:true,character:false,min_speed:None,max_speed:None,user_data:0)]),speed_overrides",
             )],
         ),
     ];

@@ -85,6 +85,11 @@ pub(crate) struct BodyMeta {
     /// Swept against every body when it moves fast (see `BodyDef::bullet`).
     #[cfg_attr(feature = "serde", serde(default))]
     pub bullet: bool,
+    /// Moved by `World::move_character`: its contacts never push a dynamic
+    /// body ahead of it (the mover's own push does), see
+    /// `Constraint::new`.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub character: bool,
     pub min_speed: Option<f32>,
     pub max_speed: Option<f32>,
     pub user_data: u64,

@@ -434,6 +434,7 @@ mod tests {
             anchor: glam::Vec2::ZERO,
             anchor_separation: 0.01,
             reusable: false,
+            lead: 0.0,
         };
         (row, info)
     }

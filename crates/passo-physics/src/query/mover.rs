@@ -16,7 +16,8 @@
 //! 6. snaps down onto ground up to `snap_down` below, when it was on the
 //!    ground and is not moving up, so it follows small drops instead of
 //!    flying off them;
-//! 7. reports the ground (and the body it stands on), walls and ceilings.
+//! 7. on the ground, sets its feet exactly a skin above it;
+//! 8. reports the ground (and the body it stands on), walls and ceilings.
 //!
 //! From step 2 on, every kinematic body is met where its velocity takes it
 //! by the end of the step, where the character will be too: a lift it
@@ -29,7 +30,8 @@
 //! One-way platforms stop it only from their solid side, and not while it
 //! drops through ([`World::drop_through`]). Dynamic bodies block it like
 //! walls and are pushed with an impulse of at most `push_mass` times the
-//! speed it was stopped from.
+//! closing speed; the character's contacts never push them ahead of it
+//! (see `contact::constraint::character_lead`).
 
 use crate::constants::{LINEAR_SLOP, ONE_WAY_DEPTH};
 use crate::geometry::manifold::collide;
@@ -80,8 +82,12 @@ pub struct CharacterMover {
     /// as ground, in `[0, 1]`. Default 0.7 (about 45°).
     pub ground_normal: f32,
     /// How hard the character pushes dynamic bodies it walks into: the mass,
-    /// kilograms, >= 0, of the impulse per metre per second of motion
-    /// stopped. 0 pushes nothing. Default 20.
+    /// kilograms, >= 0, of the impulse per metre per second of closing
+    /// speed (the speed it wants towards the body less the body's speed
+    /// away). A body lighter than this is brought up to the character's
+    /// speed, never past it. This push is the only one: the character's
+    /// contacts never push a body ahead of it, so 0 pushes nothing.
+    /// Default 20.
     pub push_mass: f32,
     /// Which bodies block it (sensors never do; the character itself is
     /// left out).
@@ -120,7 +126,9 @@ pub struct MoveOutcome {
     /// The translation it will make (the wanted one, slid, stepped,
     /// snapped and carried by its platform).
     pub translation: Vec2,
-    /// It stands on ground after the move.
+    /// It stands on ground after the move, its feet exactly
+    /// [`skin`](CharacterMover::skin) above it. Never while the
+    /// translation asked for moves it up (a jump).
     pub on_ground: bool,
     /// The body it stands on.
     pub ground: Option<BodyId>,
@@ -589,7 +597,7 @@ impl World {
         walker.ignored = out.crushed;
         at = walker.push_out(at);
         walker.ignored = None;
-        let mut pushes: Vec<(usize, Vec2)> = Vec::new();
+        let mut pushes: Vec<(usize, Vec2, f32)> = Vec::new();
         let mut remaining = translation;
         for _ in 0..4 {
             if remaining.length_squared() < 1e-12 {
@@ -621,13 +629,13 @@ impl World {
             } else if is_wall {
                 out.wall = Some(hit.body);
             }
-            // Walking into a dynamic body pushes it, once per move, with
-            // the speed it was stopped from.
-            let stopped = -left.dot(hit.normal) / dt;
-            if let (Some(j), true) = (hit.pushable, stopped > 0.0 && mover.push_mass > 0.0)
+            // Walking into a dynamic body pushes it, once per move, up to
+            // the speed this leg of the move wanted towards it.
+            let wanted = -remaining.dot(hit.normal) / dt;
+            if let (Some(j), true) = (hit.pushable, wanted > 0.0 && mover.push_mass > 0.0)
                 && !pushes.iter().any(|p| p.0 == j)
             {
-                pushes.push((j, -hit.normal * stopped));
+                pushes.push((j, -hit.normal, wanted));
             }
             at = next;
             remaining = left - hit.normal * left.dot(hit.normal);
@@ -637,32 +645,58 @@ impl World {
         // cut the corner of a dynamic body (walking off a crate): the
         // crate, caught between it and the ground, would be launched. It
         // falls instead.
-        let mut ground = walker.ground(at, 2.0 * mover.skin);
+        // The ground and the gap down to it.
+        let probe = 2.0 * mover.skin;
+        let mut ground = walker.ground(at, probe).map(|h| (h, h.fraction * probe));
         if ground.is_none()
             && under.is_some()
             && translation.y <= 0.0
             && mover.snap_down > 0.0
             && let Some(hit) = walker.ground(at, mover.snap_down + mover.skin)
         {
-            let drop = hit.fraction * (mover.snap_down + mover.skin) - mover.skin;
-            let snapped = Vec2::new(at.x, at.y - drop.max(0.0));
+            let gap = hit.fraction * (mover.snap_down + mover.skin);
+            let snapped = Vec2::new(at.x, at.y - (gap - mover.skin).max(0.0));
             if !walker.cuts_dynamic(body.position, snapped - body.position) {
                 at = snapped;
-                ground = Some(hit);
+                ground = Some((hit, gap.min(mover.skin)));
             }
         }
+        // On the ground: the feet exactly a skin above it. A fall that ends
+        // nearer than the probe's reach lands (it reported ground above
+        // the floor, at the full fall speed), and creeping down by the
+        // game's gravity each tick no longer sinks it into the skin. Not
+        // while it moves up by its own motion (a jump leaves the ground).
+        if translation.y > 0.0 {
+            ground = None;
+        } else if let Some((_, gap)) = ground {
+            at = if gap >= mover.skin {
+                at - Vec2::new(0.0, gap - mover.skin)
+            } else {
+                walker.advance(at, Vec2::new(0.0, mover.skin - gap)).0
+            };
+        }
+        let ground = ground.map(|(hit, _)| hit);
         out.on_ground = ground.is_some();
         out.ground = ground.map(|h| h.body);
         out.position = at;
         out.translation = at - body.position;
-        for (j, velocity) in pushes {
+        for (j, direction, wanted) in pushes {
             let target = self.dynamic.meta[j].id;
+            // By the closing speed: a body already moving away as fast as
+            // the character walks gets nothing more. At most push_mass of
+            // impulse per m/s: a light body is pushed up to the speed the
+            // character walks, never faster.
+            let closing = wanted - self.dynamic.vel.at(j).dot(direction);
+            if closing <= 0.0 {
+                continue;
+            }
             out.pushed += 1;
-            // At most push_mass of impulse per m/s: a light body is pushed
-            // up to the speed it was met with, never faster.
             let mass = self.dynamic.meta[j].mass.min(mover.push_mass);
-            let _ = self.try_apply_impulse(target, velocity * mass);
+            let _ = self.try_apply_impulse(target, direction * (closing * mass));
         }
+        // Its contacts now stop what comes at it but push nothing ahead of
+        // it: the push above is the whole push (see `character_lead`).
+        self.dynamic.meta[i].character = true;
         self.try_set_kinematic_target(id, at, dt)?;
         Ok(out)
     }

@@ -426,7 +426,7 @@ pub(crate) fn store_separations(
 ) {
     for_chunks(parallel, (constraints, infos), |_, (constraints, infos)| {
         for (c, info) in constraints.iter().zip(infos) {
-            info.separation = separation(delta, c);
+            info.separation = separation(delta, c) - info.lead;
         }
         0
     });

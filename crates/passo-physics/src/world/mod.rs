@@ -418,6 +418,7 @@ impl World {
             sensor: def.sensor,
             one_way: def.one_way.and_then(crate::body::def::unit_direction),
             drop_through: 0.0,
+            character: false,
             bullet: def.bullet,
             min_speed: def.min_speed,
             max_speed: def.max_speed,

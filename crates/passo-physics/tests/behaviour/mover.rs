@@ -827,3 +827,145 @@ fn a_lift_carrying_it_into_a_ceiling_crushes_it_and_says_so() {
         );
     }
 }
+
+/// Walks at `walk` m/s into a crate of `mass` kg from `offset` metres
+/// behind the usual start (a fraction of one tick's walk) for 2.5 s with
+/// `push_mass`. Returns the crate's fastest speed, its mean speed from the
+/// first push on, how far it moved, and the deepest the character went
+/// into it.
+fn push_run(mass: f32, walk: f32, offset: f32, push_mass: f32) -> (f32, f32, f32, f32) {
+    let mut world = level("##################################################");
+    let start = Vec2::new(3.0, 0.75);
+    let crate_ = world
+        .add_body(BodyDef::new_dynamic(start, Shape::rect(0.5, 0.5)).with_mass(mass))
+        .unwrap();
+    let id = character(&mut world, 1.0 + offset, 0.5);
+    let mover = CharacterMover {
+        push_mass,
+        ..CharacterMover::default()
+    };
+    let (mut fastest, mut first, mut deepest) = (0.0f32, None, 0.0f32);
+    let ticks = 150;
+    for tick in 0..ticks {
+        world
+            .move_character(id, Vec2::new(walk, -5.0) * DT, &mover, DT)
+            .unwrap();
+        world.step(DT);
+        let v = world.body(crate_).unwrap().velocity.x;
+        fastest = fastest.max(v);
+        if first.is_none() && v > 0.0 {
+            first = Some((tick, at(&world, crate_).x));
+        }
+        let gap = at(&world, crate_).x - 0.25 - (at(&world, id).x + HALF.x);
+        deepest = deepest.max(-gap);
+    }
+    let end = at(&world, crate_).x;
+    let mean = first.map_or(0.0, |(tick, x)| {
+        (end - x) / ((ticks - 1 - tick) as f32 * DT)
+    });
+    (fastest, mean, end - start.x, deepest)
+}
+
+#[test]
+fn a_pushed_crate_never_moves_faster_than_the_character_walks() {
+    // A move ending within a skin of a crate let the contacts push it at
+    // the walking speed, and the next move's push added the walking speed
+    // again: a 4 kg crate left at 8.9 m/s from a 4.5 m/s walk. Swept over
+    // start offsets within one tick's walk, crates lighter and heavier
+    // than push_mass (20 kg), and walking speeds.
+    for (mass, walk) in [(0.5, 3.0), (2.0, 3.0), (4.0, 4.5), (4.0, 9.0), (40.0, 4.5)] {
+        for k in 0..75 {
+            let offset = walk * DT * k as f32 / 75.0;
+            let (fastest, mean, _, deepest) = push_run(mass, walk, offset, 20.0);
+            let case = format!("{mass} kg at {walk} m/s from +{offset:.4} m");
+            assert!(fastest <= walk * 1.001, "{case}: {fastest} m/s");
+            // Pushed along at about the walking speed: friction (0.6 g)
+            // takes 0.1 m/s a tick off between pushes.
+            assert!(mean >= 0.9 * walk, "{case}: {mean} m/s on average");
+            assert!(deepest <= LINEAR_SLOP, "{case}: {deepest} m inside it");
+        }
+    }
+}
+
+#[test]
+fn push_mass_zero_never_moves_a_crate() {
+    // The character's kinematic body pushed through ordinary contacts:
+    // crates moved up to 1.5 m with push_mass 0.
+    for (mass, walk) in [(0.5, 3.0), (4.0, 4.5), (4.0, 9.0)] {
+        for k in 0..75 {
+            let offset = walk * DT * k as f32 / 75.0;
+            let (fastest, _, moved, deepest) = push_run(mass, walk, offset, 0.0);
+            let case = format!("{mass} kg at {walk} m/s from +{offset:.4} m");
+            assert!(
+                moved.abs() < 1e-4 && fastest < 1e-3,
+                "{case}: moved {moved} m"
+            );
+            assert!(deepest <= 0.0, "{case}: {deepest} m inside it");
+        }
+    }
+}
+
+#[test]
+fn a_crate_dropped_on_its_head_rests_there_standing_and_walking() {
+    // The character's contacts stop what comes at it (only a push ahead
+    // of it is left to the mover).
+    let mut world = level("##################################################");
+    let id = character(&mut world, 2.0, 0.5);
+    let head = at(&world, id).y + HALF.y;
+    let crate_ = world
+        .add_body(BodyDef::new_dynamic(
+            Vec2::new(2.0, head + 1.0),
+            Shape::rect(0.8, 0.3),
+        ))
+        .unwrap();
+    for (speed, ticks) in [(0.0, 60), (1.0, 60)] {
+        walk(&mut world, id, Vec2::new(speed, -5.0), ticks);
+        let (c, p) = (at(&world, crate_), at(&world, id));
+        let gap = c.y - 0.15 - (p.y + HALF.y);
+        assert!(
+            gap.abs() <= LINEAR_SLOP,
+            "{speed} m/s: {gap} m above the head"
+        );
+        // Carried along by friction (it slides v² / 2 mu g, 8.5 cm at
+        // the default 0.6, while it catches up).
+        assert!(
+            (c.x - p.x).abs() < 0.1,
+            "{speed} m/s: crate {c}, character {p}"
+        );
+    }
+}
+
+#[test]
+fn it_lands_and_rests_exactly_a_skin_above_the_ground() {
+    // `on_ground` came up to 1.5 cm above the floor at the full fall
+    // speed, and the game's gravity crept the feet down to 1.8 mm. Swept
+    // over drop heights within one tick's fall and walking speeds.
+    let skin = CharacterMover::default().skin;
+    for k in 0..40 {
+        for speed in [0.0, 3.0] {
+            let mut world = level("##################################################");
+            let drop = 0.5 + 0.2 * k as f32 / 40.0;
+            let id = character(&mut world, 2.0, 0.5 + drop);
+            let mut velocity = Vec2::new(speed, 0.0);
+            let mut landed = None;
+            for tick in 0..150 {
+                let out = play(&mut world, id, &mut velocity, |_| {});
+                let gap = at(&world, id).y - HALF.y - 0.5;
+                let case = format!("dropped {drop} m at {speed} m/s, tick {tick}");
+                if out.on_ground {
+                    assert!(
+                        (gap - skin).abs() < 1e-4,
+                        "{case}: on the ground {gap} m above it"
+                    );
+                    landed.get_or_insert(tick);
+                } else {
+                    assert!(landed.is_none(), "{case}: left the ground at {gap} m");
+                }
+            }
+            assert!(
+                landed.is_some_and(|t| t < 30),
+                "dropped {drop} m: landed at {landed:?}"
+            );
+        }
+    }
+}
