@@ -61,10 +61,13 @@ pub(crate) fn ray_shape(
             (t >= 0.0 && t <= max_t).then_some((t, normal))
         }
         Shape::Box { half_extents } => {
-            // Slabs: the latest entry over both axes is the hit.
+            // Slabs: the latest entry over both axes is the hit. It starts
+            // below zero, so an origin on a face (rounded just outside the
+            // box) takes that face's normal: starting at zero, it met the
+            // face at t = 0 and returned a zero normal.
             let lo = p - half_extents;
             let hi = p + half_extents;
-            let mut t_enter = 0.0f32;
+            let mut t_enter = f32::NEG_INFINITY;
             let mut t_exit = max_t;
             let mut normal = Vec2::ZERO;
             for axis in 0..2 {
@@ -94,7 +97,8 @@ pub(crate) fn ray_shape(
                     return None;
                 }
             }
-            Some((t_enter, normal))
+            // Behind the origin, or (rounding) started inside.
+            (t_exit >= 0.0).then_some((t_enter.max(0.0), normal))
         }
     }
 }
@@ -130,5 +134,26 @@ mod tests {
         .unwrap();
         assert_eq!((t, n), (3.0, Vec2::Y));
         assert!(ray_shape(&wall, Vec2::new(3.0, 0.0), Vec2::ZERO, -Vec2::X, 10.0).is_none());
+    }
+
+    #[test]
+    fn a_ray_from_a_box_face_hits_it_at_zero_with_the_face_normal() {
+        // 1.9 + 0.1 rounds the top to just above 2, and the origin on it
+        // to just outside: the hit came back with a zero normal.
+        for (centre, half) in [(1.9, 0.1), (0.3, 0.7), (-4.1, 2.1)] {
+            let shape = Shape::from_half_extents(2.0, half);
+            let p = Vec2::new(0.5, centre);
+            for x in [-1.5, 0.0, 1.7] {
+                let top = Vec2::new(x, centre + half);
+                let (t, n) = ray_shape(&shape, p, top, -Vec2::Y, 5.0).unwrap();
+                assert_eq!((t, n), (0.0, Vec2::Y), "{centre} {half} {x}");
+                let bottom = Vec2::new(x, centre - half);
+                let (t, n) = ray_shape(&shape, p, bottom, Vec2::Y, 5.0).unwrap();
+                assert_eq!((t, n), (0.0, -Vec2::Y), "{centre} {half} {x}");
+            }
+            // Behind the ray: no hit.
+            let below = Vec2::new(0.0, centre - half - 1.0);
+            assert!(ray_shape(&shape, p, below, -Vec2::Y, 5.0).is_none());
+        }
     }
 }

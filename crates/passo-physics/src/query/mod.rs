@@ -54,6 +54,15 @@ pub struct QueryFilter {
     /// [`CollisionFilter::layers`](crate::CollisionFilter::layers). Default
     /// all.
     pub mask: u32,
+    /// Whether one-way platforms stop rays and casts only as they stop
+    /// bodies: from their solid side, moving against it, and never a ray
+    /// or cast that starts inside one (deeper than a body landing on it,
+    /// [`ONE_WAY_DEPTH`](crate::constants::ONE_WAY_DEPTH)).
+    /// While the excluded body drops through one-way platforms
+    /// ([`World::drop_through`]), they stop nothing. Default `false`
+    /// (every side of a one-way platform is solid to a query);
+    /// [`solid`](Self::solid) sets it. Point and box queries ignore it.
+    pub one_way: bool,
 }
 
 impl Default for QueryFilter {
@@ -62,17 +71,28 @@ impl Default for QueryFilter {
             exclude: None,
             sensors: true,
             mask: u32::MAX,
+            one_way: false,
         }
     }
 }
 
 impl QueryFilter {
-    /// Every shaped body but sensors.
+    /// Every shaped body but sensors, with one-way platforms solid only
+    /// from their solid side (see [`one_way`](Self::one_way)): what a
+    /// body of the world would meet.
     pub fn solid() -> Self {
         Self {
             sensors: false,
+            one_way: true,
             ..Self::default()
         }
+    }
+
+    /// The same filter, with one-way platforms solid only from their solid
+    /// side (`true`) or from every side (`false`); see
+    /// [`one_way`](Self::one_way).
+    pub fn with_one_way(self, one_way: bool) -> Self {
+        Self { one_way, ..self }
     }
 
     /// The same filter, leaving out `body`.
@@ -312,9 +332,15 @@ impl World {
             return None;
         }
         let mut best: Option<RayHit> = None;
+        let one_way = self.one_way_rule(filter);
         let mut consider = |f: Found| {
             let limit = best.map_or(max_distance, |h| h.distance);
             let (t, normal) = ray_shape(&f.shape, f.position, origin, dir, limit)?;
+            // A ray starting inside a one-way platform passes through it,
+            // as a body inside one does.
+            if !one_way.stops(&f, normal, || t > 0.0 || !inside_one_way(&f, origin)) {
+                return None;
+            }
             let better = best.is_none_or(|h| (t, f.id) < (h.distance, h.body));
             if better {
                 best = Some(RayHit {
@@ -360,8 +386,12 @@ impl World {
         let swept =
             Aabb::from_centre(start, half).union(&Aabb::from_centre(start + translation, half));
         let mut best: Option<ShapeHit> = None;
+        let one_way = self.one_way_rule(filter);
         self.candidates(&swept, filter, |f| {
             if let Some(hit) = cast_shape(shape, start, translation, &f.shape, f.position)
+                && one_way.stops(&f, hit.normal, || {
+                    hit.fraction > 0.0 || on_solid_side(shape, start, &f)
+                })
                 && best.is_none_or(|b| (hit.fraction, f.id) < (b.fraction, b.body))
             {
                 best = Some(ShapeHit {
@@ -373,6 +403,22 @@ impl World {
             }
         });
         best
+    }
+
+    /// How a query with `filter` treats one-way platforms.
+    fn one_way_rule(&self, filter: &QueryFilter) -> OneWayRule {
+        if !filter.one_way {
+            return OneWayRule::Solid;
+        }
+        let dropping = filter
+            .exclude
+            .and_then(|id| self.dynamic_index(id).ok().flatten())
+            .is_some_and(|i| self.dynamic.meta[i].drop_through > 0.0);
+        if dropping {
+            OneWayRule::PassThrough
+        } else {
+            OneWayRule::SolidSide
+        }
     }
 
     /// The query index with its trees up to date.
@@ -433,6 +479,56 @@ impl World {
     fn query_version(&self) -> (u64, u64) {
         (self.stats.steps, self.revisions.edits)
     }
+}
+
+/// How a ray or cast treats one-way platforms (see [`QueryFilter::one_way`]).
+#[derive(Clone, Copy)]
+enum OneWayRule {
+    /// Solid from every side.
+    Solid,
+    /// Solid from their solid side only.
+    SolidSide,
+    /// Not there (the body casting drops through them).
+    PassThrough,
+}
+
+impl OneWayRule {
+    /// Whether a hit on `f` with `normal` (out of `f`) stops the query;
+    /// `outside`: whether the query started outside `f` (or no deeper in
+    /// it than a body landing on it).
+    fn stops(self, f: &Found<'_>, normal: Vec2, outside: impl FnOnce() -> bool) -> bool {
+        let Some(solid) = f.meta.one_way else {
+            return true;
+        };
+        match self {
+            Self::Solid => true,
+            Self::SolidSide => normal.dot(solid) > 0.0 && outside(),
+            Self::PassThrough => false,
+        }
+    }
+}
+
+/// Whether `point` lies inside one-way platform `f` deeper than a body
+/// landing on it ([`ONE_WAY_DEPTH`](crate::constants::ONE_WAY_DEPTH) below
+/// its solid face).
+fn inside_one_way(f: &Found<'_>, point: Vec2) -> bool {
+    let solid = f.meta.one_way.unwrap_or(Vec2::Y);
+    shape_contains(
+        &f.shape,
+        f.position,
+        point + solid * crate::constants::ONE_WAY_DEPTH,
+    )
+}
+
+/// Whether `shape` at `at`, overlapping one-way platform `f`, lies on its
+/// solid side no deeper than a body landing on it
+/// ([`ONE_WAY_DEPTH`](crate::constants::ONE_WAY_DEPTH)).
+fn on_solid_side(shape: &Shape, at: Vec2, f: &Found<'_>) -> bool {
+    let solid = f.meta.one_way.unwrap_or(Vec2::Y);
+    collide(shape, at, &f.shape, f.position, 0.0).is_none_or(|m| {
+        // `m.normal` points from the shape to the platform.
+        -m.normal.dot(solid) > 0.0 && m.separation >= -crate::constants::ONE_WAY_DEPTH
+    })
 }
 
 /// A contact as the game sees it.

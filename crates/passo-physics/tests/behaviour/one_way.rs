@@ -390,3 +390,94 @@ fn a_body_standing_on_it_holds_when_a_heavier_one_lands_on_top() {
         );
     }
 }
+
+#[test]
+fn solid_queries_meet_a_one_way_platform_only_from_its_solid_side() {
+    use passo_physics::QueryFilter;
+    let (world, platform) = world_with_platform("static");
+    let ground = |hit: Option<BodyId>| hit.is_some_and(|b| b != platform);
+    let solid = QueryFilter::solid();
+    let every_side = QueryFilter::default();
+    // Across the platform and past both ends.
+    for k in 0..=20 {
+        let x = -2.47 + 0.25 * k as f32;
+        let over = x.abs() < 2.0;
+        let down = |filter| world.ray_cast_with(Vec2::new(x, 5.0), -UP, 10.0, filter);
+        let up = |filter| world.ray_cast_with(Vec2::new(x, 0.5), UP, 10.0, filter);
+        // From above it stops both; from below only a query that sees every side.
+        for filter in [&solid, &every_side] {
+            let hit = down(filter).unwrap();
+            if over {
+                assert_eq!(hit.body, platform, "x = {x}");
+                assert!((hit.distance - 3.0).abs() < 1e-5, "x = {x}: {hit:?}");
+            } else {
+                assert!(ground(Some(hit.body)), "x = {x}");
+            }
+        }
+        assert_eq!(up(&solid), None, "x = {x}");
+        assert_eq!(
+            up(&every_side).map(|h| h.body),
+            over.then_some(platform),
+            "x = {x}"
+        );
+        // A box cast up from under it (a head under a ledge).
+        let head = Shape::rect(0.4, 0.4);
+        let cast = |filter| world.cast_shape(&head, Vec2::new(x, 1.0), UP * 3.0, filter);
+        assert!(cast(&solid).is_none(), "x = {x}");
+        let expected = (x.abs() < 2.2).then_some(platform);
+        assert_eq!(cast(&every_side).map(|h| h.body), expected, "x = {x}");
+        // Started inside it, a ray goes through to the ground.
+        if over {
+            let inside = Vec2::new(x, 1.9);
+            let hit = world.ray_cast_with(inside, -UP, 10.0, &solid).unwrap();
+            assert!(
+                ground(Some(hit.body)) && (hit.distance - 1.9).abs() < 1e-5,
+                "{hit:?}"
+            );
+            let hit = world.ray_cast_with(inside, -UP, 10.0, &every_side).unwrap();
+            assert_eq!((hit.body, hit.distance), (platform, 0.0));
+        }
+        // A box resting on top (within a landing's depth) is stopped at once.
+        if over {
+            let resting = Vec2::new(x, 2.2 - 0.5 * passo_physics::constants::ONE_WAY_DEPTH);
+            let hit = world.cast_shape(&head, resting, -UP, &solid).unwrap();
+            assert_eq!((hit.body, hit.fraction), (platform, 0.0), "x = {x}");
+        }
+    }
+}
+
+#[test]
+fn a_dropping_body_s_own_queries_pass_through_one_way_platforms() {
+    use passo_physics::QueryFilter;
+    let (mut world, platform) = world_with_platform("static");
+    let player = ball(&mut world, Vec2::new(0.0, 2.25), Vec2::ZERO);
+    let filter = QueryFilter::solid().excluding(player);
+    let ground_ray = |world: &World| {
+        world
+            .ray_cast_with(Vec2::new(0.0, 2.0), -UP, 5.0, &filter)
+            .map(|h| (h.body, h.distance))
+    };
+    // Standing on it, the ray from its feet (on the top face) is stopped
+    // there.
+    assert_eq!(ground_ray(&world), Some((platform, 0.0)));
+    world.drop_through(player, 0.5);
+    let (body, distance) = ground_ray(&world).unwrap();
+    assert!(
+        body != platform && (distance - 2.0).abs() < 1e-5,
+        "{body:?} {distance}"
+    );
+    // Another body's queries still meet it.
+    let other = QueryFilter::solid();
+    assert_eq!(
+        world
+            .ray_cast_with(Vec2::new(1.0, 3.0), -UP, 5.0, &other)
+            .map(|h| h.body),
+        Some(platform)
+    );
+    // Once the time is up it stops the player's queries again.
+    for _ in 0..40 {
+        world.step(DT);
+    }
+    world.set_position(player, Vec2::new(0.0, 3.0));
+    assert_eq!(ground_ray(&world).map(|h| h.0), Some(platform));
+}
