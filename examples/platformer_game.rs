@@ -7,7 +7,7 @@
 //! time, jump buffering and variable jump height.
 
 use passo_physics::glam::Vec2;
-use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, CharacterMover, Shape, World};
+use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, CharacterMover, MoveOutcome, Shape, World};
 use passo_scene::{BuiltScene, LevelArt, Platform, Scene, SceneBody};
 use std::path::Path;
 
@@ -71,6 +71,8 @@ pub struct Platformer {
     /// Times the player was crushed (and started again).
     pub crushed: u32,
     mover: CharacterMover,
+    /// What the last move reported: where the player stands now.
+    last: MoveOutcome,
     velocity: Vec2,
     since_ground: f32,
     since_jump_press: f32,
@@ -136,6 +138,7 @@ impl Platformer {
             start,
             crushed: 0,
             mover,
+            last: MoveOutcome::default(),
             velocity: Vec2::ZERO,
             since_ground: f32::INFINITY,
             since_jump_press: f32::INFINITY,
@@ -167,18 +170,9 @@ impl Platformer {
         self.tick += 1;
         let t_end = self.tick as f64 * f64::from(dt);
         BuiltScene::drive_platforms(&self.platforms, &mut self.world, t_end, dt);
-        // Where the player stands before moving (it may ride a platform).
-        let Ok(now) = self
-            .world
-            .move_character(self.player, Vec2::ZERO, &self.mover, dt)
-        else {
-            return;
-        };
-        if now.crushed.is_some() {
-            self.start_again();
-            self.world.step(dt);
-            return;
-        }
+        // Where the player stands: the last move says (it ended where the
+        // step put the player).
+        let now = self.last;
         let on_ice = now
             .ground
             .and_then(|g| self.world.body(g))
@@ -233,6 +227,7 @@ impl Platformer {
             .world
             .move_character(self.player, translation, &self.mover, dt)
         {
+            self.last = out;
             if out.ceiling.is_some() && self.velocity.y > 0.0 {
                 self.velocity.y = 0.0;
             }
@@ -256,6 +251,7 @@ impl Platformer {
         self.world.set_velocity(self.player, Vec2::ZERO);
         self.velocity = Vec2::ZERO;
         self.rising_from_jump = false;
+        self.last = MoveOutcome::default();
     }
 
     /// Coins the player touches are taken; the goal is noted.

@@ -564,8 +564,8 @@ fn a_platform_path_faster_than_the_world_allows_is_an_error() {
         .unwrap();
     let lift = built.platforms[0].id;
     let mut far: f32 = 0.0;
-    for tick in 1..=36 {
-        built.step(tick, 1.0 / 60.0);
+    for _ in 0..36 {
+        built.step(1.0 / 60.0);
         far = far.max(built.world.body(lift).unwrap().position.x);
     }
     assert!((far - 10.0).abs() < 1e-3, "{far}");

@@ -134,7 +134,8 @@ pub fn run_scene(
     mut after: impl FnMut(u64, &World),
 ) {
     for tick in 1..=ticks {
-        built.step(tick, 1.0 / 60.0);
+        built.step(1.0 / 60.0);
+        debug_assert_eq!(built.tick, tick);
         after(tick, &built.world);
     }
 }

@@ -229,7 +229,7 @@ fn path_platforms_follow_their_path_and_carry_what_stands_on_them() {
         .unwrap();
     let dt = 1.0 / 60.0;
     for tick in 0..360u32 {
-        built.step(u64::from(tick + 1), dt);
+        built.step(dt);
         let t_end = f64::from(tick + 1) * f64::from(dt);
         let at = built.world.body(mover).unwrap().position;
         assert!(
@@ -355,8 +355,8 @@ fn the_tunnelling_scene_s_bullets_stop_at_the_wall_only_with_continuous_collisio
         // The nearest arrives after 15 ticks and the farthest after 55:
         // the flight is seen.
         let mut arrived = Vec::new();
-        for tick in 1..=90 {
-            built.step(tick, 1.0 / 60.0);
+        for _ in 0..90 {
+            built.step(1.0 / 60.0);
             let past = bullets
                 .iter()
                 .filter(|&&id| built.world.body(id).unwrap().position.x > wall - 0.5)
@@ -377,5 +377,34 @@ fn the_tunnelling_scene_s_bullets_stop_at_the_wall_only_with_continuous_collisio
                 assert!(x > wall + 0.1, "passed through: {x}");
             }
         }
+    }
+}
+
+#[test]
+fn a_scene_turns_interpolation_on_and_is_saved_with_it() {
+    let text = |on: &str| {
+        format!(
+            r#"(name: "Ball", forces: (gravity: (0, -10)), {on}
+                bodies: [(shape: Circle(radius: 0.5), position: (0, 10))])"#
+        )
+    };
+    for (field, on) in [
+        ("", false),
+        ("interpolation: false,", false),
+        ("interpolation: true,", true),
+    ] {
+        let scene = Scene::parse(&text(field), "ball.ron").unwrap();
+        let mut built = scene.build().unwrap();
+        assert_eq!(built.world.settings().interpolation, on, "{field}");
+        let ball = built.bodies[0].id;
+        built.step(0.1);
+        built.step(0.1);
+        // Halfway between the positions after the two steps (9.9 and 9.7)
+        // when on; the current position when off.
+        let drawn = built.world.interpolated_position(ball, 0.5).unwrap().y;
+        let expected = if on { 0.5 * (9.9 + 9.7) } else { 9.7 };
+        assert!((drawn - expected).abs() < 1e-5, "{field}: {drawn}");
+        let saved = scene_from_world(&built.world, &scene.file, &built.bodies);
+        assert_eq!(saved.interpolation, on, "{field}");
     }
 }

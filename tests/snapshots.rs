@@ -301,7 +301,7 @@ fn reference_snapshot_files_load_and_write_back_the_same() {
     let mut timestep = FixedTimestep::from_hz(scene.file.rate_hz).unwrap();
     for _ in 0..200 {
         timestep.advance_ticks(1);
-        built.step(timestep.tick(), timestep.dt());
+        built.step(timestep.dt());
     }
     let fresh = built.world.snapshot();
 

@@ -79,6 +79,12 @@ pub struct BuiltScene {
     /// [`art`](Self::art) when it is [complete](LevelArt::complete) draws
     /// these no more.
     pub cell_bodies: Vec<BodyId>,
+    /// Ticks stepped so far, which is also the number of the next tick,
+    /// counted from 0 as `passo_loop::FixedTimestep::tick` counts them.
+    /// The path platforms are where their path puts them at `tick × dt`
+    /// seconds. A game that restores a snapshot sets it to the snapshot's
+    /// tick.
+    pub tick: u64,
 }
 
 /// A kinematic body on a back-and-forth path.
@@ -110,17 +116,50 @@ impl BuiltScene {
         }
     }
 
-    /// Steps the world one fixed tick of `dt` seconds with its path
-    /// platforms driven: `tick` is the number of the tick this step ends,
-    /// counted from the scene's start (1 for the first step), so each
-    /// platform reaches its place at `tick × dt` seconds, as in the demo.
+    /// One fixed tick of `dt` seconds, in the order a game with characters
+    /// needs:
+    /// 1. the path platforms are steered to where they are at the end of
+    ///    the tick ([`drive_platforms`](BuiltScene::drive_platforms));
+    /// 2. `game` runs with the world: move the characters here
+    ///    ([`World::move_character`] meets each platform where it will be);
+    /// 3. the world steps;
+    /// 4. [`tick`](Self::tick) counts it.
+    ///
+    /// ```
+    /// # use passo_scene::Scene;
+    /// # use passo_physics::{BodyDef, CharacterMover, Shape, glam::Vec2};
+    /// let scene = Scene::parse(r#"(name: "Floor", collisions: Some(()),
+    ///     bodies: [(kind: Static, shape: Some(Box(half_extents: (10.0, 0.5))))])"#, "floor.ron").unwrap();
+    /// let mut built = scene.build().unwrap();
+    /// let mover = CharacterMover::default();
+    /// let player = built.world.add_body(BodyDef::new_kinematic(
+    ///     Vec2::new(0.0, 0.9 + mover.skin), Shape::rect(0.4, 0.8), Vec2::ZERO)).unwrap();
+    /// let dt = 1.0 / 60.0;
+    /// for _ in 0..60 {
+    ///     built.tick_with(dt, |world| {
+    ///         world.move_character(player, Vec2::new(2.0, -0.1) * dt, &mover, dt).unwrap();
+    ///     });
+    /// }
+    /// assert_eq!(built.tick, 60);
+    /// let x = built.world.body(player).unwrap().position.x;
+    /// assert!((x - 2.0).abs() < 1e-3, "{x}");
+    /// ```
+    ///
     /// A game with its own clock calls
     /// [`drive_platforms`](BuiltScene::drive_platforms) and
     /// [`World::step`] itself.
-    pub fn step(&mut self, tick: u64, dt: f32) {
-        let t_end = tick as f64 * f64::from(dt);
+    pub fn tick_with(&mut self, dt: f32, game: impl FnOnce(&mut World)) {
+        let t_end = (self.tick.saturating_add(1)) as f64 * f64::from(dt);
         Self::drive_platforms(&self.platforms, &mut self.world, t_end, dt);
+        game(&mut self.world);
         self.world.step(dt);
+        self.tick = self.tick.saturating_add(1);
+    }
+
+    /// One fixed tick of `dt` seconds with nothing moved by the game:
+    /// [`tick_with`](Self::tick_with) with nothing to do.
+    pub fn step(&mut self, dt: f32) {
+        self.tick_with(dt, |_| {});
     }
 
     /// The body with this name, if any.
@@ -158,7 +197,7 @@ pub(crate) fn settings(file: &SceneFile) -> WorldSettings {
         force_form: file.force_form,
         min_speed: file.min_speed,
         max_speed: file.max_speed,
-        interpolation: false,
+        interpolation: file.interpolation,
         contacts: file.collisions,
     }
 }
@@ -315,5 +354,6 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         spawns,
         art,
         cell_bodies,
+        tick: 0,
     })
 }

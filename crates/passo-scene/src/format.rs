@@ -49,6 +49,11 @@ pub struct SceneFile {
     /// Speeds are clamped to this, m/s, > 0 (`inf` for none). Default 1000.
     #[serde(default = "default_max_speed")]
     pub max_speed: f32,
+    /// Whether the world keeps each body's previous position, so a game
+    /// can draw between ticks with `World::interpolated_position`. Default
+    /// `false`.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub interpolation: bool,
     /// The region to show; absent fits every body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera: Option<Camera>,

@@ -64,8 +64,8 @@ use std::path::Path;
 /// let scene = Scene::parse(text, "crates.ron").unwrap();
 /// let mut built = scene.build().unwrap();
 /// let dt = (1.0 / scene.file.rate_hz) as f32; // 60 Hz unless the file says
-/// for tick in 1..=120 {
-///     built.step(tick, dt);
+/// for _ in 0..120 {
+///     built.step(dt); // steers the path platforms, steps, counts the tick
 /// }
 /// let top = built.world.bodies().map(|b| b.position.y).fold(f32::MIN, f32::max);
 /// assert!((top - 0.25).abs() < 0.006, "the crate rests on the ground, at {top}");

@@ -63,6 +63,7 @@ pub fn scene_from_world(world: &World, base: &SceneFile, bodies: &[SceneBody]) -
         collisions: s.contacts,
         min_speed: s.min_speed,
         max_speed: s.max_speed,
+        interpolation: s.interpolation,
         camera: base.camera.map(|c| Camera {
             min: c.min,
             max: c.max,

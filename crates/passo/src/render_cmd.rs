@@ -81,7 +81,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let dt = FixedTimestep::from_hz(scene.file.rate_hz)?.dt();
     let mut progress = crate::progress::Progress::new("simulating", args.ticks);
     for tick in 1..=args.ticks {
-        built.step(tick, dt);
+        built.step(dt);
         progress.set(tick);
     }
     progress.finish();

@@ -47,6 +47,8 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
             .with_context(|| path.display().to_string())?;
         let (world, resumed) = snapshot.restore()?;
         built.world = world;
+        // The platforms go on from the snapshot's tick.
+        built.tick = resumed.tick();
         timestep = resumed;
     }
     let dt = timestep.dt();
@@ -79,10 +81,9 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let first = timestep.tick();
     for tick in 1..=args.ticks {
         // The loop counts the tick too, so a saved snapshot's tick follows
-        // the world, and its count is the platforms' clock (a resumed run
-        // goes on from the snapshot's tick).
+        // the world (a resumed run goes on from the snapshot's tick).
         timestep.advance_ticks(1);
-        built.step(timestep.tick(), dt);
+        built.step(dt);
         if let Some(w) = &mut csv
             && (tick % args.every == 0 || tick == args.ticks)
         {
