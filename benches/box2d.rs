@@ -83,6 +83,15 @@ pub fn copy(passo: &World, sleep: bool) -> Box2d {
                 body.create_polygon(&shape_def, &polygon)
                     .expect("a box shape");
             }
+            Shape::Capsule {
+                half_segment,
+                radius,
+            } => {
+                let (a, b) = (-half_segment, half_segment);
+                let capsule = shapes::capsule([a.x, a.y], [b.x, b.y], radius).expect("a capsule");
+                body.create_capsule(&shape_def, &capsule)
+                    .expect("a capsule shape");
+            }
         }
         bodies.push((b.id, id));
     }

@@ -60,6 +60,14 @@ fn rapier_copy(passo: &World, sleep: bool) -> Rapier {
         let collider = match b.shape.expect("benchmark bodies have shapes") {
             Shape::Circle { radius } => ColliderBuilder::ball(radius),
             Shape::Box { half_extents } => ColliderBuilder::cuboid(half_extents.x, half_extents.y),
+            Shape::Capsule {
+                half_segment,
+                radius,
+            } if half_segment.x > 0.0 => ColliderBuilder::capsule_x(half_segment.x, radius),
+            Shape::Capsule {
+                half_segment,
+                radius,
+            } => ColliderBuilder::capsule_y(half_segment.y, radius),
         }
         .friction(0.6)
         .restitution(0.0)

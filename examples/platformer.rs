@@ -207,6 +207,9 @@ impl App {
             match body.shape {
                 Some(Shape::Circle { radius }) => r.list.circle(at, radius, colour.colour.0),
                 Some(Shape::Box { half_extents }) => r.list.rect(at, half_extents, colour.colour.0),
+                Some(shape @ Shape::Capsule { .. }) => {
+                    r.list.capsule(at, shape.half_extents(), colour.colour.0)
+                }
                 None => {}
             }
         }

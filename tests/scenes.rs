@@ -408,3 +408,33 @@ fn a_scene_turns_interpolation_on_and_is_saved_with_it() {
         assert_eq!(saved.interpolation, on, "{field}");
     }
 }
+
+#[test]
+fn capsules_in_scene_files_build_rest_and_save_and_bad_ones_name_their_field() {
+    let text = r#"(name: "Pills", collisions: (), forces: (gravity: (0, -9.81)), bodies: [
+        (kind: Static, shape: Box(half_extents: (5, 0.5)), position: (0, -0.5)),
+        (name: "upright", shape: Capsule(half_segment: (0, 0.3), radius: 0.2), position: (-1, 2)),
+        (name: "lying", shape: Capsule(half_segment: (0.4, 0), radius: 0.25), position: (1, 2)),
+    ])"#;
+    let scene = Scene::parse(text, "pills.ron").unwrap();
+    let mut built = scene.build().unwrap();
+    for _ in 0..180 {
+        built.step(1.0 / 60.0);
+    }
+    // At rest on the floor: half their height up.
+    for (name, half_height) in [("upright", 0.5), ("lying", 0.25)] {
+        let p = built.world.body(built.body_named(name).unwrap()).unwrap().position;
+        assert!((p.y - half_height).abs() < 0.006, "{name}: {p}");
+    }
+    let saved = scene_from_world(&built.world, &scene.file, &built.bodies);
+    let text_again = Scene {
+        file: saved,
+        source: "saved".into(),
+    }
+    .to_ron();
+    let again = Scene::parse(&text_again, "again.ron").unwrap().build().unwrap();
+    assert_eq!(again.world.state_hash(), built.world.state_hash());
+    let bad = text.replace("half_segment: (0.4, 0)", "half_segment: (0.4, 0.1)");
+    let error = Scene::parse(&bad, "bad.ron").unwrap_err().to_string();
+    assert!(error.contains("half_segment") && error.contains("one component 0"), "{error}");
+}

@@ -1,4 +1,4 @@
-// Instanced shapes: every circle and box is a quad whose fragment shader
+// Instanced shapes: every circle, box and capsule is a quad whose fragment shader
 // evaluates the shape's signed distance, giving an anti-aliased edge and an
 // outline at any zoom. Comes after common.wgsl (`Globals`,
 // `linear_to_srgb`). Mirrors `ShapeInstance`
@@ -11,7 +11,8 @@ struct Instance {
     // linear RGB, straight alpha
     @location(2) fill: vec4<f32>,
     @location(3) outline: vec4<f32>,
-    // 0 = circle (radius in half_extents.x), 1 = box
+    // 0 = circle (radius in half_extents.x), 1 = box, 2 = capsule (radius
+    // the smaller half extent)
     @location(4) kind: u32,
 };
 
@@ -59,8 +60,14 @@ fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
     if in.kind == 0u {
         d = length(in.local) - in.half_extents.x;
     } else {
-        let q = abs(in.local) - in.half_extents;
-        d = length(max(q, vec2<f32>(0.0))) + min(max(q.x, q.y), 0.0);
+        // A box (radius 0), or a capsule: the box of its straight part
+        // grown by its radius.
+        var radius = 0.0;
+        if in.kind == 2u {
+            radius = min(in.half_extents.x, in.half_extents.y);
+        }
+        let q = abs(in.local) - (in.half_extents - vec2<f32>(radius));
+        d = length(max(q, vec2<f32>(0.0))) + min(max(q.x, q.y), 0.0) - radius;
     }
     let px = d / globals.pixel_size;
     let coverage = clamp(0.5 - px, 0.0, 1.0);

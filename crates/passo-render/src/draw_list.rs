@@ -8,21 +8,25 @@ use std::mem::offset_of;
 pub const SHAPE_CIRCLE: u32 = 0;
 /// [`ShapeInstance::kind`] of an axis-aligned box.
 pub const SHAPE_BOX: u32 = 1;
+/// [`ShapeInstance::kind`] of a capsule: its half-circles' radius is the
+/// smaller half extent.
+pub const SHAPE_CAPSULE: u32 = 2;
 
-/// One circle or box, as the GPU reads it. Mirrors `Instance` in
+/// One circle, box or capsule, as the GPU reads it. Mirrors `Instance` in
 /// `crates/passo-render/shaders/shapes.wgsl` field for field (`tests/shaders.rs` compares them).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct ShapeInstance {
     /// Centre, metres.
     pub centre: [f32; 2],
-    /// Half extents, metres (a circle's radius in `x`).
+    /// Half extents, metres (a circle's radius in `x`; a capsule's whole
+    /// box).
     pub half_extents: [f32; 2],
     /// Fill colour: linear RGB, straight alpha.
     pub fill: [f32; 4],
     /// Outline colour: linear RGB, straight alpha.
     pub outline: [f32; 4],
-    /// [`SHAPE_CIRCLE`] or [`SHAPE_BOX`].
+    /// [`SHAPE_CIRCLE`], [`SHAPE_BOX`] or [`SHAPE_CAPSULE`].
     pub kind: u32,
     /// Padding to a 16-byte multiple.
     pub _pad: [u32; 3],
@@ -192,7 +196,7 @@ pub struct DrawList {
     pub clear_colour: [f32; 4],
     /// Textured quads: tiles.
     pub sprites: Vec<Sprite>,
-    /// Circles and boxes.
+    /// Circles, boxes and capsules.
     pub shapes: Vec<ShapeInstance>,
     /// Line segments.
     pub lines: Vec<LineInstance>,
@@ -261,6 +265,13 @@ impl DrawList {
     /// A filled axis-aligned box with a darker outline.
     pub fn rect(&mut self, centre: Vec2, half_extents: Vec2, srgba: [u8; 4]) {
         self.shape(SHAPE_BOX, centre, half_extents, srgba);
+    }
+
+    /// A filled capsule filling the box of `half_extents` about `centre`,
+    /// upright if it is taller than wide, with a darker outline: its
+    /// half-circles' radius is the smaller half extent.
+    pub fn capsule(&mut self, centre: Vec2, half_extents: Vec2, srgba: [u8; 4]) {
+        self.shape(SHAPE_CAPSULE, centre, half_extents, srgba);
     }
 
     fn shape(&mut self, kind: u32, centre: Vec2, half_extents: Vec2, srgba: [u8; 4]) {

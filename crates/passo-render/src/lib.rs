@@ -43,8 +43,8 @@ mod surface;
 
 pub use camera::Camera2D;
 pub use draw_list::{
-    DrawList, LineInstance, SHAPE_BOX, SHAPE_CIRCLE, ShapeInstance, Sprite, SpriteInstance,
-    TextureId, srgb_to_linear,
+    DrawList, LineInstance, SHAPE_BOX, SHAPE_CAPSULE, SHAPE_CIRCLE, ShapeInstance, Sprite,
+    SpriteInstance, TextureId, srgb_to_linear,
 };
 /// The maths types the draw list and camera take (`glam::Vec2`), re-exported
 /// so a game uses the same version.

@@ -582,3 +582,54 @@ fn bad_textures_are_errors_and_unknown_ones_draw_nothing() {
     let image = target.read(&gpu).unwrap();
     assert_eq!(image.get(20, 20), Some(BACKGROUND));
 }
+
+#[test]
+fn capsules_are_round_at_their_ends_and_straight_along_their_sides() {
+    let gpu = gpu();
+    let target = OffscreenTarget::new(&gpu, 320, 240);
+    // 20 px a metre, the origin at the centre.
+    let camera = Camera2D::fit(Vec2::new(-8.0, -6.0), Vec2::new(8.0, 6.0), target.size());
+    let mut list = DrawList::new(BACKGROUND);
+    // Upright: 1.6 m wide, 4 m tall (radius 0.8 m); lying: 4 m by 1 m.
+    let (upright, lying) = (Vec2::new(-4.0, 0.0), Vec2::new(3.0, 2.0));
+    list.capsule(upright, Vec2::new(0.8, 2.0), RED);
+    list.capsule(lying, Vec2::new(2.0, 0.5), BLUE);
+    let image = draw(&gpu, &target, &camera, &list);
+    let pixel = |p: Vec2| at(&image, camera.world_to_pixel(p, target.size()));
+    for (centre, half, colour) in [
+        (upright, Vec2::new(0.8, 2.0), RED),
+        (lying, Vec2::new(2.0, 0.5), BLUE),
+    ] {
+        let r = half.min_element();
+        let core = half - Vec2::splat(r);
+        // Inside: the centre, along the straight sides, near each end.
+        for p in [Vec2::ZERO, core, -core, core * Vec2::new(1.0, -1.0) * 0.5] {
+            assert!(
+                close(pixel(centre + p), colour, 1),
+                "{colour:?} at {p}: {:?}",
+                pixel(centre + p)
+            );
+        }
+        // The bounding box's corners lie outside the round ends (a box
+        // would fill them).
+        for corner in [half, -half, half * Vec2::new(1.0, -1.0)] {
+            let p = centre + corner * 0.97;
+            assert!(
+                close(pixel(p), BACKGROUND, 1),
+                "{colour:?} corner {corner}: {:?}",
+                pixel(p)
+            );
+        }
+        // Just inside the round end on the long axis, 0.2 m from the tip.
+        let tip = if half.y > half.x {
+            Vec2::new(0.0, half.y - 0.2)
+        } else {
+            Vec2::new(half.x - 0.2, 0.0)
+        };
+        assert!(
+            close(pixel(centre + tip), colour, 1),
+            "{colour:?} tip: {:?}",
+            pixel(centre + tip)
+        );
+    }
+}

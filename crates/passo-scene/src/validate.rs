@@ -229,6 +229,21 @@ impl BodySpec {
                     c.positive(&at("shape.half_extents.x"), half_extents.x, "m")?;
                     c.positive(&at("shape.half_extents.y"), half_extents.y, "m")?;
                 }
+                Shape::Capsule {
+                    half_segment,
+                    radius,
+                } => {
+                    c.positive(&at("shape.radius"), radius, "m")?;
+                    c.non_negative(&at("shape.half_segment.x"), half_segment.x, "m")?;
+                    c.non_negative(&at("shape.half_segment.y"), half_segment.y, "m")?;
+                    if half_segment.x > 0.0 && half_segment.y > 0.0 {
+                        return Err(c.fail(
+                            &at("shape.half_segment"),
+                            "must have one component 0: (0, h) for an upright capsule, (h, 0) for a lying one"
+                                .to_owned(),
+                        ));
+                    }
+                }
             }
         }
         if self.mass.is_some() && self.density.is_some() {

@@ -205,6 +205,9 @@ pub fn add_world_hiding(
             match body.shape {
                 Some(Shape::Circle { radius }) => list.circle(p, radius, colour),
                 Some(Shape::Box { half_extents }) => list.rect(p, half_extents, colour),
+                Some(shape @ Shape::Capsule { .. }) => {
+                    list.capsule(p, shape.half_extents(), colour)
+                }
                 None => list.circle(p, options.point_radius, colour),
             }
         }

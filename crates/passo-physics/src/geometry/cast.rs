@@ -99,6 +99,21 @@ pub(crate) fn cast_shape(
         (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb }) => {
             ray_box_box(o, d, ha, hb)?
         }
+        // A pair with a capsule: the Minkowski sum of two rounded boxes is
+        // the rounded box of their cores' sum and their radii's sum.
+        _ => {
+            let ((ka, ra), (kb, rb)) = (moving.rounded(), target.rounded());
+            let (t, normal, _) = ray_rounded_box(o, d, ka + kb, ra + rb)?;
+            // On the target: its core's point nearest the moving shape's
+            // centre, on the face the normal leaves by, out by its radius.
+            let mut point = (o + d * t).clamp(-kb, kb);
+            for axis in 0..2 {
+                if normal[axis].abs() == 1.0 {
+                    point[axis] = normal[axis] * kb[axis];
+                }
+            }
+            (t, normal, point + normal * rb)
+        }
     };
     Some(CastHit {
         fraction,

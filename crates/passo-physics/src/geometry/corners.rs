@@ -145,7 +145,10 @@ pub(crate) fn over_a_step(
     // support by half its width or more along the other axis); the rest
     // is out of line.
     match (*sa, *sb) {
+        // Round ends roll over a step's edge, and flush boxes' seams are
+        // closed by their covered faces.
         (Shape::Circle { .. }, Shape::Circle { .. }) => None,
+        (Shape::Capsule { .. }, _) | (_, Shape::Capsule { .. }) => None,
         (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb })
             if (ha + hb - (pb - pa).abs()).max_element() > tolerance =>
         {

@@ -71,6 +71,8 @@ fn collide_shapes(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Op
         (Shape::Circle { radius }, Shape::Box { half_extents }) => {
             box_circle(pb, half_extents, pa, radius).flipped()
         }
+        // A pair with a capsule: two rounded boxes.
+        _ => rounded_rounded(pa, sa.rounded(), pb, sb.rounded(), Faces::default()),
     };
     (m.separation <= margin).then_some(m)
 }
@@ -234,6 +236,9 @@ pub(crate) fn collide_seamless(
         (Shape::Circle { radius }, Shape::Box { half_extents }) if faces_b.0 != 0 => {
             box_circle_faces(pb, half_extents, pa, radius, faces_b).flipped()
         }
+        (Shape::Capsule { .. }, Shape::Box { .. }) if faces_b.0 != 0 => {
+            rounded_rounded(pa, sa.rounded(), pb, sb.rounded(), faces_b)
+        }
         _ => return collide_shapes(sa, pa, sb, pb, margin),
     };
     (m.separation <= margin).then_some(m)
@@ -362,6 +367,74 @@ fn box_circle_faces(pa: Vec2, ha: Vec2, pb: Vec2, rb: f32, faces_a: Faces) -> Ma
         let mut point = local;
         point[axis] = normal[axis] * ha[axis];
         Manifold::one(normal, -depth - rb, pa + point)
+    }
+}
+
+/// Two rounded boxes (see [`Shape::rounded`]): A with core half extents
+/// and radius `(ka, ra)` at `pa`, B with `(kb, rb)` at `pb`. Beyond a
+/// corner of the cores (apart along both axes) the normal joins the two
+/// nearest core corners; otherwise it is the axis along which the cores
+/// are farthest apart (least overlap; on a tie, y), and up to two points
+/// span the stretch where the cores face each other. B's covered faces
+/// (a static box's, see [`Faces`]) are never crossed: beyond a corner
+/// with one face covered, A meets the other face's plane, and the axis
+/// through a covered face gives way to the other.
+fn rounded_rounded(
+    pa: Vec2,
+    (ka, ra): (Vec2, f32),
+    pb: Vec2,
+    (kb, rb): (Vec2, f32),
+    faces_b: Faces,
+) -> Manifold {
+    let d = pb - pa;
+    let gap = d.abs() - (ka + kb);
+    let sign_of = |axis: usize| if d[axis] < 0.0 { -1.0 } else { 1.0 };
+    let sign = Vec2::new(sign_of(0), sign_of(1));
+    let radii = ra + rb;
+    // The normal leaves B through its face on the `-sign` side.
+    let covered = [faces_b.covered(0, -sign.x), faces_b.covered(1, -sign.y)];
+    if gap.x > 0.0 && gap.y > 0.0 && covered[0] == covered[1] {
+        // From A's nearest core corner to B's.
+        let between = gap * sign;
+        let length = between.length();
+        let normal = between / length;
+        let corner = pa + ka * sign;
+        let separation = length - radii;
+        return Manifold::one(
+            normal,
+            separation,
+            corner + normal * (ra + 0.5 * separation),
+        );
+    }
+    let mut axis = if gap.x > gap.y { 0 } else { 1 };
+    let other = 1 - axis;
+    if covered[axis] && !covered[other] {
+        axis = other;
+    }
+    let tangent = 1 - axis;
+    let mut normal = Vec2::ZERO;
+    normal[axis] = sign[axis];
+    let separation = gap[axis] - radii;
+    // Midway between A's surface and B's, along the normal.
+    let face = 0.5
+        * ((pa[axis] + sign[axis] * (ka[axis] + ra)) + (pb[axis] - sign[axis] * (kb[axis] + rb)));
+    let lo = (pa[tangent] - ka[tangent]).max(pb[tangent] - kb[tangent]);
+    let hi = (pa[tangent] + ka[tangent]).min(pb[tangent] + kb[tangent]);
+    let point_at = |t: f32| {
+        let mut p = Vec2::ZERO;
+        p[axis] = face;
+        p[tangent] = t;
+        p
+    };
+    if lo < hi {
+        Manifold {
+            normal,
+            separation,
+            points: [point_at(lo), point_at(hi)],
+            point_count: 2,
+        }
+    } else {
+        Manifold::one(normal, separation, point_at(0.5 * (lo + hi)))
     }
 }
 
@@ -567,5 +640,140 @@ mod tests {
             box_box_faces(pa, ha, pb, hb, Faces::default()),
             box_box(pa, ha, pb, hb)
         );
+    }
+
+    /// Within 1e-5 m.
+    fn near(a: Vec2, b: Vec2) -> bool {
+        (a - b).length() < 1e-5
+    }
+
+    #[test]
+    fn capsule_pairs_against_their_closed_forms() {
+        let capsule = Shape::capsule(0.4, 1.2); // radius 0.2, half segment (0, 0.4)
+        let lying = Shape::capsule(1.2, 0.4); // half segment (0.4, 0)
+        let floor = Shape::rect(4.0, 1.0);
+        let at = |x: f32, y: f32| Vec2::new(x, y);
+        // Standing on a floor 1 mm up: its lower half-circle, one point
+        // midway under its centre.
+        let m = collide(&floor, at(0.0, -0.5), &capsule, at(0.3, 0.601), 1.0).unwrap();
+        assert_eq!(m.normal, Vec2::Y);
+        assert!(
+            (m.separation - 0.001).abs() < 1e-5 && m.point_count == 1,
+            "{m:?}"
+        );
+        assert!(near(m.points[0], at(0.3, 0.0005)), "{m:?}");
+        // Against a wall: the straight side, two points spanning it.
+        let wall = Shape::rect(1.0, 4.0);
+        let m = collide(&capsule, at(0.0, 0.5), &wall, at(0.7, 0.0), 1.0).unwrap();
+        assert_eq!(m.normal, Vec2::X);
+        assert!(m.separation.abs() < 1e-5 && m.point_count == 2, "{m:?}");
+        assert!(
+            near(m.points[0], at(0.2, 0.1)) && near(m.points[1], at(0.2, 0.9)),
+            "{m:?}"
+        );
+        // A circle off its top end, at 45°: from the end's centre.
+        let ball = Shape::circle(0.1);
+        let m = collide(&capsule, at(0.0, 0.0), &ball, at(0.3, 0.7), 1.0).unwrap();
+        let to = at(0.3, 0.3);
+        assert!(near(m.normal, to.normalize()), "{m:?}");
+        assert!((m.separation - (to.length() - 0.3)).abs() < 1e-5, "{m:?}");
+        let surface_a = at(0.0, 0.4) + m.normal * 0.2;
+        assert!(
+            near(m.points[0], surface_a + m.normal * 0.5 * m.separation),
+            "{m:?}"
+        );
+        // Upright against lying, corner to corner: between the segments'
+        // nearest ends.
+        let m = collide(&capsule, at(0.0, 0.0), &lying, at(1.0, 1.0), 1.0).unwrap();
+        let between = at(1.0 - 0.4, 1.0 - 0.4);
+        assert!(near(m.normal, between.normalize()), "{m:?}");
+        assert!(
+            (m.separation - (between.length() - 0.4)).abs() < 1e-5,
+            "{m:?}"
+        );
+        // Two upright capsules overlapping side by side by 5 cm.
+        let m = collide(&capsule, at(0.0, 0.0), &capsule, at(0.35, 0.2), 1.0).unwrap();
+        assert_eq!(m.normal, Vec2::X);
+        assert!((m.separation + 0.05).abs() < 1e-5, "{m:?}");
+        assert!(
+            near(m.points[0], at(0.175, -0.2)) && near(m.points[1], at(0.175, 0.4)),
+            "{m:?}"
+        );
+        // Flipped pairs: the same contact seen from the other side.
+        let ab = collide(&capsule, at(0.1, 0.2), &floor, at(0.0, -0.8), 1.0).unwrap();
+        let ba = collide(&floor, at(0.0, -0.8), &capsule, at(0.1, 0.2), 1.0).unwrap();
+        assert_eq!(ab.normal, -ba.normal);
+        assert!((ab.separation - ba.separation).abs() < 1e-6);
+    }
+
+    #[test]
+    fn capsules_contained_and_coincident_give_defined_contacts() {
+        let capsule = Shape::capsule(0.4, 1.2);
+        for other in [
+            Shape::circle(0.05),
+            Shape::rect(0.1, 0.1),
+            Shape::capsule(0.2, 0.6),
+        ] {
+            for offset in [Vec2::ZERO, Vec2::new(0.0, 0.3), Vec2::new(0.05, -0.2)] {
+                let m = collide(&capsule, Vec2::ZERO, &other, offset, 0.0).unwrap();
+                assert!(
+                    (m.normal.length() - 1.0).abs() < 1e-6,
+                    "{other:?} {offset}: {m:?}"
+                );
+                assert!(m.separation < 0.0 && m.points().iter().all(|p| p.is_finite()));
+                // Moved out along the normal by the depth, they touch.
+                let out = offset - m.normal * m.separation;
+                let touching = collide(&capsule, Vec2::ZERO, &other, out, 1.0).unwrap();
+                assert!(
+                    touching.separation.abs() < 1e-5,
+                    "{other:?} {offset}: {touching:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn random_separated_capsule_pairs_are_apart_by_their_true_distance() {
+        // The distance between two rounded boxes is the distance from one
+        // centre to the box of both cores, less both radii; the points lie
+        // midway between the surfaces.
+        let mut seed = 0x5eed_u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+            (seed >> 40) as f32 / (1u64 << 24) as f32
+        };
+        for case in 0..2000 {
+            let shape = |pick: f32, w: f32, h: f32| match (pick * 3.0) as u32 {
+                0 => Shape::circle(0.5 * w),
+                1 => Shape::rect(w, h),
+                _ => Shape::capsule(w, h),
+            };
+            let a = shape(next(), 0.1 + 2.0 * next(), 0.1 + 2.0 * next());
+            let mut b = shape(next(), 0.1 + 2.0 * next(), 0.1 + 2.0 * next());
+            if !matches!(a, Shape::Capsule { .. }) {
+                b = Shape::capsule(0.1 + 2.0 * next(), 0.1 + 2.0 * next());
+            }
+            let pb = Vec2::new(8.0 * next() - 4.0, 8.0 * next() - 4.0);
+            let ((ka, ra), (kb, rb)) = (a.rounded(), b.rounded());
+            let e = pb.abs() - (ka + kb);
+            let outside = e.max(Vec2::ZERO).length() + e.max_element().min(0.0);
+            let distance = outside - (ra + rb);
+            if distance <= 0.0 {
+                continue;
+            }
+            let m = collide(&a, Vec2::ZERO, &b, pb, f32::INFINITY).unwrap();
+            assert!(
+                (m.separation - distance).abs() < 1e-5,
+                "case {case}: {a:?} {b:?} at {pb}: {m:?}"
+            );
+            // Each point is half the separation from each surface.
+            for p in m.points() {
+                let from_a = (*p - p.clamp(-ka, ka)).length() - ra;
+                assert!(
+                    (from_a - 0.5 * m.separation).abs() < 1e-4,
+                    "case {case}: {m:?}"
+                );
+            }
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! Rays against one shape: the first point a ray from `origin` meets on a
-//! circle or a box at `p`, and whether a point is inside one (the world's
-//! ray and point queries use them).
+//! circle, a box or a capsule at `p`, and whether a point is inside one
+//! (the world's ray and point queries use them).
 
 use crate::Shape;
 use glam::Vec2;
@@ -10,6 +10,13 @@ pub(crate) fn shape_contains(shape: &Shape, p: Vec2, point: Vec2) -> bool {
     match *shape {
         Shape::Circle { radius } => (point - p).length_squared() <= radius * radius,
         Shape::Box { half_extents } => (point - p).abs().cmple(half_extents).all(),
+        Shape::Capsule {
+            half_segment,
+            radius,
+        } => {
+            let local = point - p;
+            (local - local.clamp(-half_segment, half_segment)).length_squared() <= radius * radius
+        }
     }
 }
 
@@ -27,6 +34,33 @@ pub(crate) fn ray_shape(
         return Some((0.0, -dir));
     }
     match *shape {
+        Shape::Capsule {
+            half_segment,
+            radius,
+        } => {
+            // The box between the half-circles' centres, as wide as the
+            // capsule, and the two half-circles' full circles: the first
+            // hit on any of them (the origin is outside them all).
+            let across = if half_segment.x > 0.0 {
+                Vec2::new(0.0, radius)
+            } else {
+                Vec2::new(radius, 0.0)
+            };
+            let parts = [
+                (
+                    Shape::Box {
+                        half_extents: half_segment + across,
+                    },
+                    p,
+                ),
+                (Shape::Circle { radius }, p + half_segment),
+                (Shape::Circle { radius }, p - half_segment),
+            ];
+            parts
+                .iter()
+                .filter_map(|(part, at)| ray_shape(part, *at, origin, dir, max_t))
+                .min_by(|x, y| x.0.total_cmp(&y.0))
+        }
         Shape::Circle { radius } => {
             // |o + t d - c|^2 = r^2 with |d| = 1: t^2 + 2 b t + c = 0, in
             // the forms of `cast::ray_circle` that keep their digits from

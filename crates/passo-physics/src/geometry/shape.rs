@@ -1,4 +1,5 @@
-//! Collision shapes: circles and axis-aligned boxes. Bodies do not rotate.
+//! Collision shapes: circles, axis-aligned boxes and capsules. Bodies do
+//! not rotate.
 
 use glam::Vec2;
 
@@ -17,6 +18,18 @@ pub enum Shape {
     Box {
         /// Half the width and half the height, metres, both > 0.
         half_extents: Vec2,
+    },
+    /// A capsule: two half-circles of `radius` joined by a box, upright or
+    /// lying down (it does not rotate). The usual shape of a character: it
+    /// slides over the seams and corners a box catches on. Make one with
+    /// [`Shape::capsule`].
+    Capsule {
+        /// Half the straight part between the half-circles' centres,
+        /// metres: `(0, h)` for an upright capsule, `(h, 0)` for a lying
+        /// one, `h >= 0` (one component is zero).
+        half_segment: Vec2,
+        /// Radius of the half-circles, metres, > 0.
+        radius: f32,
     },
 }
 
@@ -45,11 +58,35 @@ impl Shape {
         }
     }
 
+    /// A capsule filling a `width` × `height` box, metres: upright when
+    /// it is taller than wide (its radius half the width), lying down
+    /// otherwise. `Shape::capsule(0.4, 0.8)` is a character 0.8 m tall
+    /// with round ends of radius 0.2 m.
+    pub fn capsule(width: f32, height: f32) -> Self {
+        let radius = 0.5 * width.min(height);
+        let half_segment = if height >= width {
+            Vec2::new(0.0, 0.5 * height - radius)
+        } else {
+            Vec2::new(0.5 * width - radius, 0.0)
+        };
+        Self::Capsule {
+            half_segment,
+            radius,
+        }
+    }
+
     /// Area in square metres (used to derive mass from density).
     pub fn area(&self) -> f32 {
         match *self {
             Self::Circle { radius } => std::f32::consts::PI * radius * radius,
             Self::Box { half_extents } => 4.0 * half_extents.x * half_extents.y,
+            Self::Capsule {
+                half_segment,
+                radius,
+            } => {
+                let length = 2.0 * (half_segment.x + half_segment.y);
+                std::f32::consts::PI * radius * radius + 2.0 * radius * length
+            }
         }
     }
 
@@ -58,6 +95,26 @@ impl Shape {
         match *self {
             Self::Circle { radius } => Vec2::splat(radius),
             Self::Box { half_extents } => half_extents,
+            Self::Capsule {
+                half_segment,
+                radius,
+            } => half_segment + Vec2::splat(radius),
+        }
+    }
+
+    /// The shape as a box of half extents `core` grown by `radius` all
+    /// round (a rounded box): a circle has no core, a box no radius, and
+    /// a capsule's core is its straight part. Every pair of shapes with a
+    /// capsule collides and casts in this form.
+    #[inline(always)]
+    pub(crate) fn rounded(&self) -> (Vec2, f32) {
+        match *self {
+            Self::Circle { radius } => (Vec2::ZERO, radius),
+            Self::Box { half_extents } => (half_extents, 0.0),
+            Self::Capsule {
+                half_segment,
+                radius,
+            } => (half_segment, radius),
         }
     }
 
@@ -68,6 +125,27 @@ impl Shape {
             Self::Box { half_extents } => {
                 size("Shape::Box::half_extents.x", half_extents.x)?;
                 size("Shape::Box::half_extents.y", half_extents.y)?
+            }
+            Self::Capsule {
+                half_segment,
+                radius,
+            } => {
+                size("Shape::Capsule::radius", radius)?;
+                for (what, value) in [
+                    ("Shape::Capsule::half_segment.x", half_segment.x),
+                    ("Shape::Capsule::half_segment.y", half_segment.y),
+                ] {
+                    crate::error::non_negative(what, value)?;
+                    size(what, value.max(f32::MIN_POSITIVE))?;
+                }
+                if half_segment.x > 0.0 && half_segment.y > 0.0 {
+                    return Err(crate::PhysicsError::OutOfRange {
+                        what: "Shape::Capsule::half_segment",
+                        value: half_segment.x.min(half_segment.y),
+                        allowed: "one component 0: upright (0, h) or lying (h, 0)",
+                    });
+                }
+                0.0
             }
         };
         Ok(())

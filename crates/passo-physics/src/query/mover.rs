@@ -498,11 +498,12 @@ impl World {
     /// ceiling) crushes it: [`MoveOutcome::crushed`] names it, and the
     /// character stays where it is.
     ///
-    /// Limits: a circle character rolls up a
-    /// block's rounded corner once the corner is under it within
-    /// `ground_normal`, so at speed it may top blocks higher than
-    /// `max_step` (use a box for exact step heights); walking off a
-    /// dynamic body's edge it falls rather than snaps down.
+    /// Limits: a round bottom (a capsule's, a circle's) rolls up a
+    /// block's corner once the corner is under it within `ground_normal`,
+    /// so at speed it may top blocks higher than `max_step` (use a box for
+    /// exact step heights), and climbing a step it moves at least its
+    /// radius forward; walking off a dynamic body's edge the character
+    /// falls rather than snaps down.
     ///
     /// ```
     /// use passo_physics::{BodyDef, CharacterMover, Shape, TileMap, BodyKind, World, glam::Vec2};
@@ -711,8 +712,12 @@ impl World {
         }
         // Forward by what is left of the walk, but at least two skins: the
         // character stopped a skin short of the step's face, and a slow
-        // walk's few millimetres would not carry it over the edge.
-        let forward = Vec2::new(left.x.signum() * left.x.abs().max(2.0 * mover.skin), 0.0);
+        // walk's few millimetres would not carry it over the edge. A round
+        // bottom (a capsule's, a circle's) goes on until its lowest point
+        // is over the step's top: resting on the edge it would roll back.
+        let (_, radius) = walker.shape.rounded();
+        let least = (2.0 * mover.skin).max(radius + mover.skin);
+        let forward = Vec2::new(left.x.signum() * left.x.abs().max(least), 0.0);
         let (up, _) = walker.advance(at, Vec2::new(0.0, mover.max_step + mover.skin));
         let (ahead, blocked) = walker.advance(up, forward);
         if blocked.is_some() && (ahead.x - up.x).abs() < mover.skin {

@@ -390,6 +390,13 @@ fn shrunk(shape: Shape) -> Shape {
         Shape::Box { half_extents } => Shape::Box {
             half_extents: Vec2::new(by(half_extents.x), by(half_extents.y)),
         },
+        Shape::Capsule {
+            half_segment,
+            radius,
+        } => Shape::Capsule {
+            half_segment,
+            radius: by(radius),
+        },
     }
 }
 

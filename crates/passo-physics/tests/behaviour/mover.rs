@@ -969,3 +969,72 @@ fn it_lands_and_rests_exactly_a_skin_above_the_ground() {
         }
     }
 }
+
+#[test]
+fn a_capsule_character_walks_over_tile_seams_without_a_bump_and_climbs_a_step() {
+    // 0.4 × 0.8 m, round ends of radius 0.2 m, on a floor of 0.5 m cells.
+    let skin = CharacterMover::default().skin;
+    for k in 0..10 {
+        let mut world = level(
+            "..................................##\n\
+             ####################################",
+        );
+        let x0 = 1.0 + 0.05 * k as f32;
+        let start = Vec2::new(x0, 0.5 + 0.4 + skin);
+        let player = world
+            .add_body(BodyDef::new_kinematic(
+                start,
+                Shape::capsule(0.4, 0.8),
+                Vec2::ZERO,
+            ))
+            .unwrap();
+        let mut velocity = Vec2::new(4.5, 0.0);
+        let mut stepped = 0.0f32;
+        for tick in 0..240 {
+            let out = play(&mut world, player, &mut velocity, |_| {});
+            stepped = stepped.max(out.stepped);
+            let p = at(&world, player);
+            if p.x < 16.5 {
+                // On the flat: level, and exactly as far as asked.
+                assert!((p.y - start.y).abs() < 1e-4, "from {x0}, tick {tick}: {p}");
+                let expected = x0 + 4.5 * DT * (tick + 1) as f32;
+                assert!((p.x - expected).abs() < 1e-3, "from {x0}, tick {tick}: {p}");
+                assert!(
+                    out.on_ground && out.wall.is_none(),
+                    "from {x0}, tick {tick}"
+                );
+            }
+        }
+        // The step 0.5 m high (two cells) at x = 17 is a wall; a 0.25 m
+        // one is climbed (next world).
+        assert_eq!(stepped, 0.0);
+        let p = at(&world, player);
+        assert!(
+            (p.x - (17.0 - 0.2 - skin)).abs() < 2.0 * skin,
+            "from {x0}: {p}"
+        );
+    }
+    let mut world = level("################################");
+    world
+        .add_body(BodyDef::new_static(
+            Vec2::new(12.0, 0.625),
+            Shape::rect(8.0, 0.25),
+        ))
+        .unwrap();
+    let player = world
+        .add_body(BodyDef::new_kinematic(
+            Vec2::new(5.0, 0.9 + skin),
+            Shape::capsule(0.4, 0.8),
+            Vec2::ZERO,
+        ))
+        .unwrap();
+    let mut velocity = Vec2::new(3.0, 0.0);
+    for _ in 0..90 {
+        play(&mut world, player, &mut velocity, |_| {});
+    }
+    let p = at(&world, player);
+    assert!(
+        p.x > 9.0 && (p.y - (0.75 + 0.4 + skin)).abs() < 1e-3,
+        "on the step: {p}"
+    );
+}

@@ -122,6 +122,28 @@ fn reference_ray(world: &World, origin: Vec2, dir: Vec2, max: f32) -> Option<(f3
                 }
                 (t0 <= t1).then_some(t0)
             }
+            Shape::Capsule {
+                half_segment,
+                radius,
+            } => {
+                // Sphere tracing: step by the distance to the capsule (the
+                // distance to its segment less its radius) until on it.
+                let distance = |t: f32| {
+                    let local = origin + dir * t - b.position;
+                    (local - local.clamp(-half_segment, half_segment)).length() - radius
+                };
+                let mut t = 0.0f32;
+                let mut hit = None;
+                while t <= max + 1.0 {
+                    let d = distance(t);
+                    if d <= 1e-6 {
+                        hit = Some(t);
+                        break;
+                    }
+                    t += d;
+                }
+                hit
+            }
         };
         if let Some(t) = t.filter(|&t| t <= max)
             && best.is_none_or(|(bt, id)| (t, b.id) < (bt, id))
@@ -146,10 +168,10 @@ fn rays_find_what_brute_force_finds_as_the_world_moves_and_changes() {
         let p = Vec2::new(next() * 36.0 - 18.0, next() * 20.0 + 1.0);
         let def = BodyDef {
             position: p,
-            shape: Some(if next() < 0.5 {
-                Shape::circle(0.1 + next() * 0.4)
-            } else {
-                Shape::rect(0.2 + next(), 0.2 + next())
+            shape: Some(match (next() * 3.0) as u32 {
+                0 => Shape::circle(0.1 + next() * 0.4),
+                1 => Shape::rect(0.2 + next(), 0.2 + next()),
+                _ => Shape::capsule(0.2 + next(), 0.2 + next()),
             }),
             ..Default::default()
         };

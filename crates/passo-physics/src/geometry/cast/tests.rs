@@ -357,12 +357,16 @@ impl Lcg {
     }
 
     fn shape(&mut self) -> Shape {
-        if self.next() < 0.5 {
+        let pick = self.next();
+        if pick < 0.35 {
             circle(self.range(0.1, 2.0))
-        } else {
+        } else if pick < 0.7 {
             Shape::Box {
                 half_extents: self.vec(0.1, 2.0),
             }
+        } else {
+            let size = self.vec(0.2, 4.0);
+            Shape::capsule(size.x, size.y)
         }
     }
 }
@@ -375,14 +379,21 @@ fn separation(a: &Shape, pa: Vec2, b: &Shape, pb: Vec2) -> f32 {
 fn off_surface(shape: &Shape, p: Vec2, point: Vec2) -> f32 {
     match *shape {
         Shape::Circle { radius } => ((point - p).length() - radius).abs(),
-        Shape::Box { half_extents } => {
-            let e = (point - p).abs() - half_extents;
-            if e.cmple(Vec2::ZERO).all() {
-                -e.max_element()
-            } else {
-                e.max(Vec2::ZERO).length()
-            }
-        }
+        Shape::Box { half_extents } => box_distance(point - p, half_extents).abs(),
+        Shape::Capsule {
+            half_segment,
+            radius,
+        } => (box_distance(point - p, half_segment) - radius).abs(),
+    }
+}
+
+/// Signed distance from `local` to the box `[-h, h]` (negative inside).
+fn box_distance(local: Vec2, h: Vec2) -> f32 {
+    let e = local.abs() - h;
+    if e.cmple(Vec2::ZERO).all() {
+        e.max_element()
+    } else {
+        e.max(Vec2::ZERO).length()
     }
 }
 
