@@ -210,6 +210,9 @@ impl App {
                 Some(shape @ Shape::Capsule { .. }) => {
                     r.list.capsule(at, shape.half_extents(), colour.colour.0)
                 }
+                Some(Shape::Segment { half } | Shape::ChainSegment { half, .. }) => {
+                    r.list.line(at - half, at + half, 3.0, colour.colour.0)
+                }
                 None => {}
             }
         }

@@ -423,7 +423,11 @@ fn capsules_in_scene_files_build_rest_and_save_and_bad_ones_name_their_field() {
     }
     // At rest on the floor: half their height up.
     for (name, half_height) in [("upright", 0.5), ("lying", 0.25)] {
-        let p = built.world.body(built.body_named(name).unwrap()).unwrap().position;
+        let p = built
+            .world
+            .body(built.body_named(name).unwrap())
+            .unwrap()
+            .position;
         assert!((p.y - half_height).abs() < 0.006, "{name}: {p}");
     }
     let saved = scene_from_world(&built.world, &scene.file, &built.bodies);
@@ -432,9 +436,67 @@ fn capsules_in_scene_files_build_rest_and_save_and_bad_ones_name_their_field() {
         source: "saved".into(),
     }
     .to_ron();
-    let again = Scene::parse(&text_again, "again.ron").unwrap().build().unwrap();
+    let again = Scene::parse(&text_again, "again.ron")
+        .unwrap()
+        .build()
+        .unwrap();
     assert_eq!(again.world.state_hash(), built.world.state_hash());
     let bad = text.replace("half_segment: (0.4, 0)", "half_segment: (0.4, 0.1)");
     let error = Scene::parse(&bad, "bad.ron").unwrap_err().to_string();
-    assert!(error.contains("half_segment") && error.contains("one component 0"), "{error}");
+    assert!(
+        error.contains("half_segment") && error.contains("one component 0"),
+        "{error}"
+    );
+}
+
+#[test]
+fn chains_in_scene_files_are_sloped_ground_and_bad_ones_name_their_field() {
+    let text = r#"(name: "Hill", collisions: (), forces: (gravity: (0, -9.81)),
+        chains: [(name: "hill", points: [(-6, 0), (-2, 0), (0, 1), (2, 0), (6, 0)], material: (friction: 0.8))],
+        bodies: [(name: "ball", shape: Circle(radius: 0.25), position: (-4, 1))])"#;
+    let scene = Scene::parse(text, "hill.ron").unwrap();
+    let mut built = scene.build().unwrap();
+    // Four segments, each a named static body with the chain's friction.
+    let segments: Vec<_> = built
+        .bodies
+        .iter()
+        .filter(|b| b.name.as_deref() == Some("hill"))
+        .collect();
+    assert_eq!(segments.len(), 4);
+    assert!(
+        segments
+            .iter()
+            .all(|s| built.world.body(s.id).unwrap().friction == 0.8)
+    );
+    for _ in 0..120 {
+        built.step(1.0 / 60.0);
+    }
+    let ball = built.world.body(built.body_named("ball").unwrap()).unwrap();
+    assert!((ball.position.y - 0.25).abs() < 0.006, "{ball:?}");
+    // Saved and loaded again, the segments come back one by one.
+    let saved = scene_from_world(&built.world, &scene.file, &built.bodies);
+    let again = Scene {
+        file: saved,
+        source: "saved".into(),
+    };
+    let again = Scene::parse(&again.to_ron(), "again.ron")
+        .unwrap()
+        .build()
+        .unwrap();
+    assert_eq!(again.world.state_hash(), built.world.state_hash());
+    // Each mistake names the chain.
+    for (from, to) in [
+        ("(0, 1), (2, 0)", "(0, 1), (0, 1)"),
+        (
+            "points: [(-6, 0), (-2, 0), (0, 1), (2, 0), (6, 0)]",
+            "points: [(-6, 0)]",
+        ),
+        ("material: (friction: 0.8)", "material: (friction: -1)"),
+        ("chains: [(", "chains: [(kind: Dynamic, "),
+    ] {
+        let error = Scene::parse(&text.replace(from, to), "bad.ron")
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("chains[0]"), "{to}: {error}");
+    }
 }

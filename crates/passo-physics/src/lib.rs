@@ -88,6 +88,7 @@ pub use step::Stage;
 pub use step::contacts::ContactStage;
 #[doc(hidden)]
 pub use switches::TestSwitches;
+pub use world::chains::{ChainDef, MAX_CHAIN_POINTS};
 pub use world::settings::WorldSettings;
 pub use world::snapshot::WorldSnapshot;
 pub use world::{StepStats, World};

@@ -332,6 +332,30 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         });
         result?;
     }
+    for (i, chain) in file.chains.iter().enumerate() {
+        let def = passo_physics::ChainDef {
+            points: chain.points.clone(),
+            closed: chain.closed,
+            kind: chain.kind,
+            friction: chain.material.friction,
+            restitution: chain.material.restitution,
+            ..passo_physics::ChainDef::new(Vec::new())
+        };
+        let ids = world
+            .add_chain(&def)
+            .map_err(|e| invalid(format!("chains[{i}]"), e))?;
+        for &id in &ids {
+            bodies.push(SceneBody {
+                id,
+                name: chain.name.clone(),
+                colour: chain.colour.unwrap_or(STATIC_COLOUR),
+            });
+        }
+        for p in &chain.points {
+            let point = Aabb::from_centre(*p, Vec2::ZERO);
+            bounds = Some(bounds.map_or(point, |b| b.union(&point)));
+        }
+    }
     let camera = match &file.camera {
         Some(c) => Aabb {
             min: c.min,

@@ -63,6 +63,9 @@ pub struct SceneFile {
     /// Bodies made by pattern.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub generators: Vec<Generator>,
+    /// Sloped ground: chains of one-sided segments that meet smoothly.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub chains: Vec<ChainSpec>,
     /// A level on a grid: a Tiled map or ASCII art (see [`TileMapRef`](crate::TileMapRef)).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilemap: Option<crate::map_ref::TileMapRef>,
@@ -147,6 +150,36 @@ pub struct Camera {
     pub min: Vec2,
     /// Upper-right corner.
     pub max: Vec2,
+}
+
+/// A chain of segments in a scene: static ground that slopes (see
+/// `passo_physics::ChainDef`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChainSpec {
+    /// A name for the demo and for game code, given to every segment.
+    /// Default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// The points, metres, in order: solid on the right of the way they
+    /// go (ground drawn left to right is solid below). At least 2.
+    pub points: Vec<Vec2>,
+    /// Whether the last point joins the first. Default `false`.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub closed: bool,
+    /// `Static` (default) or `Kinematic`.
+    #[serde(default = "static_kind")]
+    pub kind: BodyKind,
+    /// Friction and restitution (drag does not apply). Default as a body's.
+    #[serde(default)]
+    pub material: Material,
+    /// sRGB colour. Default: the static grey.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub colour: Option<Colour>,
+}
+
+fn static_kind() -> BodyKind {
+    BodyKind::Static
 }
 
 /// Material of a body.

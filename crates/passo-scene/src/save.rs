@@ -72,5 +72,7 @@ pub fn scene_from_world(world: &World, base: &SceneFile, bodies: &[SceneBody]) -
         // The map's cells are among the bodies, one box per merged run.
         tilemap: None,
         generators: Vec::new(),
+        // Chain segments are among the bodies, one by one.
+        chains: Vec::new(),
     }
 }

@@ -2,7 +2,7 @@
 //! with errors that name the field.
 
 use crate::error::SceneError;
-use crate::format::{BodySpec, Generator, MAX_BODIES, SceneFile};
+use crate::format::{BodySpec, ChainSpec, Generator, MAX_BODIES, SceneFile};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyKind, Shape};
 
@@ -51,7 +51,9 @@ impl SceneFile {
     /// The bodies the file lists and its generators make (not its level's).
     pub(crate) fn listed_bodies(&self) -> u64 {
         let made = self.generators.iter().map(Generator::count);
-        made.fold(self.bodies.len() as u64, u64::saturating_add)
+        let segments = self.chains.iter().map(ChainSpec::segments);
+        made.chain(segments)
+            .fold(self.bodies.len() as u64, u64::saturating_add)
     }
 
     /// Checks every value; the error names the field and the allowed range.
@@ -116,6 +118,9 @@ impl SceneFile {
         }
         for (i, g) in self.generators.iter().enumerate() {
             g.validate(&c, &format!("generators[{i}]"))?;
+        }
+        for (i, chain) in self.chains.iter().enumerate() {
+            chain.validate(&c, &format!("chains[{i}]"))?;
         }
         let total = self.listed_bodies();
         if total > MAX_BODIES as u64 {
@@ -244,6 +249,16 @@ impl BodySpec {
                         ));
                     }
                 }
+                Shape::Segment { half } | Shape::ChainSegment { half, .. } => {
+                    c.positive(&at("shape.half (its length)"), half.length(), "m")?;
+                    if self.kind == passo_physics::BodyKind::Dynamic {
+                        return Err(c.fail(
+                            &at("shape"),
+                            "a segment has no area: only a Static or Kinematic body may have one"
+                                .to_owned(),
+                        ));
+                    }
+                }
             }
         }
         if self.mass.is_some() && self.density.is_some() {
@@ -311,6 +326,52 @@ impl BodySpec {
                 return Err(c.fail(&at("path"), "is for `kind: Kinematic` bodies".to_owned()));
             }
         }
+        Ok(())
+    }
+}
+
+impl ChainSpec {
+    /// The segments (bodies) it makes.
+    pub(crate) fn segments(&self) -> u64 {
+        let n = self.points.len() as u64;
+        if self.closed { n } else { n.saturating_sub(1) }
+    }
+
+    fn validate(&self, c: &Check<'_>, path: &str) -> Result<(), SceneError> {
+        let at = |field: &str| format!("{path}.{field}");
+        let least = if self.closed { 3 } else { 2 };
+        if self.points.len() < least {
+            return Err(c.fail(
+                &at("points"),
+                format!(
+                    "has {} points; a chain needs at least {least}",
+                    self.points.len()
+                ),
+            ));
+        }
+        for (i, p) in self.points.iter().enumerate() {
+            c.finite_vec(&at(&format!("points[{i}]")), *p)?;
+            if i > 0 && *p == self.points[i - 1] {
+                return Err(c.fail(
+                    &at(&format!("points[{i}]")),
+                    "is the point before it again: a segment needs two ends apart".to_owned(),
+                ));
+            }
+        }
+        if self.kind == BodyKind::Dynamic {
+            return Err(c.fail(
+                &at("kind"),
+                "must be Static or Kinematic: a chain has no area, so no mass".to_owned(),
+            ));
+        }
+        let m = &self.material;
+        c.range(
+            &at("material.restitution"),
+            m.restitution,
+            (0.0..=1.0).contains(&m.restitution),
+            "in [0, 1]",
+        )?;
+        c.non_negative(&at("material.friction"), m.friction, "")?;
         Ok(())
     }
 }

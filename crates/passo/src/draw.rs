@@ -6,6 +6,9 @@ use passo_render::{DrawList, Renderer, RgbaImage, TextureId};
 use passo_scene::{BuiltScene, LevelArt, SceneBody, TileSprite};
 use std::path::Path;
 
+/// How wide a segment (sloped ground) is drawn, pixels.
+pub const SEGMENT_WIDTH_PX: f32 = 3.0;
+
 /// Background of every picture (sRGB).
 pub const BACKGROUND: [u8; 4] = [24, 26, 32, 255];
 /// Velocity arrows (sRGB).
@@ -207,6 +210,9 @@ pub fn add_world_hiding(
                 Some(Shape::Box { half_extents }) => list.rect(p, half_extents, colour),
                 Some(shape @ Shape::Capsule { .. }) => {
                     list.capsule(p, shape.half_extents(), colour)
+                }
+                Some(Shape::Segment { half } | Shape::ChainSegment { half, .. }) => {
+                    list.line(p - half, p + half, SEGMENT_WIDTH_PX, colour)
                 }
                 None => list.circle(p, options.point_radius, colour),
             }

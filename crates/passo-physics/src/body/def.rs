@@ -284,6 +284,13 @@ impl BodyDef {
         }
         if let Some(shape) = &self.shape {
             shape.validate()?;
+            if shape.is_line() && self.kind == BodyKind::Dynamic {
+                return Err(PhysicsError::OutOfRange {
+                    what: "BodyDef::shape",
+                    value: 0.0,
+                    allowed: "a segment or chain segment only on static and kinematic bodies (it has no area)",
+                });
+            }
         }
         check_drag_area("BodyDef::drag_area", self.drag_area)?;
         check_friction("BodyDef::friction", self.friction)?;

@@ -24,6 +24,7 @@
 
 use crate::Shape;
 use crate::geometry::manifold::collide;
+use crate::geometry::segment::{Line, collide_line, ray_capsule};
 use glam::Vec2;
 
 /// The first contact of shape `moving`, starting at `start` and translated
@@ -98,6 +99,23 @@ pub(crate) fn cast_shape(
         }
         (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb }) => {
             ray_box_box(o, d, ha, hb)?
+        }
+        // A line standing still, the other shape moving onto it; or a line
+        // moving onto the other shape, which is the other shape moving the
+        // opposite way onto the line where it starts.
+        (_, Shape::Segment { .. } | Shape::ChainSegment { .. }) => {
+            let line = Line::of(target, target_pos)?;
+            let (t, normal, point) = cast_line(moving.rounded(), start, d, &line)?;
+            (t, normal, point - target_pos)
+        }
+        (Shape::Segment { .. } | Shape::ChainSegment { .. }, _) => {
+            if target.is_line() {
+                return None;
+            }
+            let line = Line::of(moving, start)?;
+            let (t, normal, point) = cast_line(target.rounded(), target_pos, -d, &line)?;
+            // That point moved with the target; back where the target is.
+            (t, -normal, point + d * t - target_pos)
         }
         // A pair with a capsule: the Minkowski sum of two rounded boxes is
         // the rounded box of their cores' sum and their radii's sum.
@@ -210,6 +228,45 @@ fn ray_box(o: Vec2, d: Vec2, h: Vec2) -> Option<(f32, Vec2)> {
         normal[axis] = -(1.0f32.copysign(d[axis]));
     }
     (t < far && t <= 1.0).then_some((t, normal))
+}
+
+/// The first contact of a rounded box (core `k`, radius `r`) starting at
+/// `o` and moving by `d` with `line`, for `t` in `[0, 1]`: `(t, normal
+/// out of the line, point)`. Exact: the line's ends meeting the rounded
+/// box, and the core's corners (grown by `r`) meeting the line. The
+/// shapes are apart at `o`. A hit the line does not allow (behind a chain
+/// segment, at a joint its neighbour owns) is no hit.
+pub(crate) fn cast_line(
+    (k, r): (Vec2, f32),
+    o: Vec2,
+    d: Vec2,
+    line: &Line,
+) -> Option<(f32, Vec2, Vec2)> {
+    let mut best: Option<f32> = None;
+    let mut consider = |t: Option<f32>| {
+        if let Some(t) = t
+            && (0.0..=1.0).contains(&t)
+            && best.is_none_or(|b| t < b)
+        {
+            best = Some(t);
+        }
+    };
+    // An end of the line, moving by -d relative to the shape, into it.
+    for end in [line.a, line.b] {
+        consider(ray_rounded_box(end - o, -d, k, r).map(|(t, ..)| t));
+    }
+    // A corner of the core (a circle of radius r) into the line.
+    for corner in [
+        Vec2::new(-1.0, -1.0),
+        Vec2::new(1.0, -1.0),
+        Vec2::new(1.0, 1.0),
+        Vec2::new(-1.0, 1.0),
+    ] {
+        consider(ray_capsule(o + k * corner, d, line.a, line.b, r));
+    }
+    let t = best?;
+    let m = collide_line(line, (k, r), o + d * t)?;
+    (d.dot(m.normal) < 0.0).then_some((t, m.normal, m.points[0]))
 }
 
 /// A circle of radius `r` at `o` moved by `d` against the box `[-h, h]`:

@@ -149,6 +149,8 @@ pub(crate) fn over_a_step(
         // closed by their covered faces.
         (Shape::Circle { .. }, Shape::Circle { .. }) => None,
         (Shape::Capsule { .. }, _) | (_, Shape::Capsule { .. }) => None,
+        // A chain's joints are smooth already.
+        (a, b) if a.is_line() || b.is_line() => None,
         (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb })
             if (ha + hb - (pb - pa).abs()).max_element() > tolerance =>
         {

@@ -71,6 +71,11 @@ fn collide_shapes(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Op
         (Shape::Circle { radius }, Shape::Box { half_extents }) => {
             box_circle(pb, half_extents, pa, radius).flipped()
         }
+        // A pair with a line (a segment or chain segment).
+        (Shape::Segment { .. } | Shape::ChainSegment { .. }, _)
+        | (_, Shape::Segment { .. } | Shape::ChainSegment { .. }) => {
+            return with_line(sa, pa, sb, pb, margin);
+        }
         // A pair with a capsule: two rounded boxes.
         _ => rounded_rounded(pa, sa.rounded(), pb, sb.rounded(), Faces::default()),
     };
@@ -240,6 +245,25 @@ pub(crate) fn collide_seamless(
             rounded_rounded(pa, sa.rounded(), pb, sb.rounded(), faces_b)
         }
         _ => return collide_shapes(sa, pa, sb, pb, margin),
+    };
+    (m.separation <= margin).then_some(m)
+}
+
+/// A pair with a line: the line's contact with the other shape, seen from
+/// A. Two lines never touch (only static and kinematic bodies have them).
+#[inline(never)]
+fn with_line(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Option<Manifold> {
+    use crate::geometry::segment::{Line, collide_line};
+    let manifold = |c: crate::geometry::segment::LineContact| Manifold {
+        normal: c.normal,
+        separation: c.separation,
+        points: c.points,
+        point_count: c.point_count,
+    };
+    let m = match (Line::of(sa, pa), Line::of(sb, pb)) {
+        (Some(line), None) => manifold(collide_line(&line, sb.rounded(), pb)?),
+        (None, Some(line)) => manifold(collide_line(&line, sa.rounded(), pa)?).flipped(),
+        _ => return None,
     };
     (m.separation <= margin).then_some(m)
 }

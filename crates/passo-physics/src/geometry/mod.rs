@@ -2,6 +2,7 @@
 
 pub(crate) mod aabb;
 pub(crate) mod shape;
+pub(crate) mod segment;
 pub(crate) mod ray;
 pub(crate) mod manifold;
 pub(crate) mod corners;

@@ -17,6 +17,8 @@ pub(crate) fn shape_contains(shape: &Shape, p: Vec2, point: Vec2) -> bool {
             let local = point - p;
             (local - local.clamp(-half_segment, half_segment)).length_squared() <= radius * radius
         }
+        // No area: no point is inside.
+        Shape::Segment { .. } | Shape::ChainSegment { .. } => false,
     }
 }
 
@@ -34,6 +36,10 @@ pub(crate) fn ray_shape(
         return Some((0.0, -dir));
     }
     match *shape {
+        Shape::Segment { .. } | Shape::ChainSegment { .. } => {
+            let line = crate::geometry::segment::Line::of(shape, p)?;
+            crate::geometry::segment::ray_line(&line, origin, dir, max_t)
+        }
         Shape::Capsule {
             half_segment,
             radius,

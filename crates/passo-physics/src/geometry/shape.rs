@@ -1,5 +1,6 @@
-//! Collision shapes: circles, axis-aligned boxes and capsules. Bodies do
-//! not rotate.
+//! Collision shapes: circles, axis-aligned boxes and capsules for every
+//! body; segments and chain segments (sloped ground) for static and
+//! kinematic ones. Bodies do not rotate.
 
 use glam::Vec2;
 
@@ -30,6 +31,30 @@ pub enum Shape {
         half_segment: Vec2,
         /// Radius of the half-circles, metres, > 0.
         radius: f32,
+    },
+    /// A line segment from `position - half` to `position + half`, solid
+    /// from both sides: a thin sloped wall or ramp. Static and kinematic
+    /// bodies only (it has no area, so no mass).
+    Segment {
+        /// Half the segment: from its middle (the body's position) to its
+        /// second end, metres; not zero.
+        half: Vec2,
+    },
+    /// One segment of a chain (see [`World::add_chain`](crate::World::add_chain)):
+    /// the segment from `position - half` to `position + half`, solid from
+    /// one side only, the right of its direction (ground drawn left to
+    /// right is solid below), and smooth where it meets its neighbours:
+    /// nothing catches on a joint between two segments of a chain. Static
+    /// and kinematic bodies only.
+    ChainSegment {
+        /// Half the segment, as for [`Segment`](Self::Segment).
+        half: Vec2,
+        /// The chain's point before this segment's first end, relative to
+        /// the body's position; `None` where the chain starts.
+        before: Option<Vec2>,
+        /// The chain's point after this segment's second end, relative to
+        /// the body's position; `None` where the chain ends.
+        after: Option<Vec2>,
     },
 }
 
@@ -75,9 +100,25 @@ impl Shape {
         }
     }
 
+    /// A segment between two points relative to the body's position; the
+    /// body's position should be their middle: `Shape::segment(a, b)`
+    /// ends at `position + (b - a) / 2` and `position - (b - a) / 2`.
+    pub fn segment(a: Vec2, b: Vec2) -> Self {
+        Self::Segment {
+            half: 0.5 * (b - a),
+        }
+    }
+
+    /// Whether the shape is a line (a segment or a chain segment): it has
+    /// no area, so only static and kinematic bodies may have it.
+    pub fn is_line(&self) -> bool {
+        matches!(self, Self::Segment { .. } | Self::ChainSegment { .. })
+    }
+
     /// Area in square metres (used to derive mass from density).
     pub fn area(&self) -> f32 {
         match *self {
+            Self::Segment { .. } | Self::ChainSegment { .. } => 0.0,
             Self::Circle { radius } => std::f32::consts::PI * radius * radius,
             Self::Box { half_extents } => 4.0 * half_extents.x * half_extents.y,
             Self::Capsule {
@@ -99,6 +140,7 @@ impl Shape {
                 half_segment,
                 radius,
             } => half_segment + Vec2::splat(radius),
+            Self::Segment { half } | Self::ChainSegment { half, .. } => half.abs(),
         }
     }
 
@@ -115,6 +157,9 @@ impl Shape {
                 half_segment,
                 radius,
             } => (half_segment, radius),
+            // Not a rounded box: every pair with a line has its own case
+            // first. As a thin box it is at least the right size.
+            Self::Segment { half } | Self::ChainSegment { half, .. } => (half.abs(), 0.0),
         }
     }
 
@@ -147,9 +192,34 @@ impl Shape {
                 }
                 0.0
             }
+            Self::Segment { half } => line("Shape::Segment::half", half)?,
+            Self::ChainSegment {
+                half,
+                before,
+                after,
+            } => {
+                line("Shape::ChainSegment::half", half)?;
+                for (what, point) in [
+                    ("Shape::ChainSegment::before", before),
+                    ("Shape::ChainSegment::after", after),
+                ] {
+                    if let Some(point) = point {
+                        crate::error::finite_vec(what, point)?;
+                        size(what, point.abs().max_element().max(f32::MIN_POSITIVE))?;
+                    }
+                }
+                0.0
+            }
         };
         Ok(())
     }
+}
+
+/// A segment's half: finite, not zero, each component at most
+/// [`MAX_SHAPE_SIZE`](crate::constants::MAX_SHAPE_SIZE).
+fn line(what: &'static str, half: Vec2) -> Result<f32, crate::PhysicsError> {
+    crate::error::finite_vec(what, half)?;
+    size(what, half.length())
 }
 
 /// A size: finite, > 0 and at most [`MAX_SHAPE_SIZE`](crate::constants::MAX_SHAPE_SIZE).

@@ -397,6 +397,8 @@ fn shrunk(shape: Shape) -> Shape {
             half_segment,
             radius: by(radius),
         },
+        // Lines are never swept (they are static or kinematic).
+        line @ (Shape::Segment { .. } | Shape::ChainSegment { .. }) => line,
     }
 }
 

@@ -688,6 +688,7 @@ pub(crate) fn step_forces<'a>(
 }
 
 mod tiles;
+pub(crate) mod chains;
 
 #[cfg(test)]
 mod tests;

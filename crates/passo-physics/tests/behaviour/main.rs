@@ -31,5 +31,6 @@ mod regression_waking_beside_another_island;
 mod regression_woken_stack_keeps_its_contacts;
 mod seamless_ground;
 mod sleeping;
+mod slopes;
 mod speculative;
 mod tile_maps;

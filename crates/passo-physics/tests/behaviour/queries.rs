@@ -144,6 +144,14 @@ fn reference_ray(world: &World, origin: Vec2, dir: Vec2, max: f32) -> Option<(f3
                 }
                 hit
             }
+            // A ray crossing the segment: where it meets its line.
+            Shape::Segment { half } | Shape::ChainSegment { half, .. } => {
+                let (a, ab) = (b.position - half, 2.0 * half);
+                let denom = dir.perp_dot(ab);
+                let t = (a - origin).perp_dot(ab) / denom;
+                let s = (a - origin).perp_dot(dir) / denom;
+                (denom != 0.0 && t >= 0.0 && (0.0..=1.0).contains(&s)).then_some(t)
+            }
         };
         if let Some(t) = t.filter(|&t| t <= max)
             && best.is_none_or(|(bt, id)| (t, b.id) < (bt, id))

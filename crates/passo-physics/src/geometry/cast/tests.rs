@@ -384,6 +384,11 @@ fn off_surface(shape: &Shape, p: Vec2, point: Vec2) -> f32 {
             half_segment,
             radius,
         } => (box_distance(point - p, half_segment) - radius).abs(),
+        Shape::Segment { half } | Shape::ChainSegment { half, .. } => {
+            let local = point - p;
+            let t = (local.dot(half) / half.length_squared()).clamp(-1.0, 1.0);
+            (local - half * t).length()
+        }
     }
 }
 
@@ -470,4 +475,80 @@ fn random_casts_touch_at_the_hit_and_never_overlap_before_it_or_on_a_miss() {
     }
     // Every branch is exercised.
     assert!(hits > 2000 && at_zero > 1000 && misses > 2000);
+}
+
+#[test]
+fn random_casts_onto_segments_touch_at_the_hit_and_never_pass_through_one() {
+    let mut rng = Lcg(0x5e9_0e17);
+    let (mut hits, mut misses) = (0, 0);
+    for case in 0..20_000 {
+        let a = rng.shape();
+        let half = rng.vec(-3.0, 3.0);
+        let chain = case % 2 == 1;
+        let b = if chain {
+            Shape::ChainSegment {
+                half,
+                before: None,
+                after: None,
+            }
+        } else {
+            Shape::Segment { half }
+        };
+        let target = rng.vec(-3.0, 3.0);
+        let start = rng.vec(-8.0, 8.0);
+        let mut d = match case % 4 {
+            0 | 1 => (target - start) * rng.range(0.0, 2.0) + rng.vec(-2.0, 2.0),
+            _ => rng.vec(-12.0, 12.0),
+        };
+        if case % 16 == 3 {
+            d.y = 0.0;
+        }
+        let context = format!("case {case}: {a:?} at {start} by {d}, {b:?} at {target}");
+        let sep = |p: Vec2| collide(&a, p, &b, target, f32::INFINITY).map(|m| m.separation);
+        if sep(start).is_some_and(|s| s < 0.0) {
+            continue;
+        }
+        match cast_shape(&a, start, d, &b, target) {
+            Some(hit) => {
+                hits += 1;
+                assert!((0.0..=1.0).contains(&hit.fraction), "{context}: {hit:?}");
+                assert!(
+                    (hit.normal.length() - 1.0).abs() < 1e-5,
+                    "{context}: {hit:?}"
+                );
+                assert!(d.dot(hit.normal) <= 0.0, "{context}: {hit:?}");
+                let at = start + d * hit.fraction;
+                let s = sep(at).unwrap_or_else(|| panic!("{context}: no contact at the hit"));
+                assert!(s.abs() < 1e-4, "{context}: {hit:?}, separation {s}");
+                if hit.fraction > 0.01 {
+                    let before = sep(start + d * (hit.fraction - 0.01));
+                    assert!(
+                        before.is_none_or(|s| s > -1e-4),
+                        "{context}: {hit:?} {before:?}"
+                    );
+                }
+                // The point is on the moving shape's surface.
+                assert!(off_surface(&a, at, hit.point) < 1e-4, "{context}: {hit:?}");
+            }
+            None => {
+                misses += 1;
+                // A plain segment is never passed through; a chain segment
+                // only from behind (once the centre is past its line, it
+                // is pushed out in front, as Box2D's chains do).
+                let normal = half.perp();
+                if chain && (start - (target - half)).dot(normal) < 0.0 {
+                    continue;
+                }
+                for i in 0..64 {
+                    let p = start + d * (i as f32 / 63.0);
+                    let s = sep(p);
+                    assert!(
+                        s.is_none_or(|s| s > -1e-4),
+                        "{context}: missed, but at {p} {s:?}"
+                    );
+                }
+            }
+        }
+    }
+    assert!(hits > 2000 && misses > 2000, "{hits} hits, {misses} misses");
 }
