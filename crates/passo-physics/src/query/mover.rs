@@ -78,9 +78,22 @@ pub struct CharacterMover {
     /// Farthest drop followed while walking instead of leaving the ground,
     /// metres, >= 0. Default 0.3.
     pub snap_down: f32,
-    /// Smallest upward part of a surface's normal for the surface to count
-    /// as ground, in `[0, 1]`. Default 0.7 (about 45°).
-    pub ground_normal: f32,
+    /// Steepest slope that counts as ground, radians, in `[0, π/2]`:
+    /// the character walks up and down it and stands on it. A steeper one
+    /// is a wall for walking, and the character slides down it. Default
+    /// 45° (`π/4`).
+    pub max_slope: f32,
+    /// On the ground, the walk follows the ground keeping its horizontal
+    /// speed (`false`, the default: `translation.x` a tick is the
+    /// distance across), or its speed along the ground (`true`: a walk up
+    /// or down a slope covers the same distance along it as on the flat,
+    /// as Godot's `floor_constant_speed`).
+    pub constant_speed: bool,
+    /// A character standing on a slope no steeper than `max_slope` stays
+    /// put whatever the game's gravity (`true`, the default, as Godot's
+    /// `floor_stop_on_slope`); with `false` the downward part of the
+    /// translation slides it down the slope.
+    pub stop_on_slope: bool,
     /// How hard the character pushes dynamic bodies it walks into: the mass,
     /// kilograms, >= 0, of the impulse per metre per second of closing
     /// speed (the speed it wants towards the body less the body's speed
@@ -100,7 +113,9 @@ impl Default for CharacterMover {
             skin: 2.0 * LINEAR_SLOP,
             max_step: 0.3,
             snap_down: 0.3,
-            ground_normal: 0.7,
+            max_slope: std::f32::consts::FRAC_PI_4,
+            constant_speed: false,
+            stop_on_slope: true,
             push_mass: 20.0,
             filter: QueryFilter::solid(),
         }
@@ -112,7 +127,14 @@ impl CharacterMover {
         crate::error::positive("CharacterMover::skin", self.skin)?;
         crate::error::non_negative("CharacterMover::max_step", self.max_step)?;
         crate::error::non_negative("CharacterMover::snap_down", self.snap_down)?;
-        crate::error::unit_interval("CharacterMover::ground_normal", self.ground_normal)?;
+        crate::error::finite("CharacterMover::max_slope", self.max_slope)?;
+        if !(0.0..=std::f32::consts::FRAC_PI_2).contains(&self.max_slope) {
+            return Err(PhysicsError::OutOfRange {
+                what: "CharacterMover::max_slope",
+                value: self.max_slope,
+                allowed: "in [0, π/2] radians",
+            });
+        }
         crate::error::non_negative("CharacterMover::push_mass", self.push_mass)?;
         Ok(())
     }
@@ -132,6 +154,18 @@ pub struct MoveOutcome {
     pub on_ground: bool,
     /// The body it stands on.
     pub ground: Option<BodyId>,
+    /// The normal of the ground it stands on (zero off the ground).
+    pub ground_normal: Vec2,
+    /// The velocity of the ground it stands on: a moving platform's (zero
+    /// for static ground and off the ground). A game adds it to the
+    /// character's own when it jumps or walks off, to carry the platform's
+    /// momentum.
+    pub ground_velocity: Vec2,
+    /// A wall stopped part of the motion ([`wall`](Self::wall) names it).
+    pub on_wall: bool,
+    /// A ceiling stopped part of the motion ([`ceiling`](Self::ceiling)
+    /// names it).
+    pub on_ceiling: bool,
     /// A wall stopped part of the motion: the body.
     pub wall: Option<BodyId>,
     /// A ceiling stopped part of the motion: the body.
@@ -177,6 +211,8 @@ struct Walker<'a> {
     /// A body left out of the casts (the platform carrying it, during the
     /// carry).
     ignored: Option<BodyId>,
+    /// The least upward part of a normal that is ground: `cos(max_slope)`.
+    ground_cos: f32,
 }
 
 impl Walker<'_> {
@@ -386,7 +422,7 @@ impl Walker<'_> {
             // every other is swept.
             let place = self.place(&f);
             let lifts = collide(&self.shape, at, &f.shape, place, 0.0)
-                .is_some_and(|m| m.separation < 0.0 && -m.normal.y >= self.mover.ground_normal);
+                .is_some_and(|m| m.separation < 0.0 && -m.normal.y >= self.ground_cos);
             let rise = place.y + f.shape.half_extents().y - (at.y - self.shape.half_extents().y);
             if lifts && rise <= self.mover.max_step {
                 return;
@@ -474,7 +510,20 @@ impl Walker<'_> {
     /// ground enough.
     fn ground(&self, at: Vec2, reach: f32) -> Option<Hit> {
         self.cast(at, Vec2::new(0.0, -reach))
-            .filter(|h| h.normal.y >= self.mover.ground_normal)
+            .filter(|h| h.normal.y >= self.ground_cos)
+    }
+}
+
+/// A walk of `dx` metres across, along ground whose normal is `normal`
+/// (pointing up): keeping the horizontal distance, or with
+/// `constant_speed` the distance along the ground.
+fn along_ground(dx: f32, normal: Vec2, constant_speed: bool) -> Vec2 {
+    // Along the ground, towards +x.
+    let tangent = Vec2::new(normal.y, -normal.x);
+    if constant_speed {
+        tangent * dx
+    } else {
+        tangent * (dx / tangent.x)
     }
 }
 
@@ -499,7 +548,7 @@ impl World {
     /// character stays where it is.
     ///
     /// Limits: a round bottom (a capsule's, a circle's) rolls up a
-    /// block's corner once the corner is under it within `ground_normal`,
+    /// block's corner once the corner is under it within `max_slope`,
     /// so at speed it may top blocks higher than `max_step` (use a box for
     /// exact step heights), and climbing a step it moves at least its
     /// radius forward; walking off a dynamic body's edge the character
@@ -569,6 +618,7 @@ impl World {
             ahead: None,
             reach,
             ignored: None,
+            ground_cos: libm::cosf(mover.max_slope),
         };
         let mut out = MoveOutcome::default();
         // What it stands on now, where everything is now.
@@ -599,7 +649,23 @@ impl World {
         at = walker.push_out(at);
         walker.ignored = None;
         let mut pushes: Vec<(usize, Vec2, f32)> = Vec::new();
-        let mut remaining = translation;
+        // On the ground and not jumping, the walk follows the ground: up
+        // and down slopes as on the flat, and standing still on a slope
+        // it stays put.
+        let walking = under.is_some() && translation.y <= 0.0;
+        let mut remaining = match under {
+            Some(ground) if walking => {
+                let along = along_ground(translation.x, ground.normal, mover.constant_speed);
+                // The game's fall, along the ground: sliding down a slope.
+                let fall = Vec2::new(0.0, translation.y);
+                if mover.stop_on_slope {
+                    along
+                } else {
+                    along + fall - ground.normal * fall.dot(ground.normal)
+                }
+            }
+            _ => translation,
+        };
         for _ in 0..4 {
             if remaining.length_squared() < 1e-12 {
                 break;
@@ -611,7 +677,7 @@ impl World {
             };
             let moved = next - at;
             let left = remaining - moved;
-            let is_wall = hit.normal.y.abs() < mover.ground_normal;
+            let is_wall = hit.normal.y.abs() < walker.ground_cos;
             // A step is static or kinematic: a dynamic body in the way is
             // pushed, not climbed.
             if is_wall
@@ -625,7 +691,7 @@ impl World {
                 remaining = Vec2::ZERO;
                 continue;
             }
-            if hit.normal.y <= -mover.ground_normal {
+            if hit.normal.y <= -walker.ground_cos {
                 out.ceiling = Some(hit.body);
             } else if is_wall {
                 out.wall = Some(hit.body);
@@ -639,7 +705,20 @@ impl World {
                 pushes.push((j, -hit.normal, wanted));
             }
             at = next;
-            remaining = left - hit.normal * left.dot(hit.normal);
+            remaining = if walking && hit.normal.y >= walker.ground_cos {
+                // Onto ground of another slope: along it, at the same pace
+                // (and sliding down it by what is left of the fall, if it
+                // does not stop on slopes).
+                let along = along_ground(left.x, hit.normal, mover.constant_speed);
+                let fall = Vec2::new(0.0, left.y);
+                if mover.stop_on_slope {
+                    along
+                } else {
+                    along + fall - hit.normal * fall.dot(hit.normal)
+                }
+            } else {
+                left - hit.normal * left.dot(hit.normal)
+            };
         }
         // Following a small drop: it walked off an edge, not jumped. The
         // step moves it in a straight line, so not while that line would
@@ -679,6 +758,18 @@ impl World {
         let ground = ground.map(|(hit, _)| hit);
         out.on_ground = ground.is_some();
         out.ground = ground.map(|h| h.body);
+        if let Some(hit) = ground {
+            out.ground_normal = hit.normal;
+            out.ground_velocity = self.body(hit.body).map_or(Vec2::ZERO, |b| {
+                if b.kind == crate::BodyKind::Static {
+                    Vec2::ZERO
+                } else {
+                    b.velocity
+                }
+            });
+        }
+        out.on_wall = out.wall.is_some();
+        out.on_ceiling = out.ceiling.is_some();
         out.position = at;
         out.translation = at - body.position;
         for (j, direction, wanted) in pushes {

@@ -1038,3 +1038,250 @@ fn a_capsule_character_walks_over_tile_seams_without_a_bump_and_climbs_a_step() 
         "on the step: {p}"
     );
 }
+
+/// A level of sloped ground (a chain, solid below), with a character of
+/// `shape` standing a skin above its ground at `x`, whose height there is
+/// `height(x)`.
+fn on_chain(points: Vec<Vec2>, shape: Shape, x: f32, height: f32) -> (World, BodyId) {
+    let mut world = World::default();
+    world
+        .add_chain(&passo_physics::ChainDef::new(points))
+        .unwrap();
+    let skin = CharacterMover::default().skin;
+    let half = shape.half_extents().y;
+    let id = world
+        .add_body(BodyDef::new_kinematic(
+            Vec2::new(x, height + half + skin),
+            shape,
+            Vec2::ZERO,
+        ))
+        .unwrap();
+    (world, id)
+}
+
+/// A hill: flat to x = 0, up at `degrees` for 3 m across, flat on top for
+/// 3 m, down at the same slope, then flat.
+fn hill(degrees: f32) -> (Vec<Vec2>, impl Fn(f32) -> f32) {
+    let rise = 3.0 * degrees.to_radians().tan();
+    let points = vec![
+        Vec2::new(-20.0, 0.0),
+        Vec2::new(0.0, 0.0),
+        Vec2::new(3.0, rise),
+        Vec2::new(6.0, rise),
+        Vec2::new(9.0, 0.0),
+        Vec2::new(30.0, 0.0),
+    ];
+    let height = move |x: f32| match x {
+        x if x <= 0.0 || x >= 9.0 => 0.0,
+        x if x < 3.0 => x / 3.0 * rise,
+        x if x <= 6.0 => rise,
+        x => (9.0 - x) / 3.0 * rise,
+    };
+    (points, height)
+}
+
+/// The characters to try: a box, an upright capsule and a circle, each
+/// with how far its feet are below its centre straight down where the
+/// ground slopes at `degrees` (a box's corner, a round end's lowest
+/// point on the slope).
+fn walkers() -> Vec<(&'static str, Shape)> {
+    vec![
+        ("box", Shape::rect(0.4, 0.8)),
+        ("capsule", Shape::capsule(0.4, 0.8)),
+    ]
+}
+
+#[test]
+fn it_walks_over_a_hill_at_its_walking_speed_always_on_the_ground() {
+    // Up and down 30° and 45° slopes, over their joints with the flat, at
+    // 4.5 and 9 m/s: each tick it covers `speed × dt` across (or along the
+    // ground, with `constant_speed`) within 1 %, and never leaves the
+    // ground.
+    for degrees in [30.0f32, 45.0] {
+        for (name, shape) in walkers() {
+            for speed in [4.5f32, 9.0] {
+                for constant_speed in [false, true] {
+                    let (points, height) = hill(degrees);
+                    let (mut world, id) = on_chain(points, shape, -2.0, 0.0);
+                    let mover = CharacterMover {
+                        constant_speed,
+                        ..CharacterMover::default()
+                    };
+                    let case = format!(
+                        "{name} at {speed} m/s over {degrees}°, constant speed {constant_speed}"
+                    );
+                    let mut velocity = Vec2::new(speed, 0.0);
+                    let mut before = at(&world, id);
+                    while before.x < 12.0 {
+                        velocity.y -= 9.81 * DT;
+                        let out = world.move_character(id, velocity * DT, &mover, DT).unwrap();
+                        if out.on_ground {
+                            velocity.y = 0.0;
+                        }
+                        world.step(DT);
+                        let now = at(&world, id);
+                        let step = now - before;
+                        assert!(out.on_ground, "{case}: off the ground at {now}");
+                        assert!(out.wall.is_none(), "{case}: a wall at {now}");
+                        let covered = if constant_speed {
+                            step.length()
+                        } else {
+                            step.x
+                        };
+                        // Over a joint a tick is partly on each side: the
+                        // ground it covers is then shorter, never longer.
+                        let on_one_slope = [0.0f32, 3.0, 6.0, 9.0]
+                            .iter()
+                            .all(|j| (before.x - j).abs() > 0.4 && (now.x - j).abs() > 0.4);
+                        if on_one_slope || !constant_speed {
+                            assert!(
+                                (covered - speed * DT).abs() <= 0.01 * speed * DT,
+                                "{case}: {covered} at {now}"
+                            );
+                        }
+                        before = now;
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn its_feet_follow_the_ground_over_every_joint_without_a_bump() {
+    // Walking over the hill, a capsule's lowest point stays a skin above
+    // the ground (measured straight down from its centre to its round end
+    // on the slope): no bump at the foot or the crest of either slope.
+    let skin = CharacterMover::default().skin;
+    for degrees in [20.0f32, 30.0, 45.0] {
+        let (points, height) = hill(degrees);
+        let (mut world, id) = on_chain(points, Shape::capsule(0.4, 0.8), -1.0, 0.0);
+        let mut velocity = Vec2::new(3.0, 0.0);
+        for tick in 0..240 {
+            play(&mut world, id, &mut velocity, |_| {});
+            let p = at(&world, id);
+            // The nearest ground to the lower round end's centre is the
+            // radius plus the skin away (up to the skin measured straight
+            // down on a slope).
+            let end = p - Vec2::new(0.0, 0.2);
+            let nearest = (0..=600)
+                .map(|i| {
+                    let x = p.x - 3.0 + 0.01 * i as f32;
+                    (Vec2::new(x, height(x)) - end).length()
+                })
+                .fold(f32::INFINITY, f32::min);
+            let gap = nearest - 0.2;
+            assert!(
+                gap > -1e-3 && gap < skin + 2e-3,
+                "{degrees}°, tick {tick}: {gap} at {p}"
+            );
+        }
+    }
+}
+
+#[test]
+fn it_stands_still_on_a_walkable_slope_and_slides_down_a_steeper_one() {
+    for (name, shape) in walkers() {
+        // 30°: under 1 mm in 10 s with the game's gravity every tick.
+        let (points, height) = hill(30.0);
+        // A box's corner rests on the slope, 0.2 m higher beside its
+        // middle: start it that much higher.
+        let (mut world, id) = on_chain(points, shape, 1.5, height(1.7));
+        // Let it settle onto the slope first.
+        let mut velocity = Vec2::ZERO;
+        for _ in 0..10 {
+            play(&mut world, id, &mut velocity, |_| {});
+        }
+        let start = at(&world, id);
+        for tick in 0..600 {
+            let out = play(&mut world, id, &mut velocity, |_| {});
+            assert!(
+                out.on_ground,
+                "{name}, tick {tick}: {out:?} at {}",
+                at(&world, id)
+            );
+        }
+        let drift = (at(&world, id) - start).length();
+        assert!(drift < 1e-3, "{name}: drifted {drift} m, from {start}");
+        assert!(height(start.x) > 0.5, "{name}: on the slope at {start}");
+        // Without stop_on_slope the game's gravity slides it down.
+        let mover = CharacterMover {
+            stop_on_slope: false,
+            ..CharacterMover::default()
+        };
+        let mut velocity = Vec2::ZERO;
+        for _ in 0..120 {
+            velocity.y -= 9.81 * DT;
+            let out = world.move_character(id, velocity * DT, &mover, DT).unwrap();
+            if out.on_ground {
+                velocity.y = 0.0;
+            }
+            world.step(DT);
+        }
+        assert!(
+            at(&world, id).x < start.x - 0.1,
+            "{name}: slid to {}",
+            at(&world, id)
+        );
+        // 60° is steeper than max_slope (45°): a wall to walk into, and
+        // it slides down it.
+        let (points, _) = hill(60.0);
+        let (mut world, id) = on_chain(points, shape, -1.0, 0.0);
+        let mut velocity = Vec2::new(3.0, 0.0);
+        let mut walled = false;
+        for _ in 0..60 {
+            let out = play(&mut world, id, &mut velocity, |_| {});
+            walled |= out.on_wall;
+        }
+        assert!(walled, "{name}: the 60° slope is a wall");
+        assert!(
+            at(&world, id).y < 0.6,
+            "{name}: did not walk up it: {}",
+            at(&world, id)
+        );
+        let rise = 3.0 * 60f32.to_radians().tan();
+        let (mut world, id) = on_chain(hill(60.0).0, shape, 1.5, 1.5 / 3.0 * rise + 0.3);
+        let mut velocity = Vec2::ZERO;
+        for _ in 0..120 {
+            play(&mut world, id, &mut velocity, |_| {});
+        }
+        assert!(
+            at(&world, id).x < 0.5,
+            "{name}: slid down to {}",
+            at(&world, id)
+        );
+    }
+}
+
+#[test]
+fn it_reports_the_ground_normal_and_a_moving_platform_s_velocity() {
+    // A kinematic ramp at 30°, moving right at 2 m/s.
+    let mut world = World::default();
+    let u = Vec2::from_angle(30f32.to_radians());
+    let ramp = world
+        .add_body(BodyDef::new_kinematic(
+            Vec2::ZERO,
+            Shape::segment(-4.0 * u, 4.0 * u),
+            Vec2::new(2.0, 0.0),
+        ))
+        .unwrap();
+    let skin = CharacterMover::default().skin;
+    let id = world
+        .add_body(BodyDef::new_kinematic(
+            Vec2::new(0.0, 0.4 + 0.2 * 30f32.to_radians().tan() + skin),
+            Shape::rect(0.4, 0.8),
+            Vec2::ZERO,
+        ))
+        .unwrap();
+    let mut velocity = Vec2::ZERO;
+    let mut out = MoveOutcome::default();
+    for _ in 0..30 {
+        out = play(&mut world, id, &mut velocity, |_| {});
+    }
+    assert!(out.on_ground);
+    assert_eq!(out.ground, Some(ramp));
+    assert!((out.ground_normal - u.perp()).length() < 1e-5, "{out:?}");
+    assert_eq!(out.ground_velocity, Vec2::new(2.0, 0.0));
+    // It rode the ramp: half a second at 2 m/s.
+    assert!((at(&world, id).x - 1.0).abs() < 0.02, "{}", at(&world, id));
+}
