@@ -1101,7 +1101,7 @@ fn it_walks_over_a_hill_at_its_walking_speed_always_on_the_ground() {
         for (name, shape) in walkers() {
             for speed in [4.5f32, 9.0] {
                 for constant_speed in [false, true] {
-                    let (points, height) = hill(degrees);
+                    let (points, _) = hill(degrees);
                     let (mut world, id) = on_chain(points, shape, -2.0, 0.0);
                     let mover = CharacterMover {
                         constant_speed,
