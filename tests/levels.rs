@@ -214,8 +214,16 @@ fn errors_name_the_file_the_layer_and_the_object() {
     );
     let cases = [
         (
-            r#"<object id="7" name="rock" x="0" y="0"><polygon points="0,0 8,0 4,8"/></object>"#,
-            "polygon",
+            r#"<object id="7" name="rock" class="dynamic" x="0" y="0"><polygon points="0,0 8,0 4,8"/></object>"#,
+            "not Dynamic",
+        ),
+        (
+            r#"<object id="7" name="rock" class="platform" x="0" y="0"><polyline points="0,0 8,0"/></object>"#,
+            "one-way",
+        ),
+        (
+            r#"<object id="7" name="rock" x="0" y="0"><text>hello</text></object>"#,
+            "a text",
         ),
         (
             r#"<object id="7" name="rock" x="0" y="0" width="8" height="8" rotation="30"/>"#,
@@ -880,4 +888,74 @@ fn a_layer_whose_text_an_element_cuts_short_is_refused_without_a_panic() {
         !panicked.load(std::sync::atomic::Ordering::SeqCst),
         "a panic was caught on the way"
     );
+}
+
+#[test]
+fn polygons_and_polylines_in_tiled_become_chains_solid_on_the_right_side() {
+    // A polyline drawn left to right (ground: solid below), and a
+    // triangle drawn either way round (solid inside): the same in .tmx
+    // and .tmj. 16 px tiles of 0.5 m; the map is 8 tiles tall (4 m).
+    let tmx = |polygon: &str| {
+        format!(
+            r#"<?xml version="1.0" encoding="UTF-8"?>
+<map version="1.10" orientation="orthogonal" renderorder="right-down" width="16" height="8" tilewidth="16" tileheight="16" infinite="0">
+ <layer id="1" name="solid" width="16" height="8"><data encoding="csv">{}</data></layer>
+ <objectgroup id="2" name="things">
+  <object id="1" name="hill" x="0" y="96"><polyline points="0,0 64,0 128,-32 256,-32"/></object>
+  <object id="2" name="rock" x="160" y="32"><polygon points="{polygon}"/></object>
+ </objectgroup>
+</map>"#,
+            vec!["0"; 16 * 8].join(",")
+        )
+    };
+    let tmj = r#"{"orientation": "orthogonal", "width": 16, "height": 8, "tilewidth": 16, "tileheight": 16,
+        "tilesets": [],
+        "layers": [{"type": "tilelayer", "name": "solid", "data": [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+            0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+            0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+            0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+            0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]},
+                   {"type": "objectgroup", "name": "things", "objects": [
+                       {"id": 1, "name": "hill", "x": 0, "y": 96, "polyline": [{"x": 0, "y": 0}, {"x": 64, "y": 0}, {"x": 128, "y": -32}, {"x": 256, "y": -32}]},
+                       {"id": 2, "name": "rock", "x": 160, "y": 32, "polygon": [{"x": 0, "y": 0}, {"x": 32, "y": 0}, {"x": 16, "y": 16}]}]}]}"#;
+    let mut levels = Vec::new();
+    for (name, text) in [
+        ("a.tmx", tmx("0,0 32,0 16,16")),
+        ("b.tmx", tmx("0,0 16,16 32,0")),
+        ("c.tmj", tmj.to_owned()),
+    ] {
+        let scene = map_file(name, &text);
+        levels.push(level_ref(name).load(&scene).unwrap());
+    }
+    for level in &levels {
+        assert_eq!(level.chains.len(), 2);
+        let hill = &level.chains[0];
+        assert!(!hill.closed && hill.name.as_deref() == Some("hill"));
+        // 96 px down a 128 px map is 1 m up; 32 px is 0.5 m.
+        assert_eq!(
+            hill.points,
+            [
+                Vec2::new(0.0, 1.0),
+                Vec2::new(2.0, 1.0),
+                Vec2::new(4.0, 2.0),
+                Vec2::new(8.0, 2.0)
+            ]
+        );
+        // Clockwise however it was drawn: solid inside.
+        let rock = &level.chains[1].points;
+        let twice_area: f32 = (0..3).map(|i| rock[i].perp_dot(rock[(i + 1) % 3])).sum();
+        assert!(level.chains[1].closed && twice_area < 0.0, "{rock:?}");
+    }
+    // In a scene, a ball dropped on the slope's top rests there.
+    let scene_text = r#"(name: "Hill", collisions: (), forces: (gravity: (0, -9.81)),
+        tilemap: (file: "a.tmx", layer: "solid", cell: 0.5),
+        bodies: [(name: "ball", shape: Circle(radius: 0.25), position: (6, 3))])"#;
+    let path = map_file("a.tmx", &tmx("0,0 32,0 16,16"));
+    let scene = passo_scene::Scene::parse(scene_text, &path).unwrap();
+    let mut built = scene.build().unwrap();
+    for _ in 0..120 {
+        built.step(1.0 / 60.0);
+    }
+    let ball = built.world.body(built.body_named("ball").unwrap()).unwrap();
+    assert!((ball.position.y - 2.25).abs() < 0.006, "{ball:?}");
 }

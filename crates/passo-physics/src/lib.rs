@@ -66,7 +66,9 @@ mod query;
 pub use body::def::{Body, BodyDef, BodyKind};
 pub use body::filter::CollisionFilter;
 pub use body::material::FrictionMix;
-pub use body::tile_map::{ASCII_LEGEND, MAX_TILE_CELLS, TileKind, TileMap, TileRect};
+pub use body::tile_map::{
+    ASCII_LEGEND, MAX_TILE_CELLS, Slope, TileChain, TileKind, TileMap, TileRect,
+};
 pub use contact::{Contact, ContactEvents, ContactPair, ContactSettings, SensorPair};
 pub use contact_world::StepCounters;
 pub use error::PhysicsError;

@@ -247,8 +247,17 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         // Each rectangle of the level's cells is a body: a checkerboard of
         // 4096 × 4096 cells would be eight million.
         let rects = level.map.rects();
-        let level_bodies = rects.len() + level.bodies.len();
-        let total = file.listed_bodies().saturating_add(level_bodies as u64);
+        // Its slopes, with the ground they touch, are chains: a body per
+        // segment.
+        let chains = level.map.chains();
+        let segments: usize = chains.iter().map(|c| c.points.len()).sum();
+        let objects: u64 = level
+            .chains
+            .iter()
+            .map(crate::format::ChainSpec::segments)
+            .sum();
+        let level_bodies = (rects.len() + segments + level.bodies.len()) as u64 + objects;
+        let total = file.listed_bodies().saturating_add(level_bodies);
         if total > MAX_BODIES as u64 {
             return Err(fail(
                 "tilemap".into(),
@@ -280,6 +289,35 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
                 });
             }
         }
+        let ids = world
+            .add_tile_chains(&level.map, &chains, tilemap.kind)
+            .map_err(|e| invalid("tilemap".into(), e))?;
+        cell_bodies.extend(&ids);
+        let mut ids = ids.into_iter();
+        for chain in &chains {
+            let kind = level.map.kinds()[usize::from(chain.kind)];
+            for id in ids.by_ref().take(chain.points.len()) {
+                let at = world.body(id).map_or(Vec2::ZERO, |b| b.position);
+                bodies.push(SceneBody {
+                    id,
+                    name: None,
+                    colour: tile_colour(&kind, tilemap.kind),
+                });
+                if let Some(path) = tilemap.path {
+                    platforms.push(Platform {
+                        id,
+                        start: at,
+                        path,
+                    });
+                }
+            }
+            for p in &chain.points {
+                let point = Aabb::from_centre(*p, Vec2::ZERO);
+                bounds = Some(bounds.map_or(point, |b| b.union(&point)));
+            }
+        }
+        // Cell bodies in id order, as the art expects.
+        cell_bodies.sort_unstable();
     }
     let mut add = |spec: &BodySpec, position: Vec2, path_of: &dyn Fn() -> String| {
         let def = body_def(spec, position);
@@ -313,8 +351,10 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
     }
     let mut spawns = Vec::new();
     let mut art = LevelArt::default();
+    let mut level_chains = Vec::new();
     if let Some(level) = level {
         art = level.art;
+        level_chains = level.chains;
         for (i, spec) in level.bodies.iter().enumerate() {
             let name = spec.name.clone().unwrap_or_default();
             add(spec, spec.position, &|| {
@@ -332,7 +372,16 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         });
         result?;
     }
-    for (i, chain) in file.chains.iter().enumerate() {
+    let named = file
+        .chains
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (format!("chains[{i}]"), c))
+        .chain(level_chains.iter().enumerate().map(|(i, c)| {
+            let name = c.name.clone().unwrap_or_default();
+            (format!("tilemap chain {i} `{name}`"), c)
+        }));
+    for (field, chain) in named {
         let def = passo_physics::ChainDef {
             points: chain.points.clone(),
             closed: chain.closed,
@@ -343,7 +392,7 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
         };
         let ids = world
             .add_chain(&def)
-            .map_err(|e| invalid(format!("chains[{i}]"), e))?;
+            .map_err(|e| invalid(field.clone(), e))?;
         for &id in &ids {
             bodies.push(SceneBody {
                 id,

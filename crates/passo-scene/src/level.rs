@@ -42,6 +42,8 @@ pub struct Level {
     pub bodies: Vec<BodySpec>,
     /// Spawn points by name (an unnamed one is `"spawn"`), metres.
     pub spawns: Vec<(String, Vec2)>,
+    /// Chains from polygon and polyline objects: sloped ground.
+    pub chains: Vec<crate::format::ChainSpec>,
     /// How the solid cells look, from the tilesets' images.
     pub art: LevelArt,
 }
@@ -62,6 +64,7 @@ impl TileMapRef {
                 map,
                 bodies: Vec::new(),
                 spawns: Vec::new(),
+                chains: Vec::new(),
                 art: LevelArt::default(),
             });
         }
@@ -167,6 +170,29 @@ fn tile_kind(tile: &RawTile) -> Result<TileKind, String> {
     }
     if let Some(one_way) = props.flag("one_way")? {
         kind.one_way = one_way.then_some(Vec2::Y);
+    }
+    let slope = match tile.class.to_ascii_lowercase().as_str() {
+        "slope_up" => Some("up"),
+        "slope_down" => Some("down"),
+        _ => None,
+    };
+    if let Some(name) = props.text("slope")?.or(slope) {
+        kind.slope = Some(match name {
+            "up" => passo_physics::Slope::Up,
+            "down" => passo_physics::Slope::Down,
+            "up_low" => passo_physics::Slope::UpLow,
+            "up_high" => passo_physics::Slope::UpHigh,
+            "down_high" => passo_physics::Slope::DownHigh,
+            "down_low" => passo_physics::Slope::DownLow,
+            other => {
+                return Err(format!(
+                    "property `slope` is `{other}`; use up, down, up_low, up_high, down_high or down_low"
+                ));
+            }
+        });
+        if kind.one_way.is_some() {
+            return Err("a one-way tile cannot slope".to_owned());
+        }
     }
     Ok(kind)
 }
@@ -306,6 +332,7 @@ impl RawMap {
             map,
             bodies: Vec::new(),
             spawns: Vec::new(),
+            chains: Vec::new(),
             art,
         };
         let mut checked = 0;
@@ -331,6 +358,74 @@ impl RawMap {
 }
 
 impl RawObject {
+    /// A polygon (a closed chain, solid inside) or a polyline (an open
+    /// chain, solid on the right of the way it is drawn: drawn left to
+    /// right, solid below).
+    fn read_chain(
+        &self,
+        points: &[(f32, f32)],
+        kind: BodyKind,
+        sensor: bool,
+        name: Option<String>,
+        to_world: &dyn Fn(f32, f32) -> Vec2,
+        level: &mut Level,
+    ) -> Result<(), String> {
+        let props = Props(&self.properties);
+        let closed = matches!(self.shape, RawShape::Polygon(_));
+        if kind == BodyKind::Dynamic {
+            return Err("is a polygon or polyline: it becomes a chain, which is Static or Kinematic, not Dynamic".to_owned());
+        }
+        if props.flag("sensor")?.unwrap_or(sensor) {
+            return Err(
+                "is a polygon or polyline: it becomes a chain, which cannot be a sensor".to_owned(),
+            );
+        }
+        if points.len() > passo_physics::MAX_CHAIN_POINTS {
+            return Err(format!(
+                "has {} points; a chain has at most {}",
+                points.len(),
+                passo_physics::MAX_CHAIN_POINTS
+            ));
+        }
+        let mut world: Vec<Vec2> = points
+            .iter()
+            .map(|&(x, y)| to_world(self.x + x, self.y + y))
+            .collect();
+        if let Some(p) = world
+            .iter()
+            .find(|p| !(p.is_finite() && p.abs().max_element() <= MAX_COORDINATE))
+        {
+            return Err(format!(
+                "has a point at {p}, beyond the world's coordinates (±{MAX_COORDINATE} m)"
+            ));
+        }
+        if closed {
+            // Clockwise, so it is solid inside however it was drawn.
+            let twice_area: f32 = (0..world.len())
+                .map(|i| world[i].perp_dot(world[(i + 1) % world.len()]))
+                .sum();
+            if twice_area > 0.0 {
+                world.reverse();
+            }
+        }
+        let mut material = crate::format::Material::default();
+        if let Some(f) = props.number("friction")? {
+            material.friction = f;
+        }
+        if let Some(e) = props.number("restitution")? {
+            material.restitution = e;
+        }
+        level.chains.push(crate::format::ChainSpec {
+            name,
+            points: world,
+            closed,
+            kind,
+            material,
+            colour: None,
+        });
+        Ok(())
+    }
+
     fn read(
         &self,
         to_world: &dyn Fn(f32, f32) -> Vec2,
@@ -361,11 +456,19 @@ impl RawObject {
         let ObjectRole::Body(kind, sensor, one_way) = role else {
             unreachable!("spawns returned above")
         };
+        if matches!(self.shape, RawShape::Polygon(_) | RawShape::Polyline(_))
+            && props.flag("one_way")?.unwrap_or(one_way)
+        {
+            return Err("is a one-way polygon or polyline: a chain is solid from one side already (the right of the way it is drawn); one-way platforms are rectangles".to_owned());
+        }
         if self.rotation != 0.0 {
             return Err(format!(
                 "is rotated by {}°: bodies do not rotate",
                 self.rotation
             ));
+        }
+        if let RawShape::Polygon(points) | RawShape::Polyline(points) = &self.shape {
+            return self.read_chain(points, kind, sensor, name, to_world, level);
         }
         let (shape, (w, h)) = match self.shape {
             RawShape::Rect(w, h) => {
@@ -393,6 +496,7 @@ impl RawObject {
                 ));
             }
             RawShape::Point => unreachable!("points are spawns"),
+            RawShape::Polygon(_) | RawShape::Polyline(_) => unreachable!("chains returned above"),
         };
         // Coins gold and goals green; other bodies take the scene's colours.
         let colour = match class.to_ascii_lowercase().as_str() {

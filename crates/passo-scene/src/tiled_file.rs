@@ -75,7 +75,12 @@ pub(crate) enum RawShape {
     Rect(f32, f32),
     Ellipse(f32, f32),
     Point,
-    /// A shape Passo has no body for (polygon, polyline, text, capsule).
+    /// A closed outline: its points relative to the object's position,
+    /// pixels.
+    Polygon(Vec<(f32, f32)>),
+    /// An open line through its points, relative to the object's position.
+    Polyline(Vec<(f32, f32)>),
+    /// A shape Passo has no body for (text, capsule).
     Other(&'static str),
 }
 
@@ -227,8 +232,10 @@ fn collect_tmx_layers<'m>(
                             RawShape::Ellipse(*width, *height)
                         }
                         tiled::ObjectShape::Point(..) => RawShape::Point,
-                        tiled::ObjectShape::Polygon { .. } => RawShape::Other("a polygon"),
-                        tiled::ObjectShape::Polyline { .. } => RawShape::Other("a polyline"),
+                        tiled::ObjectShape::Polygon { points } => RawShape::Polygon(points.clone()),
+                        tiled::ObjectShape::Polyline { points } => {
+                            RawShape::Polyline(points.clone())
+                        }
                         tiled::ObjectShape::Capsule { .. } => RawShape::Other("a capsule"),
                         tiled::ObjectShape::Text { .. } => RawShape::Other("a text"),
                     };
@@ -541,10 +548,16 @@ pub(crate) fn read_tmj(path: &Path, wanted_layer: &str, root: &Path) -> Result<R
                         RawShape::Point
                     } else if flag("ellipse") {
                         RawShape::Ellipse(w, h)
-                    } else if object.get("polygon").is_some() {
-                        RawShape::Other("a polygon")
-                    } else if object.get("polyline").is_some() {
-                        RawShape::Other("a polyline")
+                    } else if let Some(points) = object.get("polygon") {
+                        json_points(points).map_or(
+                            RawShape::Other("a polygon with bad points"),
+                            RawShape::Polygon,
+                        )
+                    } else if let Some(points) = object.get("polyline") {
+                        json_points(points).map_or(
+                            RawShape::Other("a polyline with bad points"),
+                            RawShape::Polyline,
+                        )
                     } else if object.get("text").is_some() {
                         RawShape::Other("a text")
                     } else if flag("capsule") {
@@ -594,4 +607,15 @@ fn json_properties(v: &serde_json::Value) -> Properties {
         .collect();
     out.sort_by(|a, b| a.0.cmp(&b.0));
     out
+}
+
+/// The points of a `.tmj` polygon or polyline: `[{"x": .., "y": ..}, ...]`;
+/// `None` if any is not a pair of numbers.
+fn json_points(value: &serde_json::Value) -> Option<Vec<(f32, f32)>> {
+    let coordinate = |p: &serde_json::Value, key: &str| p.get(key)?.as_f64().map(|v| v as f32);
+    value
+        .as_array()?
+        .iter()
+        .map(|p| Some((coordinate(p, "x")?, coordinate(p, "y")?)))
+        .collect()
 }

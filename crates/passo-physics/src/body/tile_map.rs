@@ -31,6 +31,60 @@ pub struct TileKind {
     /// A one-way cell: the outward normal of its solid side (`(0, 1)`: land
     /// on it from above, jump through it from below). `None`: solid.
     pub one_way: Option<Vec2>,
+    /// A sloped cell: the part of it that is solid. `None`: the whole cell.
+    /// (A one-way cell does not slope.)
+    pub slope: Option<Slope>,
+}
+
+/// Which part of a sloped cell is solid: below a line across it. The
+/// slopes of a map, with the solid cells they touch, become chains (see
+/// [`TileMap::chains`]), so walking from a slope onto the flat and back
+/// is smooth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Slope {
+    /// 45° rising to the right: solid below the diagonal from the
+    /// lower-left corner to the upper-right one (`/`).
+    Up,
+    /// 45° falling to the right (`\`).
+    Down,
+    /// The lower half of a 2:1 slope rising to the right, over two cells:
+    /// from the lower-left corner to the middle of the right side (`r`).
+    UpLow,
+    /// The upper half of a 2:1 rising slope: from the middle of the left
+    /// side to the upper-right corner (`R`).
+    UpHigh,
+    /// The upper half of a 2:1 slope falling to the right: from the
+    /// upper-left corner to the middle of the right side (`F`).
+    DownHigh,
+    /// The lower half of a 2:1 falling slope: from the middle of the left
+    /// side to the lower-right corner (`f`).
+    DownLow,
+}
+
+impl Slope {
+    /// The solid part's corners, counter-clockwise from the lower-left
+    /// corner, in half cells.
+    fn outline(self) -> &'static [(i64, i64)] {
+        match self {
+            Self::Up => &[(0, 0), (2, 0), (2, 2)],
+            Self::Down => &[(0, 0), (2, 0), (0, 2)],
+            Self::UpLow => &[(0, 0), (2, 0), (2, 1)],
+            Self::UpHigh => &[(0, 0), (2, 0), (2, 2), (0, 1)],
+            Self::DownHigh => &[(0, 0), (2, 0), (2, 1), (0, 2)],
+            Self::DownLow => &[(0, 0), (2, 0), (0, 1)],
+        }
+    }
+}
+
+/// A chain of a tile map (see [`TileMap::chains`]): a closed outline,
+/// clockwise (solid inside, on the right of the way it goes).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TileChain {
+    /// The corners, metres, in order; the last joins the first.
+    pub points: Vec<Vec2>,
+    /// The kind whose material it has (index into [`TileMap::kinds`]).
+    pub kind: u8,
 }
 
 impl TileKind {
@@ -39,6 +93,7 @@ impl TileKind {
         friction: crate::constants::DEFAULT_FRICTION,
         restitution: 0.0,
         one_way: None,
+        slope: None,
     };
     /// Ice: friction 0.02.
     pub const ICE: Self = Self {
@@ -56,7 +111,20 @@ impl TileKind {
         ..Self::SOLID
     };
 
+    /// Plain ground sloped as `slope`.
+    pub const fn sloped(slope: Slope) -> Self {
+        Self {
+            slope: Some(slope),
+            ..Self::SOLID
+        }
+    }
+
     fn validate(&self) -> Result<(), PhysicsError> {
+        if self.slope.is_some() && self.one_way.is_some() {
+            return Err(PhysicsError::InvalidTileMap(
+                "a one-way cell cannot slope".into(),
+            ));
+        }
         at_most(
             "TileKind::friction",
             self.friction,
@@ -72,11 +140,17 @@ impl TileKind {
 }
 
 /// The characters of [`TileMap::from_ascii`] and the kinds they make.
-pub const ASCII_LEGEND: [(char, Option<TileKind>); 6] = [
+pub const ASCII_LEGEND: [(char, Option<TileKind>); 12] = [
     ('#', Some(TileKind::SOLID)),
     ('-', Some(TileKind::ONE_WAY)),
     ('~', Some(TileKind::ICE)),
     ('^', Some(TileKind::BOUNCY)),
+    ('/', Some(TileKind::sloped(Slope::Up))),
+    ('\\', Some(TileKind::sloped(Slope::Down))),
+    ('r', Some(TileKind::sloped(Slope::UpLow))),
+    ('R', Some(TileKind::sloped(Slope::UpHigh))),
+    ('F', Some(TileKind::sloped(Slope::DownHigh))),
+    ('f', Some(TileKind::sloped(Slope::DownLow))),
     ('.', None),
     (' ', None),
 ];
@@ -150,7 +224,9 @@ impl TileMap {
 
     /// A map drawn as text, one character per cell and one line per row,
     /// the first line the top row: `#` solid, `-` one-way, `~` ice, `^`
-    /// bouncy, `.` or a space empty ([`ASCII_LEGEND`]). Lines may differ in
+    /// bouncy, `/` and `\` 45° slopes, `r` then `R` a 2:1 slope rising over
+    /// two cells, `F` then `f` a 2:1 slope falling over two, `.` or a space
+    /// empty ([`ASCII_LEGEND`]). Lines may differ in
     /// length (the rest of a short line is empty); blank lines before the
     /// first and after the last row are ignored.
     ///
@@ -201,7 +277,7 @@ impl TileMap {
             for (column, c) in row.chars().skip(indent).enumerate() {
                 let Some(entry) = ASCII_LEGEND.iter().position(|(ch, _)| *ch == c) else {
                     return Err(PhysicsError::InvalidTileMap(format!(
-                        "line {}, column {}: {c:?} is not a tile (use # solid, - one-way, ~ ice, ^ bouncy, . or space empty)",
+                        "line {}, column {}: {c:?} is not a tile (use # solid, - one-way, ~ ice, ^ bouncy, / \\ r R F f slopes, . or space empty)",
                         line + 1,
                         column + indent + 1
                     )));
@@ -316,12 +392,26 @@ impl TileMap {
     /// and kind in the rows above. The same map always gives the same
     /// rectangles in the same order.
     pub fn rects(&self) -> Vec<TileRect> {
+        // Cells that are part of a chain are left out.
+        let chained = self.chain_cells();
+        let cell_at = |i: usize| {
+            if chained.as_ref().is_some_and(|c| c[i] != 0) {
+                0
+            } else {
+                self.cells[i]
+            }
+        };
         let mut done = Vec::new();
         // Rectangles still growing upwards, in column order.
         let mut open: Vec<TileRect> = Vec::new();
         let mut next: Vec<TileRect> = Vec::new();
         for y in 0..self.height {
-            let row = &self.cells[(y * self.width) as usize..((y + 1) * self.width) as usize];
+            let first = (y * self.width) as usize;
+            let span = first..first + self.width as usize;
+            let row: std::borrow::Cow<'_, [u8]> = match &chained {
+                None => std::borrow::Cow::Borrowed(&self.cells[span]),
+                Some(_) => std::borrow::Cow::Owned(span.map(cell_at).collect()),
+            };
             let mut j = 0;
             let mut x = 0;
             while x < self.width {
@@ -366,6 +456,167 @@ impl TileMap {
 
     fn index(&self, x: u32, y: u32) -> Option<usize> {
         (x < self.width && y < self.height).then(|| (y * self.width + x) as usize)
+    }
+
+    /// Per cell, the chain it is part of: 0 for none, else 1 + the kind
+    /// whose material the chain has. A chain is made of the sloped cells
+    /// and the solid cells joined to them by a side through cells of the
+    /// same material (not one-way). `None` for a map with no slope.
+    fn chain_cells(&self) -> Option<Vec<u8>> {
+        if self.kinds.iter().all(|k| k.slope.is_none()) {
+            return None;
+        }
+        let same = |a: &TileKind, b: &TileKind| {
+            a.friction == b.friction && a.restitution == b.restitution && b.one_way.is_none()
+        };
+        let width = self.width as usize;
+        let mut region = vec![0u8; self.cells.len()];
+        let mut stack = Vec::new();
+        for seed in 0..self.cells.len() {
+            let Some(k) = self.cells[seed].checked_sub(1) else {
+                continue;
+            };
+            let kind = self.kinds[usize::from(k)];
+            if kind.slope.is_none() || region[seed] != 0 {
+                continue;
+            }
+            region[seed] = k + 1;
+            stack.push(seed);
+            while let Some(i) = stack.pop() {
+                let (x, y) = ((i % width) as u32, (i / width) as u32);
+                let sides = [
+                    x.checked_sub(1).map(|x| (x, y)),
+                    Some((x + 1, y)),
+                    y.checked_sub(1).map(|y| (x, y)),
+                    Some((x, y + 1)),
+                ];
+                for (nx, ny) in sides.into_iter().flatten() {
+                    let Some(j) = self.index(nx, ny) else {
+                        continue;
+                    };
+                    if region[j] != 0 {
+                        continue;
+                    }
+                    if let Some(m) = self.cells[j].checked_sub(1)
+                        && same(&kind, &self.kinds[usize::from(m)])
+                    {
+                        region[j] = k + 1;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        Some(region)
+    }
+
+    /// The map's chains: the outlines of its sloped cells together with the
+    /// solid cells of the same material they touch by a side (see
+    /// [`Slope`]), each a closed loop going clockwise, with corners only
+    /// where the outline turns. [`rects`](Self::rects) leaves their cells
+    /// out, and [`World::add_tile_map`](crate::World::add_tile_map) adds
+    /// them as chains ([`World::add_chain`](crate::World::add_chain)): a
+    /// slope meets the flat beside it as smoothly as a chain's segments
+    /// meet. Empty for a map with no slope. The same map always gives the
+    /// same chains in the same order.
+    ///
+    /// ```
+    /// use passo_physics::{TileMap, glam::Vec2};
+    /// // Flat, a 45° slope up, flat on top: one outline of the cells,
+    /// // clockwise from the top of the flat at the left.
+    /// let map = TileMap::from_ascii("..####\n./####\n######", Vec2::ONE, Vec2::ZERO).unwrap();
+    /// let chains = map.chains();
+    /// assert_eq!(chains.len(), 1);
+    /// assert_eq!(chains[0].points, [
+    ///     Vec2::new(0.0, 1.0), Vec2::new(1.0, 1.0), Vec2::new(2.0, 2.0), Vec2::new(2.0, 3.0),
+    ///     Vec2::new(6.0, 3.0), Vec2::new(6.0, 0.0), Vec2::new(0.0, 0.0),
+    /// ]);
+    /// assert!(map.rects().is_empty());
+    /// ```
+    pub fn chains(&self) -> Vec<TileChain> {
+        let Some(region) = self.chain_cells() else {
+            return Vec::new();
+        };
+        let width = self.width as usize;
+        // Every chained cell's outline as edges in half cells, counter-
+        // clockwise: an edge two cells share appears once each way.
+        const SQUARE: [(i64, i64); 4] = [(0, 0), (2, 0), (2, 2), (0, 2)];
+        type Edge = (u8, (i64, i64), (i64, i64));
+        let mut edges: Vec<Edge> = Vec::new();
+        for (i, &r) in region.iter().enumerate() {
+            if r == 0 {
+                continue;
+            }
+            let (x, y) = ((i % width) as i64, (i / width) as i64);
+            let k = usize::from(self.cells[i] - 1);
+            let outline: &[(i64, i64)] = match self.kinds[k].slope {
+                Some(slope) => slope.outline(),
+                None => &SQUARE,
+            };
+            for (n, &(ax, ay)) in outline.iter().enumerate() {
+                let (bx, by) = outline[(n + 1) % outline.len()];
+                edges.push((r, (2 * x + ax, 2 * y + ay), (2 * x + bx, 2 * y + by)));
+            }
+        }
+        edges.sort_unstable();
+        // The edges whose reverse is not there: the outline.
+        let outline: Vec<Edge> = edges
+            .iter()
+            .filter(|&&(r, a, b)| edges.binary_search(&(r, b, a)).is_err())
+            .copied()
+            .collect();
+        let mut used = vec![false; outline.len()];
+        let mut chains = Vec::new();
+        for first in 0..outline.len() {
+            if used[first] {
+                continue;
+            }
+            let (r, start, _) = outline[first];
+            let mut corners: Vec<(i64, i64)> = Vec::new();
+            let mut at = first;
+            loop {
+                used[at] = true;
+                let (_, a, b) = outline[at];
+                corners.push(a);
+                if b == start {
+                    break;
+                }
+                // The unused edges from `b`; where two pieces meet at a
+                // point, the one turning left keeps the loop around one.
+                let from = outline.partition_point(|&(q, p, _)| (q, p) < (r, b));
+                let left = |e: usize| {
+                    let c = outline[e].2;
+                    let (d0, d1) = ((b.0 - a.0, b.1 - a.1), (c.0 - b.0, c.1 - b.1));
+                    (d0.0 * d1.1 - d0.1 * d1.0).signum()
+                };
+                let next = (from..outline.len())
+                    .take_while(|&e| (outline[e].0, outline[e].1) == (r, b))
+                    .filter(|&e| !used[e])
+                    .max_by_key(|&e| (left(e), std::cmp::Reverse(e)));
+                match next {
+                    Some(e) => at = e,
+                    None => break,
+                }
+            }
+            // Corners only where the outline turns.
+            let n = corners.len();
+            let turns = (0..n).filter(|&i| {
+                let (p, q, s) = (corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]);
+                (q.0 - p.0) * (s.1 - q.1) - (q.1 - p.1) * (s.0 - q.0) != 0
+            });
+            let mut points: Vec<Vec2> = turns
+                .map(|i| {
+                    let (x, y) = corners[i];
+                    self.origin + self.cell_size * Vec2::new(x as f32, y as f32) * 0.5
+                })
+                .collect();
+            // Clockwise: solid on the right of the way it goes.
+            points.reverse();
+            chains.push(TileChain {
+                points,
+                kind: r - 1,
+            });
+        }
+        chains
     }
 }
 
@@ -487,5 +738,80 @@ mod tests {
         assert!(map.add_kind(bad).is_err());
         assert_eq!(map.cell_at(Vec2::new(1.5, 0.5)), Some((1, 0)));
         assert_eq!(map.cell_at(Vec2::new(-0.5, 0.5)), None);
+    }
+
+    #[test]
+    fn slopes_and_the_ground_they_touch_become_one_outline_and_no_rects() {
+        // A hill: 45° up, flat, 2:1 down over two cells; ice beside it and
+        // a one-way ledge above stay boxes.
+        let map = TileMap::from_ascii(
+            "
+            ....--....
+            ../###Ff..
+            ##########~~",
+            Vec2::ONE,
+            Vec2::ZERO,
+        )
+        .unwrap();
+        let chains = map.chains();
+        assert_eq!(chains.len(), 1);
+        let expected = [
+            (0.0, 1.0),
+            (2.0, 1.0),
+            (3.0, 2.0),
+            (6.0, 2.0),
+            (8.0, 1.0),
+            (10.0, 1.0),
+            (10.0, 0.0),
+            (0.0, 0.0),
+        ];
+        let points: Vec<(f32, f32)> = chains[0].points.iter().map(|p| (p.x, p.y)).collect();
+        // The same loop, from wherever it starts.
+        let start = points.iter().position(|&p| p == expected[0]).unwrap();
+        let turned: Vec<_> = points[start..]
+            .iter()
+            .chain(&points[..start])
+            .copied()
+            .collect();
+        assert_eq!(turned, expected);
+        let rects = map.rects();
+        let kinds: Vec<TileKind> = rects.iter().map(|r| map.kinds()[r.kind as usize]).collect();
+        assert_eq!(kinds, [TileKind::ICE, TileKind::ONE_WAY]);
+        // Without a slope the same map is boxes alone, as before.
+        let flat = TileMap::from_ascii(
+            "....--....\n..######..\n##########~~",
+            Vec2::ONE,
+            Vec2::ZERO,
+        )
+        .unwrap();
+        assert!(flat.chains().is_empty());
+        assert_eq!(flat.rects().len(), 4);
+    }
+
+    #[test]
+    fn every_sloped_cell_s_solid_part_is_inside_its_chain() {
+        // Each slope alone on a floor: the outline's area is the floor's
+        // plus the slope's solid part (shoelace formula, clockwise).
+        for (c, part) in [
+            ('/', 0.5f32),
+            ('\\', 0.5),
+            ('r', 0.25),
+            ('R', 0.75),
+            ('F', 0.75),
+            ('f', 0.25),
+        ] {
+            let text = format!(".{c}.\n###");
+            let map = TileMap::from_ascii(&text, Vec2::ONE, Vec2::ZERO).unwrap();
+            let chains = map.chains();
+            assert_eq!(chains.len(), 1, "{c}");
+            let p = &chains[0].points;
+            let twice: f32 = (0..p.len())
+                .map(|i| p[i].perp_dot(p[(i + 1) % p.len()]))
+                .sum();
+            assert!((-0.5 * twice - (3.0 + part)).abs() < 1e-6, "{c}: {p:?}");
+        }
+        // Two pieces meeting at one corner are two loops.
+        let map = TileMap::from_ascii("./\n/.", Vec2::ONE, Vec2::ZERO).unwrap();
+        assert_eq!(map.chains().len(), 2);
     }
 }

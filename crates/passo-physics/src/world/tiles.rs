@@ -34,7 +34,42 @@ impl World {
         map: &crate::TileMap,
         kind: BodyKind,
     ) -> Result<Vec<BodyId>, PhysicsError> {
-        self.add_tile_rects(map, &map.rects(), kind)
+        let mut ids = self.add_tile_rects(map, &map.rects(), kind)?;
+        ids.extend(self.add_tile_chains(map, &map.chains(), kind)?);
+        Ok(ids)
+    }
+
+    /// Adds a map's chains ([`TileMap::chains`](crate::TileMap::chains):
+    /// its slopes and the ground they touch) as closed chains of `kind`,
+    /// each with its kind's friction and restitution. Returns their
+    /// segments' bodies, chain after chain.
+    ///
+    /// # Errors
+    /// As [`add_tile_map`](Self::add_tile_map).
+    pub fn add_tile_chains(
+        &mut self,
+        map: &crate::TileMap,
+        chains: &[crate::TileChain],
+        kind: BodyKind,
+    ) -> Result<Vec<BodyId>, PhysicsError> {
+        if kind == BodyKind::Dynamic {
+            return Err(PhysicsError::InvalidTileMap(
+                "a tile map is Static or Kinematic, not Dynamic".into(),
+            ));
+        }
+        let mut ids = Vec::new();
+        for chain in chains {
+            let tile = map.kinds()[usize::from(chain.kind)];
+            let def = crate::ChainDef {
+                closed: true,
+                kind,
+                friction: tile.friction,
+                restitution: tile.restitution,
+                ..crate::ChainDef::new(chain.points.clone())
+            };
+            ids.extend(self.add_chain(&def)?);
+        }
+        Ok(ids)
     }
 
     /// [`add_tile_map`](Self::add_tile_map) with the map's rectangles
