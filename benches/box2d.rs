@@ -92,6 +92,29 @@ pub fn copy(passo: &World, sleep: bool) -> Box2d {
                 body.create_capsule(&shape_def, &capsule)
                     .expect("a capsule shape");
             }
+            Shape::Segment { half } => {
+                let segment =
+                    shapes::segment([-half.x, -half.y], [half.x, half.y]).expect("a segment");
+                body.create_segment(&shape_def, &segment)
+                    .expect("a segment shape");
+            }
+            Shape::ChainSegment {
+                half,
+                before,
+                after,
+            } => {
+                let (a, b) = (-half, half);
+                // A free end's ghost continues the segment.
+                let before = before.unwrap_or(a - 2.0 * half);
+                let after = after.unwrap_or(b + 2.0 * half);
+                // Box2D's chain segments are solid on the left of their
+                // direction, Passo's on the right: the same one reversed.
+                let p = |v: passo_physics::glam::Vec2| [v.x, v.y];
+                let segment = shapes::chain_segment(p(after), p(b), p(a), p(before))
+                    .expect("a chain segment");
+                body.create_chain_segment(&shape_def, &segment)
+                    .expect("a chain segment shape");
+            }
         }
         bodies.push((b.id, id));
     }

@@ -111,6 +111,69 @@ fn tile_container(world: &mut World, width: f32, height: f32) {
 
 /// `n` circles in `columns` columns in a box made by `container(world,
 /// width, height)`.
+/// How many pieces the hilly ground of [`rain_on_hills`] is made of.
+pub const HILL_PIECES: usize = 1000;
+
+/// The rain of [`rain_world`] falling onto hilly ground between two walls:
+/// a chain of [`HILL_PIECES`] segments (`boxes: false`), or as many static
+/// boxes, each under one segment with its top at the segment's middle
+/// (`boxes: true`). The ground rises and falls 0.3 m every 6 m (17° at
+/// its steepest, so friction holds the rain on it), below the rain.
+pub fn rain_on_hills(n: usize, boxes: bool) -> World {
+    let columns = ((2.0 * (n as f32).sqrt()).ceil() as usize).max(1);
+    rain_in(n, columns, if boxes { hill_boxes } else { hill_chain })
+}
+
+/// The height of the hilly ground at `x`.
+fn hill_height(x: f32) -> f32 {
+    -1.0 + 0.3 * (x * std::f32::consts::TAU / 6.0).sin()
+}
+
+/// The points of the hilly ground across `width`.
+fn hill_points(width: f32) -> Vec<Vec2> {
+    (0..=HILL_PIECES)
+        .map(|i| {
+            let x = -0.5 * width + width * i as f32 / HILL_PIECES as f32;
+            Vec2::new(x, hill_height(x))
+        })
+        .collect()
+}
+
+/// The walls of the rain's box, without its floor.
+fn walls(world: &mut World, width: f32, height: f32) {
+    for side in [-1.0f32, 1.0] {
+        world
+            .add_body(BodyDef::new_static(
+                Vec2::new(side * (width * 0.5 + 0.5), height * 0.5 - 1.5),
+                Shape::rect(1.0, height + 3.0),
+            ))
+            .expect("valid wall");
+    }
+}
+
+fn hill_chain(world: &mut World, width: f32, height: f32) {
+    walls(world, width, height);
+    world
+        .add_chain(&passo_physics::ChainDef::new(hill_points(width)))
+        .expect("valid ground");
+}
+
+fn hill_boxes(world: &mut World, width: f32, height: f32) {
+    walls(world, width, height);
+    let points = hill_points(width);
+    for pair in points.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        let top = 0.5 * (a.y + b.y);
+        let bottom = -3.0;
+        world
+            .add_body(BodyDef::new_static(
+                Vec2::new(0.5 * (a.x + b.x), 0.5 * (top + bottom)),
+                Shape::rect(b.x - a.x, top - bottom),
+            ))
+            .expect("valid ground");
+    }
+}
+
 fn rain_in(n: usize, columns: usize, container: fn(&mut World, f32, f32)) -> World {
     let mut world = World::default();
     let rows = n.div_ceil(columns);

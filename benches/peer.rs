@@ -68,6 +68,10 @@ fn rapier_copy(passo: &World, sleep: bool) -> Rapier {
                 half_segment,
                 radius,
             } => ColliderBuilder::capsule_y(half_segment.y, radius),
+            // rapier2d's segments are solid from both sides.
+            Shape::Segment { half } | Shape::ChainSegment { half, .. } => {
+                ColliderBuilder::segment((-half).to_array().into(), half.to_array().into())
+            }
         }
         .friction(0.6)
         .restitution(0.0)
@@ -104,6 +108,20 @@ fn main() {
                 .parse()
                 .ok()
                 .map(|b| (format!("pyramid {b}"), pyramid_world(b))),
+            // `hillsN`: a rain of N onto ground of 1000 segments;
+            // `hillboxesN`: onto as many boxes.
+            None if a.starts_with("hillboxes") => a["hillboxes".len()..].parse().ok().map(|n| {
+                (
+                    format!("rain {n} on 1000 boxes"),
+                    passo_benches::rain_on_hills(n, true),
+                )
+            }),
+            None if a.starts_with("hills") => a["hills".len()..].parse().ok().map(|n| {
+                (
+                    format!("rain {n} on 1000 segments"),
+                    passo_benches::rain_on_hills(n, false),
+                )
+            }),
             None => a.parse().ok().map(|n| (format!("rain {n}"), rain_world(n))),
         })
         .collect();

@@ -14,7 +14,7 @@
 // step runs (`steps rest` measures it too).
 use passo_benches::busy_world as busy;
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, Shape, World};
+use passo_physics::{BodyDef, ChainDef, CharacterMover, Shape, World};
 use passo_scene::Scene;
 use passo_tests::add_ground;
 
@@ -128,6 +128,82 @@ fn with_platforms_the_same_bits_as_always() {
         hash, EXPECTED_PLATFORMS,
         "the state after {TICKS} ticks with platforms changed: hash {hash:#018x}. If the \
          change was intended, set EXPECTED_PLATFORMS to {hash:#018x} (see the top of this file)"
+    );
+}
+
+/// The state after [`TICKS`] ticks of the busy scene with sloped ground
+/// and capsules: a hill chain and a plain segment ramp in the rain,
+/// capsules dropped on them, and a capsule character walking over the
+/// hill with the character mover. Lines, capsules and the slope-aware
+/// mover came with it; the constants above stay valid for scenes without
+/// them.
+const EXPECTED_SLOPES: u64 = 0xfcb7_ab42_b598_8bc2;
+
+fn with_slopes() -> World {
+    let mut world = busy();
+    world
+        .add_chain(&ChainDef::new(vec![
+            Vec2::new(2.0, 8.0),
+            Vec2::new(6.0, 8.0),
+            Vec2::new(9.0, 10.0),
+            Vec2::new(12.0, 10.0),
+            Vec2::new(15.0, 8.0),
+            Vec2::new(22.0, 8.0),
+        ]))
+        .unwrap();
+    world
+        .add_body(BodyDef::new_static(
+            Vec2::new(24.0, 4.0),
+            Shape::segment(Vec2::new(-2.0, -1.0), Vec2::new(2.0, 1.0)),
+        ))
+        .unwrap();
+    for i in 0..12 {
+        let x = 3.0 + 1.6 * i as f32;
+        let shape = if i % 2 == 0 {
+            Shape::capsule(0.4, 0.9)
+        } else {
+            Shape::capsule(0.9, 0.4)
+        };
+        world
+            .add_body(BodyDef::new_dynamic(
+                Vec2::new(x, 13.0 + 0.3 * i as f32),
+                shape,
+            ))
+            .unwrap();
+    }
+    world
+}
+
+#[test]
+fn with_slopes_and_capsules_the_same_bits_as_always() {
+    let mut world = with_slopes();
+    let mover = CharacterMover::default();
+    let player = world
+        .add_body(BodyDef::new_kinematic(
+            Vec2::new(3.0, 8.0 + 0.4 + mover.skin),
+            Shape::capsule(0.4, 0.8),
+            Vec2::ZERO,
+        ))
+        .unwrap();
+    let dt = 1.0 / 60.0;
+    let mut velocity = Vec2::ZERO;
+    for tick in 0..TICKS {
+        // Right for 3 s, then back.
+        velocity.x = if tick < 180 { 4.0 } else { -4.0 };
+        velocity.y -= 9.81 * dt;
+        let out = world
+            .move_character(player, velocity * dt, &mover, dt)
+            .unwrap();
+        if out.on_ground {
+            velocity.y = 0.0;
+        }
+        world.step(dt);
+    }
+    let hash = world.state_hash();
+    assert_eq!(
+        hash, EXPECTED_SLOPES,
+        "the state after {TICKS} ticks with slopes changed: hash {hash:#018x}. If the \
+         change was intended, set EXPECTED_SLOPES to {hash:#018x} (see the top of this file)"
     );
 }
 

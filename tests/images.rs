@@ -126,7 +126,7 @@ fn scenes_match_their_reference_pictures() {
 }
 
 /// The Tiled level's cells are drawn from its tileset image, texel for
-/// pixel: seen 15 m wide in 480 pixels, a 0.5 m cell is 16 pixels, one
+/// pixel: its first 15 m seen in 480 pixels, a 0.5 m cell is 16 pixels, one
 /// per texel of its 16-pixel tile, so every pixel of a cell is the
 /// tile's texel (the background where the tile is transparent), and no
 /// cell is a flat box.
@@ -157,6 +157,10 @@ fn the_tiled_level_is_drawn_from_its_tileset_image_texel_for_pixel() {
     let image = target.read(&gpu).unwrap();
     let mut checked = 0;
     for tile in &built.art.tiles {
+        // The level goes on past the view (its slopes, from 15 m).
+        if tile.centre.x > 15.0 {
+            continue;
+        }
         // The cell's top-left pixel, and its tile's top-left texel.
         let x0 = ((tile.centre.x - 0.25) * 32.0).round() as u32;
         let y0 = 240 - ((tile.centre.y + 0.25) * 32.0).round() as u32;

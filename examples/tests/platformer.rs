@@ -186,17 +186,17 @@ fn a_crushed_player_starts_again_at_the_spawn_point() {
     );
 }
 
-/// The camera follows the player through the whole level, and its view
-/// never shows past the level's edges: the shipped level is 15 m wide and
-/// 7.5 m tall, and the view 8 m tall, so the level fills it from top to
-/// bottom wherever the player is.
+/// The camera follows the player through the level, and its view never
+/// shows past the level's edges: the shipped level is 24 m wide and 7.5 m
+/// tall, and the view 8 m tall, so the level fills it from top to bottom
+/// wherever the player is.
 #[test]
 fn the_camera_follows_the_player_and_stays_inside_the_level() {
     let mut game = level();
     let bounds = game.bounds;
-    assert_eq!(game.coins_total, 3, "the level's coins");
+    assert_eq!(game.coins_total, 5, "the level's coins");
     assert!(
-        (bounds.size() - Vec2::new(15.0, 7.5)).length() < 1e-4,
+        (bounds.size() - Vec2::new(24.0, 7.5)).length() < 1e-4,
         "{bounds:?}"
     );
     for aspect in [4.0 / 3.0, 16.0 / 10.0, 0.5] {
@@ -223,10 +223,41 @@ fn the_camera_follows_the_player_and_stays_inside_the_level() {
         }
         assert!(game.reached.is_some());
         if view.x < bounds.size().x {
-            // It scrolled from one end of the level to the other.
-            assert!(seen.1 - seen.0 > bounds.size().x - view.x - 1.0, "{seen:?}");
+            // It scrolled from the level's left end to the goal (13.75 m).
+            assert!(seen.0 <= bounds.min.x + view.x / 2.0 + 1e-3, "{seen:?}");
+            assert!(
+                seen.1 >= (13.75 - view.x / 2.0).min(bounds.max.x - view.x / 2.0) - 0.5,
+                "{seen:?}"
+            );
         }
     }
     game.update(Keys::default(), DT);
     assert!((game.seconds(DT) - DT).abs() < 1e-6);
+}
+
+/// Past the goal the level slopes: a hill, a 2:1 ramp up to a ledge and a
+/// wall too steep to walk, all drawn in Tiled as polygons. The scripted
+/// player runs over the hill and up the ramp on the ground, takes both
+/// coins there, and jumps the steep wall it cannot walk up.
+#[test]
+fn the_scripted_player_runs_over_the_slopes_past_the_goal() {
+    let mut game = level();
+    for _ in 0..60 * 40 {
+        let keys = game.autopilot();
+        game.update(keys, DT);
+        if game.player_position().x > 23.0 && game.coins == 4 {
+            break;
+        }
+    }
+    let at = game.player_position();
+    assert!(at.x > 23.0, "past the steep wall: {at}");
+    // The coins on the hill and past the steep wall were taken.
+    for name in ["coin 4", "coin 5"] {
+        let coin = game
+            .bodies
+            .iter()
+            .find(|b| b.name.as_deref() == Some(name))
+            .unwrap();
+        assert!(!game.world.contains(coin.id), "{name} is still there");
+    }
 }

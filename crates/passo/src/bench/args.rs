@@ -31,6 +31,9 @@ pub enum BenchWhat {
     /// A rain in a box drawn on a 1000 × 1000 tile map, against the same
     /// rain in a box of three static boxes.
     Tiles(TilesBenchArgs),
+    /// A rain onto hilly ground of 1000 segments (a chain), against the
+    /// same ground of 1000 boxes.
+    Slopes(TilesBenchArgs),
     /// Scenes that make work grow faster than the bodies: circles spawned
     /// on one spot, and fast circles in a closed box.
     Extreme(ExtremeBenchArgs),

@@ -28,6 +28,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         BenchWhat::Queries(a) => scenes::queries(a),
         BenchWhat::Platforms(a) => scenes::platforms(a),
         BenchWhat::Tiles(a) => scenes::tiles(a),
+        BenchWhat::Slopes(a) => scenes::slopes(a),
         BenchWhat::Extreme(a) => stress::extreme(a),
         BenchWhat::Soak(a) => stress::soak(a),
         BenchWhat::Rollback(a) => stress::rollback(a),

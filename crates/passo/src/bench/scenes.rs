@@ -212,3 +212,32 @@ pub(super) fn tiles(args: &TilesBenchArgs) -> Result<()> {
     }
     Ok(())
 }
+
+/// `passo bench slopes`: the rain onto hilly ground of segments and of
+/// boxes, alternately.
+pub(super) fn slopes(args: &TilesBenchArgs) -> Result<()> {
+    println!(
+        "| ground | static bodies | bodies | ticks | ms per step (mean) | ms per step (last fifth) | max penetration (mm) |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    let scenes: [(&str, bool); 2] = [("1000 segments (a chain)", false), ("1000 boxes", true)];
+    for _ in 0..args.rounds {
+        for (name, boxes) in scenes {
+            let mut world = passo_benches::rain_on_hills(args.bodies as usize, boxes);
+            let statics = world
+                .bodies()
+                .filter(|b| b.kind == BodyKind::Static)
+                .count();
+            let t = time_steps(args.ticks, || world.step(1.0 / 60.0));
+            println!(
+                "| {name} | {statics} | {} | {} | {:.2} | {:.2} | {:.1} |",
+                args.bodies,
+                args.ticks,
+                t.mean_ms,
+                t.last_ms,
+                world.max_penetration() * 1e3
+            );
+        }
+    }
+    Ok(())
+}
