@@ -4,3 +4,4 @@
 pub mod netplay;
 #[path = "platformer_game.rs"]
 pub mod platformer;
+pub mod window;

@@ -93,20 +93,25 @@ pub struct Platformer {
 }
 
 impl Platformer {
-    /// Loads the level of a scene file and puts the player at its `player`
-    /// spawn point.
+    /// Loads the level of a scene file and puts the player, a box, at its
+    /// `player` spawn point.
     pub fn load(scene: &Path) -> Result<Self, String> {
+        Self::load_with(scene, "player", Shape::rect(PLAYER_SIZE.x, PLAYER_SIZE.y))
+    }
+
+    /// Loads the level of a scene file and puts a player of `shape` at its
+    /// spawn point named `spawn`.
+    pub fn load_with(scene: &Path, spawn: &str, shape: Shape) -> Result<Self, String> {
         let scene = Scene::load(scene).map_err(|e| e.to_string())?;
         let mut built: BuiltScene = scene.build().map_err(|e| e.to_string())?;
-        let &(_, spawn) = built
+        let &(_, at) = built
             .spawns
             .iter()
-            .find(|(name, _)| name == "player")
-            .ok_or("the level has no `player` spawn point")?;
+            .find(|(name, _)| name == spawn)
+            .ok_or_else(|| format!("the level has no `{spawn}` spawn point"))?;
         let mover = CharacterMover::default();
-        let start = spawn + Vec2::new(0.0, 0.5 * PLAYER_SIZE.y + mover.skin);
-        let def =
-            BodyDef::new_kinematic(start, Shape::rect(PLAYER_SIZE.x, PLAYER_SIZE.y), Vec2::ZERO);
+        let start = at + Vec2::new(0.0, shape.half_extents().y + mover.skin);
+        let def = BodyDef::new_kinematic(start, shape, Vec2::ZERO);
         let player = built.world.add_body(def).map_err(|e| e.to_string())?;
         built.bodies.push(SceneBody {
             id: player,

@@ -6,11 +6,23 @@ use passo_render::RgbaImage;
 use std::path::PathBuf;
 use std::process::Command;
 
-/// The example's binary, which `cargo test` builds beside the tests.
-fn example() -> PathBuf {
+/// An example's binary, which `cargo test` builds beside the tests.
+fn example(name: &str) -> PathBuf {
     let exe = std::env::current_exe().unwrap();
     let profile_dir = exe.parent().unwrap().parent().unwrap();
-    profile_dir.join("examples").join("platformer")
+    profile_dir.join("examples").join(name)
+}
+
+/// Pixels of the player's orange in `image`.
+fn orange_pixels(image: &RgbaImage) -> usize {
+    (0..image.height)
+        .flat_map(|y| (0..image.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            image
+                .get(x, y)
+                .is_some_and(|p| p[0] > 200 && (90..130).contains(&p[1]) && p[2] < 90)
+        })
+        .count()
 }
 
 #[test]
@@ -24,7 +36,7 @@ fn the_scripted_player_reaches_the_goal_in_a_window() {
     let shot = dir.join("platformer.png");
     let out = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x800x24"])
-        .arg(example())
+        .arg(example("platformer"))
         .args([
             "--autopilot",
             "--until-goal",
@@ -46,14 +58,7 @@ fn the_scripted_player_reaches_the_goal_in_a_window() {
     assert!(stdout.contains("goal reached at tick"), "{stdout}");
     // The last frame shows the player (its orange) somewhere.
     let image = RgbaImage::load_png(&shot).unwrap();
-    let orange = (0..image.height)
-        .flat_map(|y| (0..image.width).map(move |x| (x, y)))
-        .filter(|&(x, y)| {
-            image
-                .get(x, y)
-                .is_some_and(|p| p[0] > 200 && (90..130).contains(&p[1]) && p[2] < 90)
-        })
-        .count();
+    let orange = orange_pixels(&image);
     assert!(orange > 100, "{orange} orange pixels");
     // The HUD: the coin's gold at the top left, and the coins taken of
     // the three as gold digits beside it (lit pixels between x 50 and 110).
@@ -68,4 +73,44 @@ fn the_scripted_player_reaches_the_goal_in_a_window() {
         .filter(|&(x, y)| gold(image.get(x, y)))
         .count();
     assert!(digits > 60, "{digits} gold pixels of the HUD's digits");
+}
+
+#[test]
+fn the_slopes_example_runs_its_capsule_over_the_slopes_in_a_window() {
+    let dir = std::env::temp_dir().join(format!("passo-slopes-{}", std::process::id()));
+    let runtime = dir.join("runtime");
+    std::fs::create_dir_all(&runtime).unwrap();
+    let shot = dir.join("slopes.png");
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24"])
+        .arg(example("slopes"))
+        .args([
+            "--autopilot",
+            "--frames",
+            "240",
+            "--software",
+            "--screenshot",
+        ])
+        .arg(&shot)
+        .env("XDG_RUNTIME_DIR", &runtime)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "the example failed:\n{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Over the hill and up the ramp, at the steep wall or past it: the
+    // line ends "player at (x, y)".
+    let x: f32 = stdout
+        .rsplit("player at (")
+        .next()
+        .and_then(|rest| rest.split(',').next())
+        .and_then(|x| x.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no position in {stdout}"));
+    assert!(x > 20.0, "{stdout}");
+    // The capsule in the last frame.
+    let image = RgbaImage::load_png(&shot).unwrap();
+    assert!(orange_pixels(&image) > 100, "{stdout}");
 }
