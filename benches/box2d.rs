@@ -115,6 +115,11 @@ pub fn copy(passo: &World, sleep: bool) -> Box2d {
                 body.create_chain_segment(&shape_def, &segment)
                     .expect("a chain segment shape");
             }
+            Shape::Polygon(polygon) => {
+                let points = polygon.vertices().iter().map(|v| [v.x, v.y]);
+                body.create_polygon_from_points(&shape_def, points, 0.0)
+                    .expect("a polygon shape");
+            }
         }
         bodies.push((b.id, id));
     }

@@ -72,6 +72,14 @@ fn rapier_copy(passo: &World, sleep: bool) -> Rapier {
             Shape::Segment { half } | Shape::ChainSegment { half, .. } => {
                 ColliderBuilder::segment((-half).to_array().into(), half.to_array().into())
             }
+            Shape::Polygon(polygon) => {
+                let points: Vec<_> = polygon
+                    .vertices()
+                    .iter()
+                    .map(|v| v.to_array().into())
+                    .collect();
+                ColliderBuilder::convex_polygon(&points).expect("a convex polygon")
+            }
         }
         .friction(0.6)
         .restitution(0.0)

@@ -202,6 +202,13 @@ impl App {
                 Some(Shape::Segment { half } | Shape::ChainSegment { half, .. }) => {
                     r.list.line(at - half, at + half, 3.0, colour.colour.0)
                 }
+                Some(Shape::Polygon(polygon)) => {
+                    let v = polygon.vertices();
+                    for (i, a) in v.iter().enumerate() {
+                        let b = v[(i + 1) % v.len()];
+                        r.list.line(at + *a, at + b, 3.0, colour.colour.0);
+                    }
+                }
                 None => {}
             }
         }

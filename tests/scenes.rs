@@ -500,3 +500,44 @@ fn chains_in_scene_files_are_sloped_ground_and_bad_ones_name_their_field() {
         assert!(error.contains("chains[0]"), "{to}: {error}");
     }
 }
+
+#[test]
+fn polygons_in_scene_files_build_save_and_bad_ones_are_refused() {
+    let text = r#"(name: "Rock", collisions: (), forces: (gravity: (0, -9.81)), bodies: [
+        (name: "rock", kind: Static, shape: Polygon([(-2, 0), (2, 0), (2, 1), (0, 1.5)]), position: (0, 0)),
+        (name: "crate", shape: Box(half_extents: (0.25, 0.25)), position: (0.5, 3)),
+    ])"#;
+    let scene = Scene::parse(text, "rock.ron").unwrap();
+    let mut built = scene.build().unwrap();
+    for _ in 0..120 {
+        built.step(1.0 / 60.0);
+    }
+    let saved = scene_from_world(&built.world, &scene.file, &built.bodies);
+    let again = Scene {
+        file: saved,
+        source: "saved".into(),
+    };
+    let again = Scene::parse(&again.to_ron(), "again.ron")
+        .unwrap()
+        .build()
+        .unwrap();
+    assert_eq!(again.world.state_hash(), built.world.state_hash());
+    for (from, to, why) in [
+        ("(2, 1), (0, 1.5)", "(0.5, 0.2), (0, 1.5)", "convex"),
+        (
+            "(-2, 0), (2, 0), (2, 1), (0, 1.5)",
+            "(-2, 0), (2, 0)",
+            "3 to 8",
+        ),
+        (
+            "kind: Static, shape: Polygon",
+            "kind: Dynamic, shape: Polygon",
+            "Static or Kinematic",
+        ),
+    ] {
+        let error = Scene::parse(&text.replace(from, to), "bad.ron")
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains(why), "{to}: {error}");
+    }
+}

@@ -80,6 +80,7 @@ pub use forces::models::{
 pub use geometry::aabb::Aabb;
 #[doc(hidden)]
 pub use geometry::manifold::{Manifold, collide};
+pub use geometry::polygon::{ConvexPolygon, MAX_POLYGON_VERTICES};
 pub use geometry::shape::Shape;
 pub use glam;
 pub use id::BodyId;

@@ -259,6 +259,16 @@ impl BodySpec {
                         ));
                     }
                 }
+                // Checked as it was read.
+                Shape::Polygon(_) => {
+                    if self.kind == passo_physics::BodyKind::Dynamic {
+                        return Err(c.fail(
+                            &at("shape"),
+                            "a polygon is level geometry: only a Static or Kinematic body may have one"
+                                .to_owned(),
+                        ));
+                    }
+                }
             }
         }
         if self.mass.is_some() && self.density.is_some() {

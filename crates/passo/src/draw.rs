@@ -214,6 +214,14 @@ pub fn add_world_hiding(
                 Some(Shape::Segment { half } | Shape::ChainSegment { half, .. }) => {
                     list.line(p - half, p + half, SEGMENT_WIDTH_PX, colour)
                 }
+                // Its outline.
+                Some(Shape::Polygon(polygon)) => {
+                    let v = polygon.vertices();
+                    for (i, a) in v.iter().enumerate() {
+                        let b = v[(i + 1) % v.len()];
+                        list.line(p + *a, p + b, SEGMENT_WIDTH_PX, colour);
+                    }
+                }
                 None => list.circle(p, options.point_radius, colour),
             }
         }

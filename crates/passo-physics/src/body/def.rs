@@ -284,11 +284,11 @@ impl BodyDef {
         }
         if let Some(shape) = &self.shape {
             shape.validate()?;
-            if shape.is_line() && self.kind == BodyKind::Dynamic {
+            if shape.is_level_only() && self.kind == BodyKind::Dynamic {
                 return Err(PhysicsError::OutOfRange {
                     what: "BodyDef::shape",
                     value: 0.0,
-                    allowed: "a segment or chain segment only on static and kinematic bodies (it has no area)",
+                    allowed: "a segment, chain segment or polygon only on static and kinematic bodies",
                 });
             }
         }

@@ -103,17 +103,15 @@ pub(crate) fn cast_shape(
         // A line standing still, the other shape moving onto it; or a line
         // moving onto the other shape, which is the other shape moving the
         // opposite way onto the line where it starts.
-        (_, Shape::Segment { .. } | Shape::ChainSegment { .. }) => {
-            let line = Line::of(target, target_pos)?;
-            let (t, normal, point) = cast_line(moving.rounded(), start, d, &line)?;
-            (t, normal, point - target_pos)
-        }
-        (Shape::Segment { .. } | Shape::ChainSegment { .. }, _) => {
-            if target.is_line() {
+        (_, Shape::Segment { .. } | Shape::ChainSegment { .. } | Shape::Polygon(_)) => {
+            if moving.is_level_only() {
                 return None;
             }
-            let line = Line::of(moving, start)?;
-            let (t, normal, point) = cast_line(target.rounded(), target_pos, -d, &line)?;
+            let (t, normal, point) = cast_level(moving.rounded(), start, d, target, target_pos)?;
+            (t, normal, point - target_pos)
+        }
+        (Shape::Segment { .. } | Shape::ChainSegment { .. } | Shape::Polygon(_), _) => {
+            let (t, normal, point) = cast_level(target.rounded(), target_pos, -d, moving, start)?;
             // That point moved with the target; back where the target is.
             (t, -normal, point + d * t - target_pos)
         }
@@ -236,6 +234,24 @@ fn ray_box(o: Vec2, d: Vec2, h: Vec2) -> Option<(f32, Vec2)> {
 /// box, and the core's corners (grown by `r`) meeting the line. The
 /// shapes are apart at `o`. A hit the line does not allow (behind a chain
 /// segment, at a joint its neighbour owns) is no hit.
+/// [`cast_line`] against a line or a polygon (`level`, at `at`): a
+/// polygon is met first at one of its edges.
+fn cast_level(
+    rounded: (Vec2, f32),
+    o: Vec2,
+    d: Vec2,
+    level: &Shape,
+    at: Vec2,
+) -> Option<(f32, Vec2, Vec2)> {
+    match level {
+        Shape::Polygon(polygon) => polygon
+            .edges(at)
+            .filter_map(|edge| cast_line(rounded, o, d, &edge))
+            .min_by(|x, y| x.0.total_cmp(&y.0)),
+        _ => cast_line(rounded, o, d, &Line::of(level, at)?),
+    }
+}
+
 pub(crate) fn cast_line(
     (k, r): (Vec2, f32),
     o: Vec2,

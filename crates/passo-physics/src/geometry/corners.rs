@@ -150,7 +150,7 @@ pub(crate) fn over_a_step(
         (Shape::Circle { .. }, Shape::Circle { .. }) => None,
         (Shape::Capsule { .. }, _) | (_, Shape::Capsule { .. }) => None,
         // A chain's joints are smooth already.
-        (a, b) if a.is_line() || b.is_line() => None,
+        (a, b) if a.is_level_only() || b.is_level_only() => None,
         (Shape::Box { half_extents: ha }, Shape::Box { half_extents: hb })
             if (ha + hb - (pb - pa).abs()).max_element() > tolerance =>
         {

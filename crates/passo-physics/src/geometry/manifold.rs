@@ -71,9 +71,9 @@ fn collide_shapes(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Op
         (Shape::Circle { radius }, Shape::Box { half_extents }) => {
             box_circle(pb, half_extents, pa, radius).flipped()
         }
-        // A pair with a line (a segment or chain segment).
-        (Shape::Segment { .. } | Shape::ChainSegment { .. }, _)
-        | (_, Shape::Segment { .. } | Shape::ChainSegment { .. }) => {
+        // A pair with a line (a segment or chain segment) or a polygon.
+        (Shape::Segment { .. } | Shape::ChainSegment { .. } | Shape::Polygon(_), _)
+        | (_, Shape::Segment { .. } | Shape::ChainSegment { .. } | Shape::Polygon(_)) => {
             return with_line(sa, pa, sb, pb, margin);
         }
         // A pair with a capsule: two rounded boxes.
@@ -249,8 +249,9 @@ pub(crate) fn collide_seamless(
     (m.separation <= margin).then_some(m)
 }
 
-/// A pair with a line: the line's contact with the other shape, seen from
-/// A. Two lines never touch (only static and kinematic bodies have them).
+/// A pair with a line or a polygon: its contact with the other shape, seen
+/// from A. Two such shapes never touch (only static and kinematic bodies
+/// have them).
 #[inline(never)]
 fn with_line(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Option<Manifold> {
     use crate::geometry::segment::{Line, collide_line};
@@ -260,10 +261,22 @@ fn with_line(sa: &Shape, pa: Vec2, sb: &Shape, pb: Vec2, margin: f32) -> Option<
         points: c.points,
         point_count: c.point_count,
     };
-    let m = match (Line::of(sa, pa), Line::of(sb, pb)) {
-        (Some(line), None) => manifold(collide_line(&line, sb.rounded(), pb)?),
-        (None, Some(line)) => manifold(collide_line(&line, sa.rounded(), pa)?).flipped(),
-        _ => return None,
+    use crate::geometry::polygon::collide_polygon;
+    // Level geometry never meets level geometry (only static and
+    // kinematic bodies have it).
+    if sa.is_level_only() && sb.is_level_only() {
+        return None;
+    }
+    let m = match (sa, sb) {
+        (Shape::Polygon(polygon), _) => manifold(collide_polygon(polygon, pa, sb.rounded(), pb)),
+        (_, Shape::Polygon(polygon)) => {
+            manifold(collide_polygon(polygon, pb, sa.rounded(), pa)).flipped()
+        }
+        _ => match (Line::of(sa, pa), Line::of(sb, pb)) {
+            (Some(line), None) => manifold(collide_line(&line, sb.rounded(), pb)?),
+            (None, Some(line)) => manifold(collide_line(&line, sa.rounded(), pa)?).flipped(),
+            _ => return None,
+        },
     };
     (m.separation <= margin).then_some(m)
 }

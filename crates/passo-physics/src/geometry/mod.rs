@@ -3,6 +3,7 @@
 pub(crate) mod aabb;
 pub(crate) mod shape;
 pub(crate) mod segment;
+pub(crate) mod polygon;
 pub(crate) mod ray;
 pub(crate) mod manifold;
 pub(crate) mod corners;

@@ -19,6 +19,7 @@ pub(crate) fn shape_contains(shape: &Shape, p: Vec2, point: Vec2) -> bool {
         }
         // No area: no point is inside.
         Shape::Segment { .. } | Shape::ChainSegment { .. } => false,
+        Shape::Polygon(polygon) => polygon.contains(p, point),
     }
 }
 
@@ -40,6 +41,11 @@ pub(crate) fn ray_shape(
             let line = crate::geometry::segment::Line::of(shape, p)?;
             crate::geometry::segment::ray_line(&line, origin, dir, max_t)
         }
+        // Its first edge along the ray (the origin is outside).
+        Shape::Polygon(polygon) => polygon
+            .edges(p)
+            .filter_map(|e| crate::geometry::segment::ray_line(&e, origin, dir, max_t))
+            .min_by(|x, y| x.0.total_cmp(&y.0)),
         Shape::Capsule {
             half_segment,
             radius,

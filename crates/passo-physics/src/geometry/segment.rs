@@ -33,7 +33,7 @@ pub(crate) struct LineContact {
 }
 
 impl LineContact {
-    fn one(normal: Vec2, separation: f32, point: Vec2) -> Self {
+    pub(crate) fn one(normal: Vec2, separation: f32, point: Vec2) -> Self {
         Self {
             normal,
             separation,
@@ -129,7 +129,7 @@ pub(crate) fn collide_line(line: &Line, (k, r): (Vec2, f32), c: Vec2) -> Option<
         return None;
     }
     let (ab, length_sq) = (line.b - line.a, (line.b - line.a).length_squared());
-    let nearest = closest(line, k, c);
+    let nearest = closest_features(line, k, c);
     let (m, separation, t) = match nearest {
         Some((distance, normal, t)) if distance > 0.0 => (normal, distance - r, t),
         // The core touches or crosses the line: out along the face normal
@@ -166,7 +166,7 @@ pub(crate) fn collide_line(line: &Line, (k, r): (Vec2, f32), c: Vec2) -> Option<
     if !line.allows(t, m) {
         return None;
     }
-    Some(points(line, k, r, c, m, separation))
+    Some(contact_points(line, k, r, c, m, separation))
 }
 
 /// The nearest points of the line and the core box `[c - k, c + k]` when
@@ -178,7 +178,7 @@ pub(crate) fn collide_line(line: &Line, (k, r): (Vec2, f32), c: Vec2) -> Option<
 /// core. Only an end facing a corner takes the direction between them.
 /// `None` when the line crosses or touches the core, or an end nearly
 /// touches a corner.
-fn closest(line: &Line, k: Vec2, c: Vec2) -> Option<(f32, Vec2, f32)> {
+pub(crate) fn closest_features(line: &Line, k: Vec2, c: Vec2) -> Option<(f32, Vec2, f32)> {
     let (a, b) = (line.a, line.b);
     let ab = b - a;
     if crosses_box(a, ab, c, k) {
@@ -267,7 +267,14 @@ fn support(k: Vec2, n: Vec2) -> f32 {
 /// The manifold with normal `m` and `separation`: the core's points
 /// nearest the line along `m` (a whole side where `m` is along an axis,
 /// clipped to the line), each midway between the two surfaces.
-fn points(line: &Line, k: Vec2, r: f32, c: Vec2, m: Vec2, separation: f32) -> LineContact {
+pub(crate) fn contact_points(
+    line: &Line,
+    k: Vec2,
+    r: f32,
+    c: Vec2,
+    m: Vec2,
+    separation: f32,
+) -> LineContact {
     let sign = |x: f32| {
         if x > 0.0 {
             1.0

@@ -2,6 +2,7 @@
 //! body; segments and chain segments (sloped ground) for static and
 //! kinematic ones. Bodies do not rotate.
 
+use crate::geometry::polygon::ConvexPolygon;
 use glam::Vec2;
 
 /// The shape of a body, centred on its position.
@@ -56,6 +57,10 @@ pub enum Shape {
         /// the body's position; `None` where the chain ends.
         after: Option<Vec2>,
     },
+    /// A convex polygon of up to 8 vertices about the body's position
+    /// ([`ConvexPolygon::new`]): a rock, a ramp, a wedge. Static and
+    /// kinematic bodies only.
+    Polygon(ConvexPolygon),
 }
 
 impl Shape {
@@ -109,16 +114,32 @@ impl Shape {
         }
     }
 
-    /// Whether the shape is a line (a segment or a chain segment): it has
-    /// no area, so only static and kinematic bodies may have it.
+    /// Whether the shape is a line (a segment or a chain segment).
     pub fn is_line(&self) -> bool {
         matches!(self, Self::Segment { .. } | Self::ChainSegment { .. })
+    }
+
+    /// Whether only static and kinematic bodies may have the shape: a
+    /// line (it has no area), or a polygon (level geometry; moving bodies
+    /// are circles, boxes and capsules).
+    pub fn is_level_only(&self) -> bool {
+        self.is_line() || matches!(self, Self::Polygon(_))
+    }
+
+    /// A convex polygon through `points`, relative to the body's position
+    /// (see [`ConvexPolygon::new`]).
+    ///
+    /// # Errors
+    /// As [`ConvexPolygon::new`].
+    pub fn polygon(points: &[Vec2]) -> Result<Self, crate::PhysicsError> {
+        ConvexPolygon::new(points).map(Self::Polygon)
     }
 
     /// Area in square metres (used to derive mass from density).
     pub fn area(&self) -> f32 {
         match *self {
             Self::Segment { .. } | Self::ChainSegment { .. } => 0.0,
+            Self::Polygon(polygon) => polygon.area(),
             Self::Circle { radius } => std::f32::consts::PI * radius * radius,
             Self::Box { half_extents } => 4.0 * half_extents.x * half_extents.y,
             Self::Capsule {
@@ -141,6 +162,7 @@ impl Shape {
                 radius,
             } => half_segment + Vec2::splat(radius),
             Self::Segment { half } | Self::ChainSegment { half, .. } => half.abs(),
+            Self::Polygon(polygon) => polygon.half_extents(),
         }
     }
 
@@ -160,6 +182,7 @@ impl Shape {
             // Not a rounded box: every pair with a line has its own case
             // first. As a thin box it is at least the right size.
             Self::Segment { half } | Self::ChainSegment { half, .. } => (half.abs(), 0.0),
+            Self::Polygon(polygon) => (polygon.half_extents(), 0.0),
         }
     }
 
@@ -210,6 +233,8 @@ impl Shape {
                 }
                 0.0
             }
+            // Checked when made.
+            Self::Polygon(_) => 0.0,
         };
         Ok(())
     }

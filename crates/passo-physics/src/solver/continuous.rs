@@ -397,8 +397,9 @@ fn shrunk(shape: Shape) -> Shape {
             half_segment,
             radius: by(radius),
         },
-        // Lines are never swept (they are static or kinematic).
-        line @ (Shape::Segment { .. } | Shape::ChainSegment { .. }) => line,
+        // Lines and polygons are never swept (they are static or
+        // kinematic).
+        level @ (Shape::Segment { .. } | Shape::ChainSegment { .. } | Shape::Polygon(_)) => level,
     }
 }
 

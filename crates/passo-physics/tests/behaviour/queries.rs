@@ -152,6 +152,8 @@ fn reference_ray(world: &World, origin: Vec2, dir: Vec2, max: f32) -> Option<(f3
                 let s = (a - origin).perp_dot(dir) / denom;
                 (denom != 0.0 && t >= 0.0 && (0.0..=1.0).contains(&s)).then_some(t)
             }
+            // Not in these worlds.
+            Shape::Polygon(_) => None,
         };
         if let Some(t) = t.filter(|&t| t <= max)
             && best.is_none_or(|(bt, id)| (t, b.id) < (bt, id))

@@ -404,3 +404,96 @@ fn bad_chains_are_refused_and_add_nothing() {
         .unwrap_err();
     assert!(error.to_string().contains("BodyDef::shape"), "{error}");
 }
+
+#[test]
+fn contacts_with_a_polygon_match_the_closed_form_for_every_shape() {
+    // A wedge: flat bottom 4 m wide, a slope up at `degrees` to a
+    // vertical back 2 m tall... kept convex: the slope face from (-2, 0)
+    // to (2, h). Each shape over the slope face, `gap` from it.
+    for degrees in [15.0f32, 26.5, 40.0] {
+        let h = 4.0 * degrees.to_radians().tan();
+        let wedge = Shape::polygon(&[Vec2::new(-2.0, 0.0), Vec2::new(2.0, 0.0), Vec2::new(2.0, h)])
+            .unwrap();
+        let u = Vec2::new(4.0, h).normalize();
+        let n = u.perp();
+        for (name, shape) in movers() {
+            let reach = support(&shape, n);
+            for along in [1.0f32, 2.0, 3.0] {
+                for gap in [0.3f32, 0.02, 0.0, -0.03] {
+                    let on_face = Vec2::new(-2.0, 0.0) + u * along;
+                    let centre = on_face + n * (reach + gap);
+                    let case = format!("{name} at {degrees}°, {along} along, gap {gap}");
+                    let m = collide(&wedge, Vec2::ZERO, &shape, centre, 1.0).unwrap();
+                    assert!((m.normal - n).length() < 1e-5, "{case}: {m:?}");
+                    assert!((m.separation - gap).abs() < 1e-5, "{case}: {m:?}");
+                    for p in m.points() {
+                        assert!(
+                            ((*p - Vec2::new(-2.0, 0.0)).dot(n) - 0.5 * gap).abs() < 1e-5,
+                            "{case}: {m:?}"
+                        );
+                    }
+                }
+            }
+            // Inside it, and on its middle: out by a face, defined.
+            for inside in [Vec2::new(1.5, 0.2), Vec2::new(0.7, 0.5 * h / 2.0)] {
+                let m = collide(&wedge, Vec2::ZERO, &shape, inside, 1.0).unwrap();
+                assert!(
+                    (m.normal.length() - 1.0).abs() < 1e-5 && m.separation < 0.0,
+                    "{name}: {m:?}"
+                );
+                let out = inside - m.normal * m.separation;
+                let touching = collide(&wedge, Vec2::ZERO, &shape, out, 1.0).unwrap();
+                assert!(
+                    touching.separation.abs() < 1e-4,
+                    "{name} from {inside}: {touching:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn bodies_rest_on_a_polygon_and_rays_meet_it_and_a_bad_one_is_refused() {
+    let mut world = World::default();
+    // A ramp of 20° (friction holds) as a static polygon.
+    let h = 4.0 * 20f32.to_radians().tan();
+    let ramp = world
+        .add_body(BodyDef::new_static(
+            Vec2::ZERO,
+            Shape::polygon(&[Vec2::new(-2.0, 0.0), Vec2::new(2.0, 0.0), Vec2::new(2.0, h)])
+                .unwrap(),
+        ))
+        .unwrap();
+    let n = Vec2::new(4.0, h).normalize().perp();
+    let start = Vec2::new(0.0, 0.5 * h) + n * (0.25 + 0.001);
+    let ball = world.add_body(BodyDef::new_dynamic(start, Shape::rect(0.5, 0.5)));
+    assert!(ball.is_ok());
+    for _ in 0..120 {
+        world.step(DT);
+    }
+    assert!(max_penetration(&world) < 0.006);
+    // A ray straight down meets the slope at its height.
+    let hit = world
+        .ray_cast(Vec2::new(-1.0, 5.0), -Vec2::Y, 10.0)
+        .unwrap();
+    assert_eq!(hit.body, ramp);
+    assert!((hit.distance - (5.0 - 0.25 * h)).abs() < 1e-5, "{hit:?}");
+    assert!((hit.normal - n).length() < 1e-5);
+    // Not convex, too few points, repeated, or on a dynamic body: refused.
+    let star = [
+        Vec2::ZERO,
+        Vec2::new(2.0, 0.0),
+        Vec2::new(1.0, 0.2),
+        Vec2::new(1.0, 2.0),
+    ];
+    assert!(Shape::polygon(&star).is_err());
+    assert!(Shape::polygon(&[Vec2::ZERO, Vec2::X]).is_err());
+    assert!(Shape::polygon(&[Vec2::ZERO, Vec2::X, Vec2::X, Vec2::Y]).is_err());
+    assert!(Shape::polygon(&[Vec2::ZERO, Vec2::X, Vec2::new(2.0, 0.0)]).is_err());
+    assert!(Shape::polygon(&[Vec2::ZERO; 9]).is_err());
+    let square = Shape::polygon(&[Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y]).unwrap();
+    let error = world
+        .add_body(BodyDef::new_dynamic(Vec2::ZERO, square))
+        .unwrap_err();
+    assert!(error.to_string().contains("BodyDef::shape"), "{error}");
+}

@@ -389,6 +389,17 @@ fn off_surface(shape: &Shape, p: Vec2, point: Vec2) -> f32 {
             let t = (local.dot(half) / half.length_squared()).clamp(-1.0, 1.0);
             (local - half * t).length()
         }
+        // The nearest edge.
+        Shape::Polygon(polygon) => {
+            let v = polygon.vertices();
+            (0..v.len())
+                .map(|i| {
+                    let (a, b) = (p + v[i], p + v[(i + 1) % v.len()]);
+                    let t = ((point - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+                    (point - (a + (b - a) * t)).length()
+                })
+                .fold(f32::INFINITY, f32::min)
+        }
     }
 }
 
@@ -539,6 +550,64 @@ fn random_casts_onto_segments_touch_at_the_hit_and_never_pass_through_one() {
                 if chain && (start - (target - half)).dot(normal) < 0.0 {
                     continue;
                 }
+                for i in 0..64 {
+                    let p = start + d * (i as f32 / 63.0);
+                    let s = sep(p);
+                    assert!(
+                        s.is_none_or(|s| s > -1e-4),
+                        "{context}: missed, but at {p} {s:?}"
+                    );
+                }
+            }
+        }
+    }
+    assert!(hits > 2000 && misses > 2000, "{hits} hits, {misses} misses");
+}
+
+#[test]
+fn random_casts_onto_polygons_touch_at_the_hit_and_never_pass_through_one() {
+    let mut rng = Lcg(0x901_760);
+    let (mut hits, mut misses) = (0, 0);
+    for case in 0..20_000 {
+        let a = rng.shape();
+        // A regular polygon of 3 to 8 sides, squashed and turned.
+        let sides = 3 + (rng.next() * 6.0) as usize;
+        let (radius, squash, turn) = (
+            rng.range(0.3, 3.0),
+            rng.range(0.3, 1.0),
+            rng.range(0.0, 6.3),
+        );
+        let points: Vec<Vec2> = (0..sides)
+            .map(|i| {
+                let angle = turn + std::f32::consts::TAU * i as f32 / sides as f32;
+                let p = Vec2::from_angle(angle) * radius;
+                Vec2::new(p.x, p.y * squash)
+            })
+            .collect();
+        let b = Shape::polygon(&points).unwrap();
+        let target = rng.vec(-3.0, 3.0);
+        let start = rng.vec(-8.0, 8.0);
+        let d = match case % 4 {
+            0 | 1 => (target - start) * rng.range(0.0, 2.0) + rng.vec(-2.0, 2.0),
+            _ => rng.vec(-12.0, 12.0),
+        };
+        let context = format!("case {case}: {a:?} at {start} by {d}, {b:?} at {target}");
+        let sep = |p: Vec2| collide(&a, p, &b, target, f32::INFINITY).map(|m| m.separation);
+        if sep(start).is_some_and(|s| s < 0.0) {
+            continue;
+        }
+        match cast_shape(&a, start, d, &b, target) {
+            Some(hit) => {
+                hits += 1;
+                assert!((0.0..=1.0).contains(&hit.fraction), "{context}: {hit:?}");
+                assert!(d.dot(hit.normal) <= 0.0, "{context}: {hit:?}");
+                let at = start + d * hit.fraction;
+                let s = sep(at).unwrap();
+                assert!(s.abs() < 1e-4, "{context}: {hit:?}, separation {s}");
+                assert!(off_surface(&a, at, hit.point) < 1e-4, "{context}: {hit:?}");
+            }
+            None => {
+                misses += 1;
                 for i in 0..64 {
                     let p = start + d * (i as f32 / 63.0);
                     let s = sep(p);
