@@ -10,7 +10,10 @@
 //!    (however fast), then out of anything it overlaps;
 //! 4. moves and slides: casts the shape along what is left of the
 //!    translation, stops a skin width short of the first hit, and keeps
-//!    the part of the motion along the surface; up to four times;
+//!    the part of the motion along the surface; up to four times. On the
+//!    ground and not jumping, the walk follows the ground instead: along
+//!    each slope no steeper than `max_slope`, at the walking speed, and
+//!    onto the next slope at a joint;
 //! 5. climbs a step no higher than `max_step` that blocks it while on the
 //!    ground (a static or kinematic one: a dynamic body is pushed);
 //! 6. snaps down onto ground up to `snap_down` below, when it was on the
