@@ -80,8 +80,7 @@ pub use forces::models::{
 pub use geometry::aabb::Aabb;
 #[doc(hidden)]
 pub use geometry::manifold::{Manifold, collide};
-pub use geometry::polygon::{ConvexPolygon, MAX_POLYGON_VERTICES};
-pub use geometry::shape::Shape;
+pub use geometry::shape::{ConvexPolygon, MAX_POLYGON_VERTICES, Shape};
 pub use glam;
 pub use id::BodyId;
 pub use query::diagnostics::StateHasher;

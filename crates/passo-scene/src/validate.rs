@@ -300,13 +300,7 @@ impl BodySpec {
         c.finite_vec(&at("position"), self.position)?;
         c.finite_vec(&at("velocity"), self.velocity)?;
         let m = &self.material;
-        c.range(
-            &at("material.restitution"),
-            m.restitution,
-            (0.0..=1.0).contains(&m.restitution),
-            "in [0, 1]",
-        )?;
-        c.non_negative(&at("material.friction"), m.friction, "")?;
+        check_surface(c, &at, m)?;
         c.non_negative(&at("material.drag_area"), m.drag_area, "m²")?;
         if let Some(v) = self.min_speed {
             c.non_negative(&at("min_speed"), v, "m/s")?;
@@ -374,16 +368,24 @@ impl ChainSpec {
                 "must be Static or Kinematic: a chain has no area, so no mass".to_owned(),
             ));
         }
-        let m = &self.material;
-        c.range(
-            &at("material.restitution"),
-            m.restitution,
-            (0.0..=1.0).contains(&m.restitution),
-            "in [0, 1]",
-        )?;
-        c.non_negative(&at("material.friction"), m.friction, "")?;
-        Ok(())
+        check_surface(c, &at, &self.material)
     }
+}
+
+/// A material's restitution, in [0, 1], and friction, >= 0; `at` names
+/// a field of the body or chain.
+fn check_surface(
+    c: &Check<'_>,
+    at: &dyn Fn(&str) -> String,
+    m: &crate::format::Material,
+) -> Result<(), SceneError> {
+    c.range(
+        &at("material.restitution"),
+        m.restitution,
+        (0.0..=1.0).contains(&m.restitution),
+        "in [0, 1]",
+    )?;
+    c.non_negative(&at("material.friction"), m.friction, "")
 }
 
 impl Generator {

@@ -244,8 +244,7 @@ fn cast_level(
     at: Vec2,
 ) -> Option<(f32, Vec2, Vec2)> {
     match level {
-        Shape::Polygon(polygon) => polygon
-            .edges(at)
+        Shape::Polygon(polygon) => crate::geometry::polygon::edges(polygon, at)
             .filter_map(|edge| cast_line(rounded, o, d, &edge))
             .min_by(|x, y| x.0.total_cmp(&y.0)),
         _ => cast_line(rounded, o, d, &Line::of(level, at)?),

@@ -335,10 +335,26 @@ fn box_box_faces(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2, faces_b: Faces) -> Mani
     let face = 0.5 * ((pa[axis] + sign * ha[axis]) + (pb[axis] - sign * hb[axis]));
     let lo = (pa[tangent_axis] - ha[tangent_axis]).max(pb[tangent_axis] - hb[tangent_axis]);
     let hi = (pa[tangent_axis] + ha[tangent_axis]).min(pb[tangent_axis] + hb[tangent_axis]);
+    face_points(normal, separation, axis, face, lo, hi)
+}
+
+/// A manifold with `normal` along `axis` whose points lie on the line
+/// `axis = face`: the two ends of the stretch `lo..hi` along the other
+/// axis, or one point midway where the stretch is empty (corner to
+/// corner, or an edge on a single point).
+#[inline(always)]
+fn face_points(
+    normal: Vec2,
+    separation: f32,
+    axis: usize,
+    face: f32,
+    lo: f32,
+    hi: f32,
+) -> Manifold {
     let point_at = |t: f32| {
         let mut p = Vec2::ZERO;
         p[axis] = face;
-        p[tangent_axis] = t;
+        p[1 - axis] = t;
         p
     };
     if lo < hi {
@@ -349,7 +365,6 @@ fn box_box_faces(pa: Vec2, ha: Vec2, pb: Vec2, hb: Vec2, faces_b: Faces) -> Mani
             point_count: 2,
         }
     } else {
-        // Corner to corner (or edge on a single point).
         Manifold::one(normal, separation, point_at(0.5 * (lo + hi)))
     }
 }
@@ -457,22 +472,7 @@ fn rounded_rounded(
         * ((pa[axis] + sign[axis] * (ka[axis] + ra)) + (pb[axis] - sign[axis] * (kb[axis] + rb)));
     let lo = (pa[tangent] - ka[tangent]).max(pb[tangent] - kb[tangent]);
     let hi = (pa[tangent] + ka[tangent]).min(pb[tangent] + kb[tangent]);
-    let point_at = |t: f32| {
-        let mut p = Vec2::ZERO;
-        p[axis] = face;
-        p[tangent] = t;
-        p
-    };
-    if lo < hi {
-        Manifold {
-            normal,
-            separation,
-            points: [point_at(lo), point_at(hi)],
-            point_count: 2,
-        }
-    } else {
-        Manifold::one(normal, separation, point_at(0.5 * (lo + hi)))
-    }
+    face_points(normal, separation, axis, face, lo, hi)
 }
 
 #[cfg(test)]

@@ -19,7 +19,7 @@ pub(crate) fn shape_contains(shape: &Shape, p: Vec2, point: Vec2) -> bool {
         }
         // No area: no point is inside.
         Shape::Segment { .. } | Shape::ChainSegment { .. } => false,
-        Shape::Polygon(polygon) => polygon.contains(p, point),
+        Shape::Polygon(polygon) => crate::geometry::polygon::contains(&polygon, p, point),
     }
 }
 
@@ -42,8 +42,7 @@ pub(crate) fn ray_shape(
             crate::geometry::segment::ray_line(&line, origin, dir, max_t)
         }
         // Its first edge along the ray (the origin is outside).
-        Shape::Polygon(polygon) => polygon
-            .edges(p)
+        Shape::Polygon(polygon) => crate::geometry::polygon::edges(&polygon, p)
             .filter_map(|e| crate::geometry::segment::ray_line(&e, origin, dir, max_t))
             .min_by(|x, y| x.0.total_cmp(&y.0)),
         Shape::Capsule {

@@ -2,7 +2,6 @@
 //! body; segments and chain segments (sloped ground) for static and
 //! kinematic ones. Bodies do not rotate.
 
-use crate::geometry::polygon::ConvexPolygon;
 use glam::Vec2;
 
 /// The shape of a body, centred on its position.
@@ -258,5 +257,113 @@ fn size(what: &'static str, value: f32) -> Result<f32, crate::PhysicsError> {
             value,
             allowed: "at most 1e6 m (MAX_SHAPE_SIZE)",
         })
+    }
+}
+
+/// Most vertices a polygon has.
+pub const MAX_POLYGON_VERTICES: usize = 8;
+
+/// A convex polygon of 3 to [`MAX_POLYGON_VERTICES`] vertices,
+/// counter-clockwise, relative to its body's position. Make one with
+/// [`ConvexPolygon::new`], which checks it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "Vec<Vec2>", into = "Vec<Vec2>")
+)]
+pub struct ConvexPolygon {
+    vertices: [Vec2; MAX_POLYGON_VERTICES],
+    count: u8,
+}
+
+impl ConvexPolygon {
+    /// The polygon through `points` (relative to the body's position), in
+    /// either order: stored counter-clockwise.
+    ///
+    /// # Errors
+    /// Fewer than 3 or more than 8 points, a point that is not finite or
+    /// farther than [`MAX_SHAPE_SIZE`](crate::constants::MAX_SHAPE_SIZE)
+    /// from the position, two points the same, three in a line, or a
+    /// polygon that is not convex.
+    pub fn new(points: &[Vec2]) -> Result<Self, crate::PhysicsError> {
+        let bad = |allowed: &'static str, value: f32| crate::PhysicsError::OutOfRange {
+            what: "ConvexPolygon points",
+            value,
+            allowed,
+        };
+        let n = points.len();
+        if !(3..=MAX_POLYGON_VERTICES).contains(&n) {
+            return Err(bad("3 to 8 points", n as f32));
+        }
+        for p in points {
+            crate::error::finite_vec("ConvexPolygon points", *p)?;
+            if p.abs().max_element() > crate::constants::MAX_SHAPE_SIZE {
+                return Err(bad(
+                    "within 1e6 m of the position (MAX_SHAPE_SIZE)",
+                    p.abs().max_element(),
+                ));
+            }
+        }
+        let mut vertices = [Vec2::ZERO; MAX_POLYGON_VERTICES];
+        vertices[..n].copy_from_slice(points);
+        // Counter-clockwise: every turn to the left.
+        let area: f32 = (0..n)
+            .map(|i| vertices[i].perp_dot(vertices[(i + 1) % n]))
+            .sum();
+        if area < 0.0 {
+            vertices[..n].reverse();
+        }
+        let turn = |i: usize| {
+            let (a, b, c) = (vertices[i], vertices[(i + 1) % n], vertices[(i + 2) % n]);
+            (b - a).perp_dot(c - b)
+        };
+        for i in 0..n {
+            if vertices[i] == vertices[(i + 1) % n] {
+                return Err(bad("no two points the same", i as f32));
+            }
+            let t = turn(i);
+            if t <= 0.0 {
+                return Err(bad("convex, with no three points in a line", i as f32));
+            }
+        }
+        Ok(Self {
+            vertices,
+            count: n as u8,
+        })
+    }
+
+    /// The vertices, counter-clockwise, relative to the body's position.
+    pub fn vertices(&self) -> &[Vec2] {
+        &self.vertices[..usize::from(self.count)]
+    }
+
+    /// Area, square metres.
+    pub fn area(&self) -> f32 {
+        let v = self.vertices();
+        0.5 * (0..v.len())
+            .map(|i| v[i].perp_dot(v[(i + 1) % v.len()]))
+            .sum::<f32>()
+    }
+
+    /// Half extents of the box about the body's position that holds it.
+    pub fn half_extents(&self) -> Vec2 {
+        self.vertices()
+            .iter()
+            .fold(Vec2::ZERO, |h, v| h.max(v.abs()))
+    }
+}
+
+impl TryFrom<Vec<Vec2>> for ConvexPolygon {
+    type Error = crate::PhysicsError;
+
+    fn try_from(points: Vec<Vec2>) -> Result<Self, Self::Error> {
+        Self::new(&points)
+    }
+}
+
+impl From<ConvexPolygon> for Vec<Vec2> {
+    fn from(polygon: ConvexPolygon) -> Self {
+        polygon.vertices().to_vec()
     }
 }

@@ -517,17 +517,24 @@ impl Walker<'_> {
     }
 }
 
-/// A walk of `dx` metres across, along ground whose normal is `normal`
-/// (pointing up): keeping the horizontal distance, or with
-/// `constant_speed` the distance along the ground.
-fn along_ground(dx: f32, normal: Vec2, constant_speed: bool) -> Vec2 {
+/// A move of `by` on ground whose normal is `normal` (pointing up): its
+/// walk across, `by.x`, along the ground, keeping the horizontal distance
+/// or with `constant_speed` the distance along the ground; and its fall,
+/// `by.y`, left out where the character stops on slopes, else slid down
+/// the ground.
+fn along_ground(by: Vec2, normal: Vec2, mover: &CharacterMover) -> Vec2 {
     // Along the ground, towards +x.
     let tangent = Vec2::new(normal.y, -normal.x);
-    if constant_speed {
-        tangent * dx
+    let walk = if mover.constant_speed {
+        tangent * by.x
     } else {
-        tangent * (dx / tangent.x)
+        tangent * (by.x / tangent.x)
+    };
+    if mover.stop_on_slope {
+        return walk;
     }
+    let fall = Vec2::new(0.0, by.y);
+    walk + fall - normal * fall.dot(normal)
 }
 
 impl World {
@@ -657,16 +664,7 @@ impl World {
         // it stays put.
         let walking = under.is_some() && translation.y <= 0.0;
         let mut remaining = match under {
-            Some(ground) if walking => {
-                let along = along_ground(translation.x, ground.normal, mover.constant_speed);
-                // The game's fall, along the ground: sliding down a slope.
-                let fall = Vec2::new(0.0, translation.y);
-                if mover.stop_on_slope {
-                    along
-                } else {
-                    along + fall - ground.normal * fall.dot(ground.normal)
-                }
-            }
+            Some(ground) if walking => along_ground(translation, ground.normal, mover),
             _ => translation,
         };
         for _ in 0..4 {
@@ -709,16 +707,8 @@ impl World {
             }
             at = next;
             remaining = if walking && hit.normal.y >= walker.ground_cos {
-                // Onto ground of another slope: along it, at the same pace
-                // (and sliding down it by what is left of the fall, if it
-                // does not stop on slopes).
-                let along = along_ground(left.x, hit.normal, mover.constant_speed);
-                let fall = Vec2::new(0.0, left.y);
-                if mover.stop_on_slope {
-                    along
-                } else {
-                    along + fall - hit.normal * fall.dot(hit.normal)
-                }
+                // Onto ground of another slope: along it, at the same pace.
+                along_ground(left, hit.normal, mover)
             } else {
                 left - hit.normal * left.dot(hit.normal)
             };

@@ -687,8 +687,8 @@ pub(crate) fn step_forces<'a>(
     )
 }
 
-mod tiles;
 pub(crate) mod chains;
+mod tiles;
 
 #[cfg(test)]
 mod tests;

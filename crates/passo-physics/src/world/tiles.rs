@@ -52,11 +52,7 @@ impl World {
         chains: &[crate::TileChain],
         kind: BodyKind,
     ) -> Result<Vec<BodyId>, PhysicsError> {
-        if kind == BodyKind::Dynamic {
-            return Err(PhysicsError::InvalidTileMap(
-                "a tile map is Static or Kinematic, not Dynamic".into(),
-            ));
-        }
+        level_kind(kind)?;
         let mut ids = Vec::new();
         for chain in chains {
             let tile = map.kinds()[usize::from(chain.kind)];
@@ -84,11 +80,7 @@ impl World {
         rects: &[crate::TileRect],
         kind: BodyKind,
     ) -> Result<Vec<BodyId>, PhysicsError> {
-        if kind == BodyKind::Dynamic {
-            return Err(PhysicsError::InvalidTileMap(
-                "a tile map is Static or Kinematic, not Dynamic".into(),
-            ));
-        }
+        level_kind(kind)?;
         let mut ids = Vec::with_capacity(rects.len());
         for rect in rects {
             let aabb = map.rect_aabb(rect);
@@ -108,4 +100,14 @@ impl World {
         }
         Ok(ids)
     }
+}
+
+/// A tile map's kind of body: static or kinematic.
+fn level_kind(kind: BodyKind) -> Result<(), PhysicsError> {
+    if kind == BodyKind::Dynamic {
+        return Err(PhysicsError::InvalidTileMap(
+            "a tile map is Static or Kinematic, not Dynamic".into(),
+        ));
+    }
+    Ok(())
 }

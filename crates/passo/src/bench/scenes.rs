@@ -184,46 +184,41 @@ pub(super) fn platforms(args: &PlatformsBenchArgs) -> Result<()> {
 pub(super) type MakeWorld = fn(usize) -> World;
 
 pub(super) fn tiles(args: &TilesBenchArgs) -> Result<()> {
-    println!(
-        "| ground | static boxes | bodies | ticks | ms per step (mean) | ms per step (last fifth) | max penetration (mm) |"
-    );
-    println!("|---|---:|---:|---:|---:|---:|---:|");
-    let scenes: [(&str, MakeWorld); 2] = [
-        ("three static boxes", rain_world),
-        ("1000 × 1000 tile map", rain_on_tile_map),
-    ];
-    for _ in 0..args.rounds {
-        for (name, make) in scenes {
-            let mut world = make(args.bodies as usize);
-            let statics = world
-                .bodies()
-                .filter(|b| b.kind == BodyKind::Static)
-                .count();
-            let t = time_steps(args.ticks, || world.step(1.0 / 60.0));
-            println!(
-                "| {name} | {statics} | {} | {} | {:.2} | {:.2} | {:.1} |",
-                args.bodies,
-                args.ticks,
-                t.mean_ms,
-                t.last_ms,
-                world.max_penetration() * 1e3
-            );
-        }
-    }
-    Ok(())
+    grounds(
+        args,
+        "static boxes",
+        &[
+            ("three static boxes", rain_world),
+            ("1000 × 1000 tile map", rain_on_tile_map),
+        ],
+    )
 }
 
 /// `passo bench slopes`: the rain onto hilly ground of segments and of
-/// boxes, alternately.
+/// boxes.
 pub(super) fn slopes(args: &TilesBenchArgs) -> Result<()> {
+    grounds(
+        args,
+        "static bodies",
+        &[
+            ("1000 segments (a chain)", |n| {
+                passo_benches::rain_on_hills(n, false)
+            }),
+            ("1000 boxes", |n| passo_benches::rain_on_hills(n, true)),
+        ],
+    )
+}
+
+/// A rain onto each kind of ground of `scenes`, alternately, so both meet
+/// the same machine; `statics` heads the column of static bodies.
+fn grounds(args: &TilesBenchArgs, statics: &str, scenes: &[(&str, MakeWorld)]) -> Result<()> {
     println!(
-        "| ground | static bodies | bodies | ticks | ms per step (mean) | ms per step (last fifth) | max penetration (mm) |"
+        "| ground | {statics} | bodies | ticks | ms per step (mean) | ms per step (last fifth) | max penetration (mm) |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|");
-    let scenes: [(&str, bool); 2] = [("1000 segments (a chain)", false), ("1000 boxes", true)];
     for _ in 0..args.rounds {
-        for (name, boxes) in scenes {
-            let mut world = passo_benches::rain_on_hills(args.bodies as usize, boxes);
+        for &(name, make) in scenes {
+            let mut world = make(args.bodies as usize);
             let statics = world
                 .bodies()
                 .filter(|b| b.kind == BodyKind::Static)
