@@ -430,17 +430,7 @@ fn capsules_in_scene_files_build_rest_and_save_and_bad_ones_name_their_field() {
             .position;
         assert!((p.y - half_height).abs() < 0.006, "{name}: {p}");
     }
-    let saved = scene_from_world(&built.world, &scene.file, &built.bodies);
-    let text_again = Scene {
-        file: saved,
-        source: "saved".into(),
-    }
-    .to_ron();
-    let again = Scene::parse(&text_again, "again.ron")
-        .unwrap()
-        .build()
-        .unwrap();
-    assert_eq!(again.world.state_hash(), built.world.state_hash());
+    assert_saved_and_loaded_the_same(&scene, &built);
     let bad = text.replace("half_segment: (0.4, 0)", "half_segment: (0.4, 0.1)");
     let error = Scene::parse(&bad, "bad.ron").unwrap_err().to_string();
     assert!(
@@ -474,16 +464,7 @@ fn chains_in_scene_files_are_sloped_ground_and_bad_ones_name_their_field() {
     let ball = built.world.body(built.body_named("ball").unwrap()).unwrap();
     assert!((ball.position.y - 0.25).abs() < 0.006, "{ball:?}");
     // Saved and loaded again, the segments come back one by one.
-    let saved = scene_from_world(&built.world, &scene.file, &built.bodies);
-    let again = Scene {
-        file: saved,
-        source: "saved".into(),
-    };
-    let again = Scene::parse(&again.to_ron(), "again.ron")
-        .unwrap()
-        .build()
-        .unwrap();
-    assert_eq!(again.world.state_hash(), built.world.state_hash());
+    assert_saved_and_loaded_the_same(&scene, &built);
     // Each mistake names the chain.
     for (from, to) in [
         ("(0, 1), (2, 0)", "(0, 1), (0, 1)"),
@@ -512,16 +493,7 @@ fn polygons_in_scene_files_build_save_and_bad_ones_are_refused() {
     for _ in 0..120 {
         built.step(1.0 / 60.0);
     }
-    let saved = scene_from_world(&built.world, &scene.file, &built.bodies);
-    let again = Scene {
-        file: saved,
-        source: "saved".into(),
-    };
-    let again = Scene::parse(&again.to_ron(), "again.ron")
-        .unwrap()
-        .build()
-        .unwrap();
-    assert_eq!(again.world.state_hash(), built.world.state_hash());
+    assert_saved_and_loaded_the_same(&scene, &built);
     for (from, to, why) in [
         ("(2, 1), (0, 1.5)", "(0.5, 0.2), (0, 1.5)", "convex"),
         (
@@ -540,4 +512,18 @@ fn polygons_in_scene_files_build_save_and_bad_ones_are_refused() {
             .to_string();
         assert!(error.contains(why), "{to}: {error}");
     }
+}
+
+/// Saves a running world as a scene, reads it back and builds it: the
+/// same state.
+fn assert_saved_and_loaded_the_same(scene: &Scene, built: &passo_scene::BuiltScene) {
+    let saved = Scene {
+        file: scene_from_world(&built.world, &scene.file, &built.bodies),
+        source: "saved".into(),
+    };
+    let again = Scene::parse(&saved.to_ron(), "again.ron")
+        .unwrap()
+        .build()
+        .unwrap();
+    assert_eq!(again.world.state_hash(), built.world.state_hash());
 }

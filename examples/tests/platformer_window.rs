@@ -25,39 +25,40 @@ fn orange_pixels(image: &RgbaImage) -> usize {
         .count()
 }
 
-#[test]
-fn the_scripted_player_reaches_the_goal_in_a_window() {
+/// Runs example `name` with `args` on lavapipe under Xvfb, saving its last
+/// frame; returns what it printed and the frame.
+fn run_under_xvfb(name: &str, args: &[&str]) -> (String, RgbaImage) {
     if Command::new("xvfb-run").arg("--help").output().is_err() {
         panic!("xvfb-run is missing: install `xvfb xauth` (see the README) to run the window test");
     }
-    let dir = std::env::temp_dir().join(format!("passo-platformer-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("passo-{name}-{}", std::process::id()));
     let runtime = dir.join("runtime");
     std::fs::create_dir_all(&runtime).unwrap();
-    let shot = dir.join("platformer.png");
+    let shot = dir.join(format!("{name}.png"));
     let out = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x800x24"])
-        .arg(example("platformer"))
-        .args([
-            "--autopilot",
-            "--until-goal",
-            "--frames",
-            "20000",
-            "--software",
-            "--screenshot",
-        ])
+        .arg(example(name))
+        .args(args)
+        .args(["--software", "--screenshot"])
         .arg(&shot)
         .env("XDG_RUNTIME_DIR", &runtime)
         .output()
         .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        out.status.success(),
-        "the example failed:\n{stdout}\n{stderr}"
+    assert!(out.status.success(), "{name} failed:\n{stdout}\n{stderr}");
+    (stdout, RgbaImage::load_png(&shot).unwrap())
+}
+
+#[test]
+fn the_scripted_player_reaches_the_goal_in_a_window() {
+    let (stdout, shot) = run_under_xvfb(
+        "platformer",
+        &["--autopilot", "--until-goal", "--frames", "20000"],
     );
     assert!(stdout.contains("goal reached at tick"), "{stdout}");
     // The last frame shows the player (its orange) somewhere.
-    let image = RgbaImage::load_png(&shot).unwrap();
+    let image = shot;
     let orange = orange_pixels(&image);
     assert!(orange > 100, "{orange} orange pixels");
     // The HUD: the coin's gold at the top left, and the coins taken of
@@ -77,30 +78,7 @@ fn the_scripted_player_reaches_the_goal_in_a_window() {
 
 #[test]
 fn the_slopes_example_runs_its_capsule_over_the_slopes_in_a_window() {
-    let dir = std::env::temp_dir().join(format!("passo-slopes-{}", std::process::id()));
-    let runtime = dir.join("runtime");
-    std::fs::create_dir_all(&runtime).unwrap();
-    let shot = dir.join("slopes.png");
-    let out = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x800x24"])
-        .arg(example("slopes"))
-        .args([
-            "--autopilot",
-            "--frames",
-            "240",
-            "--software",
-            "--screenshot",
-        ])
-        .arg(&shot)
-        .env("XDG_RUNTIME_DIR", &runtime)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "the example failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let (stdout, shot) = run_under_xvfb("slopes", &["--autopilot", "--frames", "240"]);
     // Over the hill and up the ramp, at the steep wall or past it: the
     // line ends "player at (x, y)".
     let x: f32 = stdout
@@ -111,6 +89,5 @@ fn the_slopes_example_runs_its_capsule_over_the_slopes_in_a_window() {
         .unwrap_or_else(|| panic!("no position in {stdout}"));
     assert!(x > 20.0, "{stdout}");
     // The capsule in the last frame.
-    let image = RgbaImage::load_png(&shot).unwrap();
-    assert!(orange_pixels(&image) > 100, "{stdout}");
+    assert!(orange_pixels(&shot) > 100, "{stdout}");
 }
