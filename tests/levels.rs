@@ -28,13 +28,14 @@ fn level_ref(file: &str) -> TileMapRef {
 fn the_shipped_tiled_level_builds_with_its_cells_objects_and_spawn() {
     let scene = Scene::load(&assets().join("scenes/platformer.ron")).unwrap();
     let mut built = scene.build().unwrap();
-    // The players' spawn points: Tiled (32, 208) and (144, 208) px in a
-    // map 240 px tall, 16 px tiles of 0.5 m, y up.
+    // The players' spawn points: Tiled (32, 208), (144, 208) and (472,
+    // 224) px in a map 240 px tall, 16 px tiles of 0.5 m, y up.
     assert_eq!(
         built.spawns,
         vec![
             ("player".to_owned(), Vec2::new(1.0, 1.0)),
-            ("physics player".to_owned(), Vec2::new(4.5, 1.0))
+            ("physics player".to_owned(), Vec2::new(4.5, 1.0)),
+            ("slopes".to_owned(), Vec2::new(14.75, 0.5))
         ]
     );
     let world = &built.world;
@@ -92,8 +93,9 @@ fn the_tmx_and_tmj_forms_of_a_map_give_the_same_level() {
     let tmx = level_ref("../levels/first.tmx").load(&scene).unwrap();
     let tmj = level_ref("../levels/first.tmj").load(&scene).unwrap();
     assert_eq!(tmx, tmj);
-    assert_eq!((tmx.map.width(), tmx.map.height()), (30, 15));
-    assert_eq!(tmx.bodies.len(), 6);
+    assert_eq!((tmx.map.width(), tmx.map.height()), (48, 15));
+    assert_eq!(tmx.bodies.len(), 8);
+    assert_eq!(tmx.chains.len(), 3);
 }
 
 /// Every solid cell of the shipped level shows its tile of `blocks.png`
