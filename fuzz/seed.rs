@@ -49,6 +49,7 @@ fn main() {
 </tileset>"#;
     put("tsx", "set.tsx", set);
     put("ascii", "level.txt", b"....^...\n..--....\n#~~#####\n");
+    put("ascii", "slopes.txt", b"......./##\\...\n.....rR####Ff.\n##############\n");
     for (name, replay) in replays() {
         put("replay", name, replay.to_ron().as_bytes());
     }
