@@ -865,31 +865,38 @@ fn a_map_cannot_make_the_tiled_crate_build_without_bound() {
     assert!(err.contains("more than 262144 objects"), "{err}");
 }
 
-/// A map the `tmx` fuzz target found: its layer's CSV is cut by an element,
-/// and the `tiled` crate, which reads the text up to it alone, indexed past
-/// the tiles it had. It is refused before the crate reads it, with no
-/// panic (a panic, even caught, aborts a fuzzer, and prints in a game).
+/// Maps the `tmx` fuzz target found: a layer's CSV cut by an element
+/// (`tmx_short_first_section.tmx`), and cut by a `<layer>` tag, which must
+/// not change the size the data is held to (`tmx_layer_inside_data.tmx`).
+/// The `tiled` crate, which reads the text up to the element alone,
+/// indexed past the tiles it had. Each is refused before the crate reads
+/// it, with no panic (a panic, even caught, aborts a fuzzer, and prints in
+/// a game).
 #[test]
 fn a_layer_whose_text_an_element_cuts_short_is_refused_without_a_panic() {
-    let bytes = std::fs::read(
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fuzz_found/tmx_short_first_section.tmx"),
-    )
-    .unwrap();
-    let scene = map_file("short.tmx", &String::from_utf8_lossy(&bytes));
-    let hook = std::panic::take_hook();
-    let panicked = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
-    let flag = panicked.clone();
-    std::panic::set_hook(Box::new(move |_| {
-        flag.store(true, std::sync::atomic::Ordering::SeqCst)
-    }));
-    let result = level_ref("short.tmx").load(&scene);
-    std::panic::set_hook(hook);
-    let err = result.unwrap_err().to_string();
-    assert!(err.contains("cells whose data holds"), "{err}");
-    assert!(
-        !panicked.load(std::sync::atomic::Ordering::SeqCst),
-        "a panic was caught on the way"
-    );
+    for found in ["tmx_short_first_section.tmx", "tmx_layer_inside_data.tmx"] {
+        let bytes = std::fs::read(
+            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+                .join("fuzz_found")
+                .join(found),
+        )
+        .unwrap();
+        let scene = map_file(found, &String::from_utf8_lossy(&bytes));
+        let hook = std::panic::take_hook();
+        let panicked = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let flag = panicked.clone();
+        std::panic::set_hook(Box::new(move |_| {
+            flag.store(true, std::sync::atomic::Ordering::SeqCst)
+        }));
+        let result = level_ref(found).load(&scene);
+        std::panic::set_hook(hook);
+        let err = result.unwrap_err().to_string();
+        assert!(err.contains("cells whose data holds"), "{found}: {err}");
+        assert!(
+            !panicked.load(std::sync::atomic::Ordering::SeqCst),
+            "{found}: a panic was caught on the way"
+        );
+    }
 }
 
 #[test]

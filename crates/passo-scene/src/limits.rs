@@ -228,6 +228,10 @@ struct Data {
     encoding: Option<Encoding>,
     /// Its depth, to find its own end tag.
     depth: usize,
+    /// The cells of the layer it belongs to, as its `<layer>` tag said
+    /// when it began (a `<layer>` tag inside the data does not change
+    /// them).
+    cells: Option<u64>,
     /// Tiles read so far.
     tiles: u64,
     /// Its first text or CDATA section has been read: the `tiled` crate
@@ -329,7 +333,7 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
         } else if rest.starts_with(b"</") {
             if data.as_ref().is_some_and(|d| d.depth == depth) {
                 let d = data.take().expect("checked");
-                if let (Some(cells), Some(_)) = (cells, d.encoding)
+                if let (Some(cells), Some(_)) = (d.cells, d.encoding)
                     && d.tiles < cells
                 {
                     return Err(format!(
@@ -357,6 +361,7 @@ fn scan(bytes: &[u8], budget: u64) -> Result<(), String> {
                     data = Some(Data {
                         encoding: Encoding::of(tag)?,
                         depth,
+                        cells,
                         tiles: 0,
                         read: false,
                     });
@@ -678,6 +683,10 @@ mod tests {
             "1<!-- -->,1,1,1",
             "1,1<![CDATA[,1,1]]>",
             "\n<![CDATA[1,1,1,1]]>",
+            // A `<layer>` inside the data does not change the size the
+            // data must fill (found by the `tmx` fuzz target too).
+            r#"1,1<layer width="1" height="1">,1,1"#,
+            r#"1,1<layer width="x">,1,1"#,
         ] {
             let err = check_xml(layer(data).as_bytes()).unwrap_err();
             assert!(err.contains("4 cells"), "{data}: {err}");
