@@ -519,46 +519,13 @@ fn random_casts_onto_segments_touch_at_the_hit_and_never_pass_through_one() {
         if sep(start).is_some_and(|s| s < 0.0) {
             continue;
         }
-        match cast_shape(&a, start, d, &b, target) {
-            Some(hit) => {
-                hits += 1;
-                assert!((0.0..=1.0).contains(&hit.fraction), "{context}: {hit:?}");
-                assert!(
-                    (hit.normal.length() - 1.0).abs() < 1e-5,
-                    "{context}: {hit:?}"
-                );
-                assert!(d.dot(hit.normal) <= 0.0, "{context}: {hit:?}");
-                let at = start + d * hit.fraction;
-                let s = sep(at).unwrap_or_else(|| panic!("{context}: no contact at the hit"));
-                assert!(s.abs() < 1e-4, "{context}: {hit:?}, separation {s}");
-                if hit.fraction > 0.01 {
-                    let before = sep(start + d * (hit.fraction - 0.01));
-                    assert!(
-                        before.is_none_or(|s| s > -1e-4),
-                        "{context}: {hit:?} {before:?}"
-                    );
-                }
-                // The point is on the moving shape's surface.
-                assert!(off_surface(&a, at, hit.point) < 1e-4, "{context}: {hit:?}");
-            }
-            None => {
-                misses += 1;
-                // A plain segment is never passed through; a chain segment
-                // only from behind (once the centre is past its line, it
-                // is pushed out in front, as Box2D's chains do).
-                let normal = half.perp();
-                if chain && (start - (target - half)).dot(normal) < 0.0 {
-                    continue;
-                }
-                for i in 0..64 {
-                    let p = start + d * (i as f32 / 63.0);
-                    let s = sep(p);
-                    assert!(
-                        s.is_none_or(|s| s > -1e-4),
-                        "{context}: missed, but at {p} {s:?}"
-                    );
-                }
-            }
+        // A chain segment is passed from behind (once the centre is past
+        // its line, it is pushed out in front, as Box2D's chains do).
+        let behind = chain && (start - (target - half)).dot(half.perp()) < 0.0;
+        if cast_onto_level(&a, start, d, &b, target, !behind, &context) {
+            hits += 1;
+        } else {
+            misses += 1;
         }
     }
     assert!(hits > 2000 && misses > 2000, "{hits} hits, {misses} misses");
@@ -596,28 +563,59 @@ fn random_casts_onto_polygons_touch_at_the_hit_and_never_pass_through_one() {
         if sep(start).is_some_and(|s| s < 0.0) {
             continue;
         }
-        match cast_shape(&a, start, d, &b, target) {
-            Some(hit) => {
-                hits += 1;
-                assert!((0.0..=1.0).contains(&hit.fraction), "{context}: {hit:?}");
-                assert!(d.dot(hit.normal) <= 0.0, "{context}: {hit:?}");
-                let at = start + d * hit.fraction;
-                let s = sep(at).unwrap();
-                assert!(s.abs() < 1e-4, "{context}: {hit:?}, separation {s}");
-                assert!(off_surface(&a, at, hit.point) < 1e-4, "{context}: {hit:?}");
-            }
-            None => {
-                misses += 1;
-                for i in 0..64 {
-                    let p = start + d * (i as f32 / 63.0);
-                    let s = sep(p);
-                    assert!(
-                        s.is_none_or(|s| s > -1e-4),
-                        "{context}: missed, but at {p} {s:?}"
-                    );
-                }
-            }
+        if cast_onto_level(&a, start, d, &b, target, true, &context) {
+            hits += 1;
+        } else {
+            misses += 1;
         }
     }
     assert!(hits > 2000 && misses > 2000, "{hits} hits, {misses} misses");
+}
+
+/// Casts `a` from `start` by `d` onto level geometry `b` at `target`
+/// (apart at the start) and checks the answer: a hit touches, with a unit
+/// normal against the motion, overlaps nothing just before it, and its
+/// point is on `a`; a miss (checked if `check_miss`) overlaps nowhere on
+/// the way. Returns whether it hit.
+fn cast_onto_level(
+    a: &Shape,
+    start: Vec2,
+    d: Vec2,
+    b: &Shape,
+    target: Vec2,
+    check_miss: bool,
+    context: &str,
+) -> bool {
+    let sep = |p: Vec2| collide(a, p, b, target, f32::INFINITY).map(|m| m.separation);
+    let Some(hit) = cast_shape(a, start, d, b, target) else {
+        if check_miss {
+            for i in 0..64 {
+                let p = start + d * (i as f32 / 63.0);
+                let s = sep(p);
+                assert!(
+                    s.is_none_or(|s| s > -1e-4),
+                    "{context}: missed, but at {p} {s:?}"
+                );
+            }
+        }
+        return false;
+    };
+    assert!((0.0..=1.0).contains(&hit.fraction), "{context}: {hit:?}");
+    assert!(
+        (hit.normal.length() - 1.0).abs() < 1e-5,
+        "{context}: {hit:?}"
+    );
+    assert!(d.dot(hit.normal) <= 0.0, "{context}: {hit:?}");
+    let at = start + d * hit.fraction;
+    let s = sep(at).unwrap_or_else(|| panic!("{context}: no contact at the hit"));
+    assert!(s.abs() < 1e-4, "{context}: {hit:?}, separation {s}");
+    if hit.fraction > 0.01 {
+        let before = sep(start + d * (hit.fraction - 0.01));
+        assert!(
+            before.is_none_or(|s| s > -1e-4),
+            "{context}: {hit:?} {before:?}"
+        );
+    }
+    assert!(off_surface(a, at, hit.point) < 1e-4, "{context}: {hit:?}");
+    true
 }
