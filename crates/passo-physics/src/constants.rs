@@ -185,3 +185,24 @@ pub const PARALLEL_MIN_ITEMS: usize = 4096;
 /// tasks in large worlds: about two a thread.)
 #[doc(hidden)]
 pub const PARALLEL_CHUNK: usize = 1024;
+
+/// Stiffness of a rigid joint's position correction, hertz: 60, as in
+/// Box2D v3, and never above a quarter of the substep rate (a joint of a
+/// 60 Hz step with four substeps corrects at 60 Hz, one with one substep
+/// at 15 Hz).
+///
+/// A joint's velocity constraint is exact; its drift is removed by a
+/// spring of this frequency during the solve passes and the spring is
+/// taken out again in the relax passes (as the contacts' push is), so it
+/// adds no energy. Higher corrects faster and rings; lower lets a chain
+/// sag and stretch under a heavy load.
+pub const JOINT_HERTZ: f32 = 60.0;
+
+/// Damping ratio of a rigid joint's position correction: 2, as in
+/// Box2D v3 (over-damped: the drift goes without bounce).
+pub const JOINT_DAMPING_RATIO: f32 = 2.0;
+
+/// Most joints a world holds: 2^24 (16 777 216), as many as bodies can be
+/// paired in a grid of 4 096 × 4 096. A snapshot from a file holding more is
+/// refused before anything is allocated for them.
+pub const MAX_JOINTS: usize = 1 << 24;

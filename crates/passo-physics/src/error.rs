@@ -1,6 +1,6 @@
 //! Errors returned where values enter the physics API.
 
-use crate::id::BodyId;
+use crate::id::{BodyId, JointId};
 use std::fmt;
 
 /// Why the physics API refused a value.
@@ -26,6 +26,12 @@ pub enum PhysicsError {
     },
     /// The id names a body that was removed (or never existed in this world).
     StaleBody(BodyId),
+    /// The id names a joint that was removed or broke (or never existed in
+    /// this world).
+    StaleJoint(JointId),
+    /// A joint that cannot be made: both ends the same body, no dynamic
+    /// body to move, or contacts turned off (joints are solved with them).
+    InvalidJoint(&'static str),
     /// A snapshot that no world could have produced (a damaged file).
     InvalidSnapshot(String),
     /// A tile map that cannot be built: a character not in the legend, a
@@ -43,6 +49,8 @@ impl fmt::Display for PhysicsError {
                 allowed,
             } => write!(f, "{what} must be {allowed}, got {value}"),
             Self::StaleBody(id) => write!(f, "{id:?} does not name a body in this world"),
+            Self::StaleJoint(id) => write!(f, "{id:?} does not name a joint in this world"),
+            Self::InvalidJoint(why) => write!(f, "invalid joint: {why}"),
             Self::InvalidSnapshot(why) => write!(f, "invalid world snapshot: {why}"),
             Self::InvalidTileMap(why) => write!(f, "invalid tile map: {why}"),
         }

@@ -109,7 +109,7 @@ impl Islands {
         }
     }
 
-    /// Joins awake bodies that touch into islands and puts to sleep each
+    /// Joins awake bodies that touch, or that a joint links (`links`), into islands and puts to sleep each
     /// island whose bodies have all rested for [`TIME_TO_SLEEP`] (their
     /// velocities become exactly zero). Returns whether any island fell
     /// asleep.
@@ -124,6 +124,7 @@ impl Islands {
         bodies: &mut DynamicBodies,
         constraints: &[Constraint],
         infos: &[ContactInfo],
+        links: &[(u32, u32)],
         slop: f32,
         dt: f32,
     ) -> bool {
@@ -139,6 +140,12 @@ impl Islands {
                 !bodies.sleep[c.a as usize].is_asleep() && !bodies.sleep[b].is_asleep();
             if both_awake && (info.is_touching(c) || info.separation <= reach) {
                 self.union(c.a, b as u32);
+            }
+        }
+        // Bodies a joint links are one island, touching or not.
+        for &(a, b) in links {
+            if !bodies.sleep[a as usize].is_asleep() && !bodies.sleep[b as usize].is_asleep() {
+                self.union(a, b);
             }
         }
         self.least_rest.clear();

@@ -366,6 +366,7 @@ impl ContactWorld {
         &mut self,
         dynamic: &mut DynamicBodies,
         statics: &StaticBodies,
+        links: &[(u32, u32)],
         sleep: Option<(f32, f32)>,
         step: u64,
         parallel: bool,
@@ -377,8 +378,8 @@ impl ContactWorld {
             &self.motion.start,
         );
         if let Some((dt, slop)) = sleep {
-            self.sleeping
-                .after_step(&mut self.solved, dynamic, &self.motion.delta, dt, slop);
+            let moved = &self.motion.delta;
+            (self.sleeping).after_step(&mut self.solved, dynamic, links, moved, dt, slop);
         }
         self.events
             .record(&self.solved, &self.sleeping.list, step, parallel);
@@ -398,7 +399,7 @@ impl ContactWorld {
         self.solved.clear();
         self.narrow.sensor_candidates.clear();
         self.wake_all(dynamic);
-        self.end_step(dynamic, statics, None, step, false);
+        self.end_step(dynamic, statics, &[], None, step, false);
     }
 
     /// Wakes dynamic body `i` now and its island before anything needs it

@@ -211,12 +211,23 @@ impl SleepingContacts {
         &mut self,
         solved: &mut ContactList,
         dynamic: &mut DynamicBodies,
+        links: &[(u32, u32)],
         moved: &[Vec2],
         dt: f32,
         slop: f32,
     ) {
         self.islands.rest(dynamic, moved, dt);
         let mut woke = false;
+        // A joint between an awake body and a sleeping one wakes the
+        // sleeper's island (they share one once both are awake).
+        for &(a, b) in links {
+            let (a, b) = (a as usize, b as usize);
+            if dynamic.sleep[a].is_asleep() != dynamic.sleep[b].is_asleep() {
+                let sleeper = if dynamic.sleep[a].is_asleep() { a } else { b };
+                self.islands.wake_body(dynamic, sleeper);
+                woke = true;
+            }
+        }
         for (c, info) in solved.iter() {
             if c.is_static() || !info.is_touching(c) {
                 continue;
@@ -244,7 +255,7 @@ impl SleepingContacts {
         }
         if self
             .islands
-            .fall_asleep(dynamic, &solved.rows, &solved.infos, slop, dt)
+            .fall_asleep(dynamic, &solved.rows, &solved.infos, links, slop, dt)
         {
             self.store(solved, dynamic);
         }

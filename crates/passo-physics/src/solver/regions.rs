@@ -84,6 +84,9 @@ pub(crate) struct ContactRegions {
     /// The bodies at home in `far` that contacts between the regions
     /// move: copied to the solver's array for those contacts and back.
     far_between: Vec<u32>,
+    /// The step does not split whatever its size (it has joints, whose
+    /// passes read every body's state in the solver's array).
+    pub(crate) no_split: bool,
 }
 
 impl ContactRegions {
@@ -116,7 +119,7 @@ impl ContactRegions {
         parallel: bool,
     ) {
         let bodies = pos.len();
-        self.split = bodies >= SPLIT_BODIES;
+        self.split = bodies >= SPLIT_BODIES && !self.no_split;
         if !self.split {
             self.groups[0].build(rows, 0..rows.len(), bodies, deep);
             self.groups[1].clear();

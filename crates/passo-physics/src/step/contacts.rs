@@ -17,8 +17,9 @@ use crate::{ContactSettings, Integrator};
 use glam::Vec2;
 
 /// One stage of the contact step, in the order [`World::contact_stages`]
-/// lists them: the first eight run in every substep, the last four once
-/// after the substeps. The step runs the stages from that list, one
+/// lists them: the first eight run in every substep, the last five once
+/// after the substeps. Joints are solved in the warm start, solve and
+/// relax stages, before the contacts (as Box2D v3 does). The step runs the stages from that list, one
 /// function each.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ContactStage {
@@ -30,11 +31,13 @@ pub enum ContactStage {
     HoldKinematic,
     /// The last substep's impulses applied again (warm starting): from
     /// the cache in the first substep, then each body's velocity change in
-    /// the last substep (the same sum, with no pass over the contacts).
+    /// the last substep (the same sum, with no pass over the contacts or
+    /// joints).
     WarmStart,
-    /// Gauss-Seidel passes over the contacts: normal, friction, push
-    /// (after the pass that clears the pushes and measures the
-    /// separations, when there is no warm start to do it).
+    /// Gauss-Seidel passes over the joints, with their drift correction,
+    /// then over the contacts: normal, friction, push (after the pass that
+    /// clears the pushes and measures the separations, when there is no
+    /// warm start to do it).
     Solve,
     /// The contacts that hold bodies up against gravity solved once more,
     /// layer by layer from the ground up, each as if its lower body could
@@ -44,7 +47,7 @@ pub enum ContactStage {
     PropagateShock,
     /// Speed limits, then positions moved by velocity plus push.
     IntegratePositions,
-    /// Velocity passes at the new positions.
+    /// Velocity passes over the joints and contacts at the new positions.
     Relax,
     /// Bodies that moved farther than their speculative contacts reach
     /// swept along their paths and stopped at their first impact (only
@@ -54,6 +57,10 @@ pub enum ContactStage {
     Restitution,
     /// Each contact's separation at the end of the step, for queries.
     StoreSeparations,
+    /// Each joint's impulses kept for the next step's warm start, its force
+    /// measured, and the joints whose force went over their break force
+    /// removed (only with joints that can move something).
+    StoreJoints,
     /// Minimum-speed snap and maximum-speed clamp of the final velocities.
     ClampSpeeds,
 }
@@ -91,19 +98,19 @@ impl ContactStage {
 /// step allocates nothing to make it.
 #[derive(Clone, Copy, Debug)]
 struct StageList {
-    stages: [ContactStage; 12],
+    stages: [ContactStage; 13],
     len: usize,
 }
 
 impl StageList {
     /// No stage.
     const EMPTY: Self = Self {
-        stages: [ContactStage::Solve; 12],
+        stages: [ContactStage::Solve; 13],
         len: 0,
     };
 
     /// The stages whose condition holds, in order.
-    fn new(steps: [(bool, ContactStage); 12]) -> Self {
+    fn new(steps: [(bool, ContactStage); 13]) -> Self {
         let mut list = Self::EMPTY;
         for (on, stage) in steps {
             if on {
@@ -158,6 +165,8 @@ struct SubstepPlan {
     /// warm start, with a relax pass to measure the separations (the warm
     /// start pass does otherwise), and with a substep after the first.
     replay: bool,
+    /// Some joint can move a body this step.
+    joints: bool,
     /// The stages to run, in order.
     stages: StageList,
 }
@@ -202,6 +211,7 @@ impl SubstepPlan {
                     .gravity
                     .is_some_and(|g| g != Vec2::ZERO),
             replay: settings.warm_starting && settings.relax_iterations > 0 && substeps > 1,
+            joints: !world.joint_rows.rows.is_empty(),
             // Filled in from the rest of the plan just below.
             stages: StageList::EMPTY,
         };
@@ -224,6 +234,7 @@ impl SubstepPlan {
             (self.substeps > 0 && self.sweep, SweepFastBodies),
             (self.restitution, Restitution),
             (true, StoreSeparations),
+            (self.joints, StoreJoints),
             (self.limits.is_some(), ClampSpeeds),
         ])
     }
@@ -295,7 +306,11 @@ impl World {
                 self.parallel,
             );
         let any_asleep = cw.sleeping.any(&self.dynamic);
+        self.prepare_joints(params.h, settings.warm_starting);
         let plan = SubstepPlan::new(self, settings, dt, any_asleep, carry_push);
+        // Joints read and write any body's state: the contacts stay in one
+        // region, whose states all live in the solver's array.
+        cw.regions.no_split = self.joints.count > 0;
         cw.regions.build(
             &cw.solved.rows,
             &cw.motion.start,
@@ -350,16 +365,23 @@ impl World {
             let far = cw.regions.far_states().map(|(homes, far)| (homes, &*far));
             cw.motion
                 .unload(self.dynamic.vel.view_mut(), plan.replay, self.parallel, far);
+            if plan.replay && plan.joints {
+                self.joint_rows.untrack(&mut cw.motion.replay);
+            }
         }
         cw.regions.store(&mut cw.solved.rows, self.parallel);
         for &stage in after {
             self.run_after_substeps(stage, &mut cw, &plan);
         }
         resets += put_back_non_finite(&mut self.dynamic, &mut cw);
+        if resets > 0 {
+            self.joints.drop_non_finite();
+        }
         self.may_rest |= settings.sleeping;
         cw.end_step(
             &mut self.dynamic,
             &self.statics,
+            &self.joint_rows.links,
             settings.sleeping.then_some((dt, settings.slop)),
             self.stats.steps.saturating_add(1),
             self.parallel,
@@ -425,6 +447,7 @@ impl World {
             }
             Restitution => self.restitution(cw, plan),
             StoreSeparations => self.store_separations(cw),
+            StoreJoints => self.store_joints(),
             ClampSpeeds => self.clamp_speeds(plan),
             _ => unreachable!("{stage:?} runs in the substeps"),
         }
@@ -518,6 +541,12 @@ impl World {
     /// replayed (see `Start::Replay`) the velocities are warm started
     /// already: the pass then only carries the push in a deep pile.
     fn warm_start(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, pass: SubstepPass) {
+        if plan.joints {
+            // Every substep: the replay leaves the joints out (see
+            // `JointRows::untrack`).
+            let motion = &mut cw.motion;
+            self.joint_rows.warm_start(&mut motion.state, &motion.delta);
+        }
         if pass.fresh(plan) {
             // The first solve pass starts each push from zero instead.
             return;
@@ -547,6 +576,9 @@ impl World {
         let fresh = pass.fresh(plan);
         let (first, solve) = (Pass::fresh(&plan.solver), Pass::solve(&plan.solver, true));
         for k in 0..plan.solver.iterations {
+            if plan.joints {
+                self.joint_rows.solve(bodies.state, bodies.delta, true);
+            }
             let p = if fresh && k == 0 { &first } else { &solve };
             regions.run(&mut bodies, p, self.parallel);
         }
@@ -608,6 +640,9 @@ impl World {
         // The first pass measures the separations at the new positions.
         let (first, rest) = (Pass::relax(&plan.solver), Pass::solve(&plan.solver, false));
         for k in 0..plan.solver.relax_iterations {
+            if plan.joints {
+                self.joint_rows.solve(bodies.state, bodies.delta, false);
+            }
             let pass = if k == 0 { &first } else { &rest };
             regions.run(&mut bodies, pass, self.parallel);
         }
@@ -633,6 +668,37 @@ impl World {
             &motion.delta,
             self.parallel,
         );
+    }
+
+    /// The rows of the joints for a step of substep `h`.
+    fn prepare_joints(&mut self, h: f32, warm: bool) {
+        let mut rows = std::mem::take(&mut self.joint_rows);
+        if self.joints.count > 0 {
+            rows.prepare(&self.joints, h, warm, |id| self.joint_end(id));
+        } else {
+            rows.rows.clear();
+            rows.links.clear();
+        }
+        self.joint_rows = rows;
+    }
+
+    /// Stage after the substeps: each joint's impulses and force kept, and
+    /// the joints that broke removed.
+    fn store_joints(&mut self) {
+        let mut broken = Vec::new();
+        self.joint_rows
+            .store(&mut self.joints, |slot| broken.push(slot));
+        for slot in broken {
+            let generation = self.joints.slots[slot as usize].generation;
+            let id = crate::JointId {
+                index: slot,
+                generation,
+            };
+            let force = self.joints.get(id).map_or(0.0, |j| j.force);
+            if let Some(def) = self.remove_joint(id) {
+                (self.broken_joints).push(crate::BrokenJoint { id, def, force });
+            }
+        }
     }
 
     /// Stage after the substeps: the speed limits of the final velocities.

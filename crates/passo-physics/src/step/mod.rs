@@ -160,6 +160,7 @@ impl World {
             "World::step: dt must be finite and > 0 seconds, at most {MAX_STEP}, got {dt}"
         );
         let plan = self.plan();
+        self.broken_joints.clear();
         if plan.store_previous {
             debug_assert_eq!(self.dynamic.prev_pos.len(), self.dynamic.len());
             self.dynamic.prev_pos.copy_from(&self.dynamic.pos);

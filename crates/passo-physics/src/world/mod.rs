@@ -6,6 +6,7 @@
 pub(crate) mod settings;
 pub(crate) mod query_cache;
 pub(crate) mod edit;
+pub(crate) mod joints;
 pub(crate) mod snapshot;
 
 use crate::body::census::BodyCensus;
@@ -15,6 +16,8 @@ use crate::contact_world::ContactWorld;
 use crate::forces::integrator::Forces;
 use crate::forces::kernel::PointMassKernel;
 use crate::forces::models::{Dissipation, Drive};
+use crate::joint::solve::JointRows;
+use crate::joint::{BrokenJoint, Joints};
 use crate::switches::TestSwitches;
 use crate::world::query_cache::QueryCache;
 use crate::{
@@ -161,6 +164,11 @@ pub struct World {
     /// The step's shortcuts turned off (for tests, see [`TestSwitches`]).
     pub(crate) switches: TestSwitches,
     pub(crate) stats: StepStats,
+    /// The joints, and their rows of the current step (scratch).
+    pub(crate) joints: Joints,
+    pub(crate) joint_rows: JointRows,
+    /// The joints that broke in the last step.
+    pub(crate) broken_joints: Vec<BrokenJoint>,
 }
 
 impl Default for World {
@@ -206,6 +214,9 @@ impl World {
             parallel: true,
             switches: TestSwitches::default(),
             stats: StepStats::default(),
+            joints: Joints::default(),
+            joint_rows: JointRows::default(),
+            broken_joints: Vec::new(),
         })
     }
 
@@ -219,6 +230,11 @@ impl World {
     /// current positions.
     pub fn set_settings(&mut self, settings: WorldSettings) -> Result<(), PhysicsError> {
         settings.validate()?;
+        if settings.contacts.is_none() && self.joints.count > 0 {
+            return Err(PhysicsError::InvalidJoint(
+                "joints need contacts on: remove the joints before turning contacts off",
+            ));
+        }
         let limits_changed = settings.min_speed != self.settings.min_speed
             || settings.max_speed != self.settings.max_speed;
         if limits_changed && self.census.speed_overrides > 0 {
@@ -448,6 +464,7 @@ impl World {
     /// storage order changes; ids stay valid.
     pub fn remove_body(&mut self, id: BodyId) -> Option<Body> {
         let location = self.locate(id)?;
+        self.remove_joints_of(id);
         let body = self.view(location);
         let share = match location {
             Location::Dynamic(i) => BodyCensus::share(&self.dynamic.meta[i as usize], false),
@@ -528,14 +545,14 @@ impl World {
         self.dynamic.len()
     }
 
-    /// The contact settings if the contact stage runs: contacts are on, a
-    /// shaped dynamic or kinematic body exists and something else is
-    /// shaped.
+    /// The contact settings if the contact stage runs: contacts are on,
+    /// and a shaped dynamic or kinematic body exists and something else is
+    /// shaped, or some joint exists (joints are solved in its substeps).
     pub(crate) fn contact_settings(&self) -> Option<ContactSettings> {
         let contacts = self.settings().contacts?;
-        (self.census.shaped_dynamic > 0
-            && self.census.shaped_dynamic + self.census.shaped_static >= 2)
-            .then_some(contacts)
+        let shaped = self.census.shaped_dynamic > 0
+            && self.census.shaped_dynamic + self.census.shaped_static >= 2;
+        (shaped || self.joints.count > 0).then_some(contacts)
     }
 
     /// The fast kernel for the current settings, if it applies.

@@ -4,6 +4,7 @@ use crate::body::census::BodyCensus;
 use crate::body::store::{DynamicBodies, StaticBodies, heap};
 use crate::contact_world::ContactWorld;
 use crate::contact_world::state::ContactState;
+use crate::joint::Joints;
 use crate::world::{Location, Slot};
 use crate::{BodyDef, BodyKind, PhysicsError, StepStats, World, WorldSettings};
 use glam::Vec2;
@@ -42,6 +43,9 @@ pub struct WorldSnapshot {
     pub(crate) stats: StepStats,
     pub(crate) contacts: Option<ContactState>,
     pub(crate) custom_force_models: usize,
+    /// The joints, with their impulses.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub(crate) joints: Joints,
     /// The world (instance) and version of static bodies these statics
     /// are a copy of, so restoring into that world as it is skips them.
     /// Not saved: a snapshot from a file always copies them.
@@ -69,6 +73,7 @@ impl PartialEq for WorldSnapshot {
             && self.stats == other.stats
             && self.contacts == other.contacts
             && self.custom_force_models == other.custom_force_models
+            && self.joints == other.joints
     }
 }
 
@@ -86,6 +91,7 @@ impl WorldSnapshot {
             + self.dynamic.heap_bytes()
             + self.statics.heap_bytes()
             + self.contacts.as_ref().map_or(0, ContactState::heap_bytes)
+            + self.joints.heap_bytes()
     }
 
     /// Steps the world had taken.
@@ -118,6 +124,7 @@ impl WorldSnapshot {
         }
         self.check_slots(seen)?;
         self.check_counters()?;
+        self.check_joints()?;
         if let Some(contacts) = &self.contacts {
             contacts
                 .validate(&self.dynamic, &self.statics)
@@ -257,6 +264,26 @@ impl WorldSnapshot {
         Ok(())
     }
 
+    /// The joints: each well formed, naming live bodies, with contacts on.
+    fn check_joints(&self) -> Result<(), PhysicsError> {
+        self.joints.validate()?;
+        if self.joints.count > 0 && self.settings.contacts.is_none() {
+            return bad("joints with contacts off".into());
+        }
+        let live = |id: crate::BodyId| {
+            self.slots
+                .get(id.index as usize)
+                .is_some_and(|s| s.generation == id.generation && s.location.is_some())
+        };
+        for (id, joint) in self.joints.iter() {
+            let def = &joint.def;
+            if !live(def.a) || def.b.is_some_and(|b| !live(b)) {
+                return bad(format!("{id:?} names a body that does not exist"));
+            }
+        }
+        Ok(())
+    }
+
     fn check_slot(&self, id: crate::BodyId, location: Location) -> Result<(), PhysicsError> {
         match self.slots.get(id.index as usize) {
             Some(slot) if slot.generation == id.generation && slot.location == Some(location) => {
@@ -318,6 +345,7 @@ impl World {
             None => *contacts = None,
         }
         out.custom_force_models = self.custom.len();
+        out.joints.clone_from(&self.joints);
         out.made_here = true;
     }
 
@@ -355,6 +383,8 @@ impl World {
         }
         self.game_friction = snapshot.game_friction;
         self.stats = snapshot.stats;
+        self.joints.clone_from(&snapshot.joints);
+        self.broken_joints.clear();
         match (&snapshot.contacts, &mut self.contacts) {
             (Some(state), Some(cw)) => cw.restore(state, !same_statics),
             (Some(state), none) => *none = Some(Box::new(ContactWorld::resume(state.clone()))),

@@ -18,6 +18,7 @@ mod api_fuzz;
 mod collision_api;
 mod contact_reuse;
 mod hard_cases;
+mod joints;
 mod kinematic;
 mod mover;
 mod one_way;
