@@ -454,3 +454,29 @@ fn every_force_model_under_every_integrator_the_same_bits_as_always() {
         );
     }
 }
+
+/// A net of rods large enough that the per-body stages go to the thread
+/// pool (Box2D's joint grid without rotation, 70 × 70): the joints are
+/// solved on one thread, the rest in chunks, and the bits are the same
+/// with the pool or without, on one worker or two.
+#[test]
+fn joints_give_the_same_bits_whatever_the_number_of_threads() {
+    let hashes = |parallel: bool, threads: Option<usize>| {
+        let mut world = passo_benches::joint_grid(70);
+        assert!(world.dynamic_len() >= passo_physics::constants::PARALLEL_MIN_ITEMS);
+        world.set_parallel(parallel);
+        let mut run = || hashes_of_steps(&mut world, 60);
+        match threads {
+            Some(n) => rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+                .install(run),
+            None => run(),
+        }
+    };
+    let single = hashes(false, None);
+    assert_eq!(hashes(true, None), single, "the global pool");
+    assert_eq!(hashes(true, Some(1)), single, "one worker thread");
+    assert_eq!(hashes(true, Some(2)), single, "two worker threads");
+}

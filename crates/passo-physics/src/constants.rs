@@ -206,3 +206,7 @@ pub const JOINT_DAMPING_RATIO: f32 = 2.0;
 /// paired in a grid of 4 096 × 4 096. A snapshot from a file holding more is
 /// refused before anything is allocated for them.
 pub const MAX_JOINTS: usize = 1 << 24;
+
+/// Largest gravity scale a body may have, either way: 1000 (a body under a
+/// thousand times the world's gravity, 9.8 km/s² on Earth's).
+pub const MAX_GRAVITY_SCALE: f32 = 1000.0;

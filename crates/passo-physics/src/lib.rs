@@ -70,6 +70,7 @@ pub use body::material::FrictionMix;
 pub use body::tile_map::{
     ASCII_LEGEND, MAX_TILE_CELLS, Slope, TileChain, TileKind, TileMap, TileRect,
 };
+pub use contact::hooks::{ContactHooks, PairInfo, PreSolve};
 pub use contact::{Contact, ContactEvents, ContactPair, ContactSettings, SensorPair};
 pub use contact_world::StepCounters;
 pub use error::PhysicsError;
@@ -78,6 +79,7 @@ pub use forces::models::{
     CentralGravity, ForceForm, ForceModel, ForceModels, LinearDrag, QuadraticDrag, Spring,
     SurfaceFriction,
 };
+pub use forces::zones::{ForceZone, Liquid, Wind};
 pub use geometry::aabb::Aabb;
 #[doc(hidden)]
 pub use geometry::manifold::{Manifold, collide};

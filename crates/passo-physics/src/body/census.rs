@@ -26,6 +26,8 @@ pub(crate) struct BodyCensus {
     pub(crate) dropping: usize,
     /// Dynamic bodies with their own speed limits.
     pub(crate) speed_overrides: usize,
+    /// Dynamic bodies whose gravity scale is not 1.
+    pub(crate) gravity_scaled: usize,
 }
 
 impl BodyCensus {
@@ -38,6 +40,7 @@ impl BodyCensus {
             bouncy: usize::from(meta.restitution > 0.0),
             dropping: usize::from(moving && meta.drop_through > 0.0),
             speed_overrides: usize::from(moving && has_overrides(meta)),
+            gravity_scaled: usize::from(moving && !meta.kinematic && meta.gravity_scale != 1.0),
         }
     }
 
@@ -48,6 +51,7 @@ impl BodyCensus {
         self.bouncy += share.bouncy;
         self.dropping += share.dropping;
         self.speed_overrides += share.speed_overrides;
+        self.gravity_scaled += share.gravity_scaled;
     }
 
     /// Counts a body out.
@@ -63,6 +67,7 @@ impl BodyCensus {
         out(&mut self.bouncy, share.bouncy);
         out(&mut self.dropping, share.dropping);
         out(&mut self.speed_overrides, share.speed_overrides);
+        out(&mut self.gravity_scaled, share.gravity_scaled);
     }
 
     /// The census counted from the bodies.

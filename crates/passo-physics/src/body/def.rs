@@ -113,6 +113,12 @@ pub struct BodyDef {
     /// `false`. See
     /// [`SPECULATIVE_REACH`](crate::constants::SPECULATIVE_REACH).
     pub bullet: bool,
+    /// How much of the world's gravity acts on the body: 1 all of it (the
+    /// default), 0 none (a balloon's cargo, a floating pickup), -1 upward,
+    /// 2 twice. Finite, in `[-MAX_GRAVITY_SCALE, MAX_GRAVITY_SCALE]`. Dynamic
+    /// bodies only (kinematic and static ones feel no force).
+    #[cfg_attr(feature = "serde", serde(default = "one"))]
+    pub gravity_scale: f32,
     /// Minimum speed override, metres per second, >= 0; `None` (the default)
     /// uses the world's.
     pub min_speed: Option<f32>,
@@ -140,6 +146,7 @@ impl Default for BodyDef {
             sensor: false,
             one_way: None,
             bullet: false,
+            gravity_scale: 1.0,
             min_speed: None,
             max_speed: None,
             user_data: 0,
@@ -293,6 +300,7 @@ impl BodyDef {
             }
         }
         check_drag_area("BodyDef::drag_area", self.drag_area)?;
+        check_gravity_scale("BodyDef::gravity_scale", self.gravity_scale)?;
         check_friction("BodyDef::friction", self.friction)?;
         unit_interval("BodyDef::restitution", self.restitution)?;
         if let Some(normal) = self.one_way {
@@ -396,6 +404,8 @@ pub struct Body {
     pub one_way: Option<Vec2>,
     /// Whether the body is a bullet (see [`BodyDef::bullet`]).
     pub bullet: bool,
+    /// Its share of the world's gravity (see [`BodyDef::gravity_scale`]).
+    pub gravity_scale: f32,
     /// Minimum speed override, if any.
     pub min_speed: Option<f32>,
     /// Maximum speed override, if any.
@@ -431,9 +441,30 @@ impl Body {
             sensor: self.sensor,
             one_way: self.one_way,
             bullet: self.bullet,
+            gravity_scale: self.gravity_scale,
             min_speed: self.min_speed,
             max_speed: self.max_speed,
             user_data: self.user_data,
         }
+    }
+}
+
+/// Serde's default gravity scale.
+#[cfg(feature = "serde")]
+fn one() -> f32 {
+    1.0
+}
+
+/// Checks a gravity scale: finite, within `MAX_GRAVITY_SCALE` of zero.
+pub(crate) fn check_gravity_scale(what: &'static str, scale: f32) -> Result<f32, PhysicsError> {
+    crate::error::finite(what, scale)?;
+    if scale.abs() <= crate::constants::MAX_GRAVITY_SCALE {
+        Ok(scale)
+    } else {
+        Err(PhysicsError::OutOfRange {
+            what,
+            value: scale,
+            allowed: "in [-1000, 1000] (MAX_GRAVITY_SCALE)",
+        })
     }
 }

@@ -90,6 +90,9 @@ pub(crate) struct BodyMeta {
     /// `Constraint::new`.
     #[cfg_attr(feature = "serde", serde(default))]
     pub character: bool,
+    /// Its share of the world's gravity (see `BodyDef::gravity_scale`).
+    #[cfg_attr(feature = "serde", serde(default = "one"))]
+    pub gravity_scale: f32,
     pub min_speed: Option<f32>,
     pub max_speed: Option<f32>,
     pub user_data: u64,
@@ -116,12 +119,19 @@ impl BodyMeta {
             sensor: self.sensor,
             one_way: self.one_way,
             bullet: self.bullet,
+            gravity_scale: self.gravity_scale,
             min_speed: self.min_speed,
             max_speed: self.max_speed,
             user_data: self.user_data,
             asleep: false,
         }
     }
+}
+
+/// Serde's default gravity scale.
+#[cfg(feature = "serde")]
+fn one() -> f32 {
+    1.0
 }
 
 /// Flushes velocity components smaller than the smallest normal `f32`

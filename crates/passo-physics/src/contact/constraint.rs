@@ -9,7 +9,7 @@ use crate::geometry::manifold::Manifold;
 use glam::Vec2;
 
 /// What the solver reads and writes of one contact between a dynamic body
-/// A and a dynamic or static body B: kept small (52 bytes), so the passes
+/// A and a dynamic or static body B: kept small (56 bytes), so the passes
 /// over every contact stay in cache.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -32,6 +32,11 @@ pub(crate) struct Constraint {
     /// substep to substep in a deep pile).
     pub push_impulse: f32,
     pub max_normal_impulse: f32,
+    /// Speed of B's surface past A's along the tangent (`normal.perp()`)
+    /// that friction drives toward, m/s: zero but for a conveyor set by a
+    /// pre-solve hook (see `contact::hooks`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub tangent_speed: f32,
 }
 
 /// The rest of a contact: who, where, and what restitution needs.
@@ -74,7 +79,7 @@ pub(crate) struct ContactInfo {
     pub lead: f32,
 }
 
-const _: () = assert!(std::mem::size_of::<Constraint>() == 52);
+const _: () = assert!(std::mem::size_of::<Constraint>() == 56);
 
 /// The inverse masses of bodies `a` (dynamic) and `b` as a contact between
 /// them is solved this step, and the contact's effective mass `1 / (1/m_a +
@@ -180,6 +185,39 @@ impl ContactInfo {
     }
 }
 
+/// The normal velocity `u` at impact of a contact between dynamic body `a`
+/// and body `b` with `normal` and `separation` (see [`Constraint::new`]),
+/// and `a_n h / 2`. `holds`: whether each body holds still this step.
+#[inline(always)]
+pub(crate) fn impact(
+    dynamic: &DynamicBodies,
+    a: usize,
+    b: ColliderRef,
+    holds: (bool, bool),
+    (normal, separation): (Vec2, f32),
+    gravity: Vec2,
+    h: f32,
+) -> (f32, f32) {
+    let vel_b = b
+        .dynamic_index()
+        .map_or(Vec2::ZERO, |bi| dynamic.vel.at(bi));
+    let vn = (vel_b - dynamic.vel.at(a)).dot(normal);
+    // Relative normal acceleration: gravity moves only the bodies that
+    // are free to fall (a static or sleeping body holds).
+    let falls = |holds: bool| if holds { Vec2::ZERO } else { gravity };
+    let a_n = (falls(holds.1) - falls(holds.0)).dot(normal);
+    let half_an_h = 0.5 * a_n * h;
+    let u0 = vn + half_an_h;
+    let mut impact_u = u0;
+    if separation > 0.0 && (u0 < 0.0 || a_n < 0.0) {
+        let u2 = u0 * u0 - 2.0 * a_n * separation;
+        if u2 > 0.0 {
+            impact_u = -u2.sqrt();
+        }
+    }
+    (impact_u, half_an_h)
+}
+
 impl Constraint {
     /// The solver row and the rest of a new contact between dynamic body
     /// `a` and body `b`, from their manifold. (Inlined into the narrow
@@ -219,24 +257,8 @@ impl Constraint {
         // Only a pair that can bounce needs it (the restitution stage skips
         // the others), and only it reads the two velocities.
         let (impact_u, half_an_h) = if restitution > 0.0 {
-            let vel_b = b
-                .dynamic_index()
-                .map_or(Vec2::ZERO, |bi| dynamic.vel.at(bi));
-            let vn = (vel_b - dynamic.vel.at(ai)).dot(m.normal);
-            // Relative normal acceleration: gravity moves only the bodies
-            // that are free to fall (a static or sleeping body holds).
-            let falls = |holds: bool| if holds { Vec2::ZERO } else { gravity };
-            let a_n = (falls(b_holds) - falls(a_holds)).dot(m.normal);
-            let half_an_h = 0.5 * a_n * h;
-            let u0 = vn + half_an_h;
-            let mut impact_u = u0;
-            if m.separation > 0.0 && (u0 < 0.0 || a_n < 0.0) {
-                let u2 = u0 * u0 - 2.0 * a_n * m.separation;
-                if u2 > 0.0 {
-                    impact_u = -u2.sqrt();
-                }
-            }
-            (impact_u, half_an_h)
+            let holds = (a_holds, b_holds);
+            impact(dynamic, ai, b, holds, (m.normal, m.separation), gravity, h)
         } else {
             (0.0, 0.0)
         };
@@ -258,6 +280,7 @@ impl Constraint {
             tangent_impulse: 0.0,
             push_impulse: 0.0,
             max_normal_impulse: 0.0,
+            tangent_speed: 0.0,
         };
         let info = ContactInfo {
             id_a: dynamic.meta[ai].id,
@@ -305,6 +328,7 @@ impl Constraint {
             self.tangent_impulse,
             self.push_impulse,
             self.max_normal_impulse,
+            self.tangent_speed,
         ];
         numbers.iter().all(|x| x.is_finite())
             && (self.normal.length() - 1.0).abs() < 1e-3

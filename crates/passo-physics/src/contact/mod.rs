@@ -2,6 +2,7 @@
 //! can read about them after a step, and their events.
 
 pub(crate) mod constraint;
+pub(crate) mod hooks;
 
 use crate::constants::{
     CONTACT_PUSH_SPEED, DEFAULT_SUBSTEPS, LINEAR_SLOP, POSITION_CORRECTION, RESTITUTION_THRESHOLD,

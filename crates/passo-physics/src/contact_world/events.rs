@@ -421,6 +421,7 @@ mod tests {
             tangent_impulse: -n,
             push_impulse: 2.0 * n,
             max_normal_impulse: if touching { n } else { 0.0 },
+            tangent_speed: 0.0,
         };
         let info = ContactInfo {
             id_a: a,

@@ -112,6 +112,94 @@ pub(crate) struct ContactWorld {
 }
 
 impl ContactWorld {
+    /// Drops this step's contacts between bodies in `apart` (pairs by
+    /// their order key, sorted): bodies a joint links, which do not
+    /// collide unless the joint says so.
+    pub(crate) fn drop_joined(&mut self, apart: &[(crate::BodyId, crate::BodyId)]) {
+        if apart.is_empty() {
+            return;
+        }
+        let solved = &mut self.solved;
+        let mut kept = 0;
+        for i in 0..solved.rows.len() {
+            if apart.binary_search(&solved.infos[i].key()).is_err() {
+                solved.rows[kept] = solved.rows[i];
+                solved.infos[kept] = solved.infos[i];
+                kept += 1;
+            }
+        }
+        solved.rows.truncate(kept);
+        solved.infos.truncate(kept);
+    }
+
+    /// Runs the game's contact hooks over this step's contacts and sensor
+    /// candidates, in key order (see `ContactHooks`): drops the pairs the
+    /// filter refuses and the contacts a pre-solve disables, and takes the
+    /// friction, restitution and tangent speed each pre-solve sets.
+    /// `info` gives a body's id and user data.
+    pub(crate) fn run_hooks(
+        &mut self,
+        hooks: &dyn crate::ContactHooks,
+        dynamic: &DynamicBodies,
+        info: impl Fn(crate::BodyId) -> crate::PairInfo,
+        gravity: Vec2,
+        h: f32,
+    ) {
+        let solved = &mut self.solved;
+        let mut kept = 0;
+        for i in 0..solved.rows.len() {
+            let (mut row, mut ci) = (solved.rows[i], solved.infos[i]);
+            let (a, b) = (info(ci.id_a), info(ci.id_b));
+            if !hooks.filter_pair(&a, &b) {
+                continue;
+            }
+            let mut pre = crate::PreSolve {
+                a,
+                b,
+                normal: row.normal,
+                separation: row.base_separation - ci.lead,
+                enabled: true,
+                friction: row.friction,
+                restitution: ci.restitution,
+                tangent_speed: 0.0,
+            };
+            hooks.pre_solve(&mut pre);
+            if !pre.enabled {
+                continue;
+            }
+            // A value out of range keeps what the contact had.
+            if pre.friction.is_finite() && pre.friction >= 0.0 {
+                row.friction = pre.friction;
+            }
+            row.tangent_speed = if pre.tangent_speed.is_finite() {
+                pre.tangent_speed
+            } else {
+                0.0
+            };
+            let e = pre.restitution;
+            if (0.0..=1.0).contains(&e) && e != ci.restitution {
+                ci.restitution = e;
+                (ci.impact_u, ci.half_an_h) = if e > 0.0 {
+                    let holds = (row.inv_mass_a == 0.0, row.inv_mass_b == 0.0);
+                    let normal = (row.normal, row.base_separation);
+                    let (a, b) = (row.a as usize, row.b);
+                    crate::contact::constraint::impact(dynamic, a, b, holds, normal, gravity, h)
+                } else {
+                    (0.0, 0.0)
+                };
+            }
+            // A changed contact is found afresh each step.
+            ci.reusable = false;
+            solved.rows[kept] = row;
+            solved.infos[kept] = ci;
+            kept += 1;
+        }
+        solved.rows.truncate(kept);
+        solved.infos.truncate(kept);
+        (self.narrow.sensor_candidates)
+            .retain(|c| hooks.filter_pair(&info(c.pair.sensor), &info(c.pair.visitor)));
+    }
+
     pub(crate) fn new() -> Self {
         Self {
             proxies: Proxies::new(),

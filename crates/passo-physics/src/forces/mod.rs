@@ -3,3 +3,4 @@
 pub(crate) mod models;
 pub(crate) mod integrator;
 pub(crate) mod kernel;
+pub(crate) mod zones;

@@ -139,6 +139,11 @@ pub struct JointDef {
     /// (> 0; `None`: never). It is then removed at the end of the step and
     /// listed in [`World::broken_joints`](crate::World::broken_joints).
     pub break_force: Option<f32>,
+    /// Whether the two bodies still collide with each other. Default
+    /// `false`, as in Box2D: a door does not catch on its own frame, nor a
+    /// link of a chain on the next.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub collide: bool,
     /// A number of the game's own, for finding its object from the joint.
     pub user_data: u64,
 }
@@ -153,6 +158,7 @@ impl JointDef {
             anchor_b: Vec2::ZERO,
             kind,
             break_force: None,
+            collide: false,
             user_data: 0,
         }
     }
@@ -296,6 +302,13 @@ impl JointDef {
         if let JointKind::Target { max_force, .. } = &mut self.kind {
             *max_force = force;
         }
+        self
+    }
+
+    /// Lets the two bodies collide with each other (they do not by
+    /// default).
+    pub fn colliding(mut self) -> Self {
+        self.collide = true;
         self
     }
 
@@ -534,6 +547,20 @@ impl Joints {
             .filter(|(_, j)| j.def.a == body || j.def.b == Some(body))
             .map(|(id, _)| id)
             .collect()
+    }
+
+    /// The pairs of bodies a joint links that do not collide (its
+    /// `collide` is off), by their order key, sorted and each once, into
+    /// `out`.
+    pub(crate) fn apart(&self, out: &mut Vec<(BodyId, BodyId)>) {
+        out.clear();
+        for (_, joint) in self.iter() {
+            if let (false, Some(b)) = (joint.def.collide, joint.def.b) {
+                out.push(crate::contact::constraint::key(joint.def.a, b));
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
     }
 
     /// Drops impulses that overflowed `f32` (see `put_back_non_finite`).

@@ -142,10 +142,27 @@ pub(crate) struct JointRow {
     /// The joint's own spring, if any (every pass).
     spring: Option<Soft>,
     h: f32,
-    /// The velocity change the joint made to A and B in this substep (see
-    /// [`JointRows::untrack`]).
-    dva: Vec2,
-    dvb: Vec2,
+}
+
+/// Marks a rod's end that no state moves (a static body, the world).
+const NONE: u32 = u32::MAX;
+
+/// A rigid rod (a distance joint of one length and no spring), the most
+/// common joint (chains, bridges, nets), in a row of its own: 40 bytes
+/// against a general row's 120, so a pass over thousands streams a third
+/// of the memory.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RodRow {
+    /// Body A's and B's dynamic index, or [`NONE`].
+    a: u32,
+    b: u32,
+    ma: f32,
+    mb: f32,
+    mass: f32,
+    base: Vec2,
+    length: f32,
+    impulse: f32,
+    slot: u32,
 }
 
 /// The rows of a step, and the links between dynamic bodies that make
@@ -153,9 +170,19 @@ pub(crate) struct JointRow {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct JointRows {
     pub rows: Vec<JointRow>,
+    pub rods: Vec<RodRow>,
+    /// The rods' drift correction this step.
+    rigid: Option<Soft>,
+    /// The substep, seconds.
+    h: f32,
     /// Pairs of dynamic bodies (by index) a joint links: they sleep and
     /// wake together.
     pub links: Vec<(u32, u32)>,
+    /// Pairs of bodies a joint links that do not collide, by their order
+    /// key, sorted (scratch, see `Joints::apart`).
+    pub apart: Vec<(crate::BodyId, crate::BodyId)>,
+    /// Joints were added or removed since `apart` was made.
+    pub apart_stale: bool,
 }
 
 impl JointRows {
@@ -171,9 +198,11 @@ impl JointRows {
         locate: impl Fn(crate::BodyId) -> Option<End>,
     ) {
         self.rows.clear();
+        self.rods.clear();
         self.links.clear();
         let hertz = JOINT_HERTZ.min(0.25 / h);
         let rigid = Soft::new(hertz, JOINT_DAMPING_RATIO, h);
+        (self.rigid, self.h) = (Some(rigid), h);
         let world = End {
             body: None,
             pos: Vec2::ZERO,
@@ -193,13 +222,35 @@ impl JointRows {
                 // static): its impulses wait for the bodies to wake.
                 continue;
             }
+            let base = (b.pos + def.anchor_b) - (a.pos + def.anchor_a);
+            if let JointKind::Distance {
+                length,
+                min_length,
+                max_length,
+                spring: None,
+            } = def.kind
+                && min_length == max_length
+            {
+                self.rods.push(RodRow {
+                    a: a.body.unwrap_or(NONE),
+                    b: b.body.unwrap_or(NONE),
+                    ma: a.inv_mass,
+                    mb: b.inv_mass,
+                    mass: 1.0 / k,
+                    base,
+                    length,
+                    impulse: if warm { joint.impulses.linear.x } else { 0.0 },
+                    slot: id.index,
+                });
+                continue;
+            }
             let spring = match def.kind {
                 JointKind::Distance {
                     spring: Some(s),
                     min_length,
                     max_length,
                     ..
-                } if min_length < max_length => Some(Soft::of(s, h)),
+                } if min_length < max_length && s.hertz > 0.0 => Some(Soft::of(s, h)),
                 JointKind::Weld { spring: Some(s) } if s.hertz > 0.0 => Some(Soft::of(s, h)),
                 JointKind::Target { spring, .. } => Some(Soft::of(spring, h)),
                 _ => None,
@@ -211,7 +262,7 @@ impl JointRows {
                 ma: a.inv_mass,
                 mb: b.inv_mass,
                 mass: 1.0 / k,
-                base: (b.pos + def.anchor_b) - (a.pos + def.anchor_a),
+                base,
                 kind: def.kind,
                 impulses: if warm {
                     joint.impulses
@@ -221,14 +272,17 @@ impl JointRows {
                 rigid,
                 spring,
                 h,
-                dva: Vec2::ZERO,
-                dvb: Vec2::ZERO,
             });
         }
     }
 
     /// Applies each joint's impulses of the last substep again.
     pub(crate) fn warm_start(&mut self, state: &mut [BodyState], delta: &[Vec2]) {
+        for rod in &self.rods {
+            let (va, vb) = rod.velocities(state);
+            let p = rod.impulse * rod.separation(delta).normalize_or_zero();
+            rod.write(state, va - rod.ma * p, vb + rod.mb * p);
+        }
         for row in &mut self.rows {
             let (mut va, mut vb) = row.velocities(state);
             let d = row.separation(delta);
@@ -251,6 +305,21 @@ impl JointRows {
     /// rigid parts also remove their drift; without (the relax passes)
     /// they hold the velocities only.
     pub(crate) fn solve(&mut self, state: &mut [BodyState], delta: &[Vec2], use_bias: bool) {
+        let rigid = match (use_bias, self.rigid) {
+            (true, Some(rigid)) => rigid,
+            _ => Soft::RIGID,
+        };
+        for rod in &mut self.rods {
+            let (va, vb) = rod.velocities(state);
+            let d = rod.separation(delta);
+            let len = d.length();
+            let axis = if len > 0.0 { d / len } else { Vec2::ZERO };
+            let cdot = axis.dot(vb - va);
+            let impulse = rigid.impulse(rod.mass, cdot, len - rod.length, rod.impulse);
+            rod.impulse += impulse;
+            let p = impulse * axis;
+            rod.write(state, va - rod.ma * p, vb + rod.mb * p);
+        }
         for row in &mut self.rows {
             let (va, vb) = row.velocities(state);
             let d = row.separation(delta);
@@ -259,27 +328,19 @@ impl JointRows {
         }
     }
 
-    /// Takes the joints' velocity changes of this substep out of each
-    /// body's change that the next substep replays (`replay`, see
-    /// `solver::motion::Start::Replay`): a joint's direction turns with
-    /// its bodies, so replaying its impulse along last substep's direction
-    /// would push a pendulum along its swing and add energy. The joints
-    /// warm start themselves instead, along their current directions.
-    pub(crate) fn untrack(&mut self, replay: &mut [Vec2]) {
-        for row in &mut self.rows {
-            if let (Some(a), true) = (row.a, row.ma > 0.0) {
-                replay[a as usize] -= row.dva;
-            }
-            if let (Some(b), true) = (row.b, row.mb > 0.0) {
-                replay[b as usize] -= row.dvb;
-            }
-            (row.dva, row.dvb) = (Vec2::ZERO, Vec2::ZERO);
-        }
-    }
-
     /// Writes each joint's impulses and force back; calls `broken` with the
     /// slot of each joint whose force went over its break force.
     pub(crate) fn store(&self, joints: &mut Joints, mut broken: impl FnMut(u32)) {
+        for rod in &self.rods {
+            let Some(joint) = joints.slots[rod.slot as usize].joint.as_mut() else {
+                continue;
+            };
+            joint.impulses.linear.x = rod.impulse;
+            joint.force = rod.impulse.abs() / self.h;
+            if joint.def.break_force.is_some_and(|f| joint.force > f) {
+                broken(rod.slot);
+            }
+        }
         for row in &self.rows {
             let slot = &mut joints.slots[row.slot as usize];
             let Some(joint) = slot.joint.as_mut() else {
@@ -290,6 +351,44 @@ impl JointRows {
             if joint.def.break_force.is_some_and(|f| joint.force > f) {
                 broken(row.slot);
             }
+        }
+    }
+}
+
+impl RodRow {
+    #[inline(always)]
+    fn velocities(&self, state: &[BodyState]) -> (Vec2, Vec2) {
+        let v = |i: u32| {
+            if i == NONE {
+                Vec2::ZERO
+            } else {
+                state[i as usize].vel
+            }
+        };
+        (v(self.a), v(self.b))
+    }
+
+    /// Anchor B minus anchor A now.
+    #[inline(always)]
+    fn separation(&self, delta: &[Vec2]) -> Vec2 {
+        let d = |i: u32| {
+            if i == NONE {
+                Vec2::ZERO
+            } else {
+                delta[i as usize]
+            }
+        };
+        self.base + (d(self.b) - d(self.a))
+    }
+
+    /// Writes the velocities of the bodies the rod moves.
+    #[inline(always)]
+    fn write(&self, state: &mut [BodyState], va: Vec2, vb: Vec2) {
+        if self.a != NONE && self.ma > 0.0 {
+            state[self.a as usize].vel = va;
+        }
+        if self.b != NONE && self.mb > 0.0 {
+            state[self.b as usize].vel = vb;
         }
     }
 }
@@ -334,12 +433,9 @@ impl JointRow {
 
     /// Applies impulse `p` (on B; minus on A).
     #[inline(always)]
-    fn push(&mut self, va: &mut Vec2, vb: &mut Vec2, p: Vec2) {
-        let (da, db) = (self.ma * p, self.mb * p);
-        *va -= da;
-        *vb += db;
-        self.dva -= da;
-        self.dvb += db;
+    fn push(&self, va: &mut Vec2, vb: &mut Vec2, p: Vec2) {
+        *va -= self.ma * p;
+        *vb += self.mb * p;
     }
 
     /// The joint's velocities after one pass over its constraints.

@@ -232,7 +232,8 @@ impl World {
     }
 
     /// The deepest overlap between any two shaped bodies that may touch
-    /// (sensors and pairs of static or kinematic bodies excluded), metres,
+    /// (sensors, pairs of static or kinematic bodies and pairs a joint
+    /// keeps from colliding excluded), metres,
     /// measured from exact geometry at the current positions, not from the
     /// solver's contact data. Finds candidates with a fresh broad phase: a
     /// diagnostic, it allocates.
@@ -252,11 +253,19 @@ impl World {
             .collect();
         let mut pairs = Vec::new();
         BroadPhase::default().find_pairs(&boxes, &[], false, &mut pairs);
+        let mut apart = Vec::new();
+        self.joints.apart(&mut apart);
+        let joined = |a: BodyId, b: BodyId| {
+            apart
+                .binary_search(&crate::contact::constraint::key(a, b))
+                .is_ok()
+        };
         let mut deepest = 0.0f32;
         for (i, j) in pairs {
             let (a, b) = (&bodies[i as usize], &bodies[j as usize]);
             if (a.kind != BodyKind::Dynamic && b.kind != BodyKind::Dynamic)
                 || !a.filter.allows(&b.filter)
+                || joined(a.id, b.id)
             {
                 continue;
             }

@@ -53,6 +53,7 @@ pub(crate) struct Block {
     pub(crate) tangent_impulse: [f32; LANES],
     pub(crate) push_impulse: [f32; LANES],
     pub(crate) max_normal_impulse: [f32; LANES],
+    pub(crate) tangent_speed: [f32; LANES],
     /// Whether the lane's push carries on between substeps (a deep pile).
     pub(crate) carry: [bool; LANES],
 }
@@ -76,6 +77,7 @@ impl Block {
         tangent_impulse: [0.0; LANES],
         push_impulse: [0.0; LANES],
         max_normal_impulse: [0.0; LANES],
+        tangent_speed: [0.0; LANES],
         carry: [false; LANES],
     };
 
@@ -98,6 +100,7 @@ impl Block {
         self.tangent_impulse[l] = c.tangent_impulse;
         self.push_impulse[l] = c.push_impulse;
         self.max_normal_impulse[l] = c.max_normal_impulse;
+        self.tangent_speed[l] = c.tangent_speed;
         self.carry[l] = carry;
     }
 
@@ -416,7 +419,11 @@ pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool, const MEASURE: bo
         // `scalar::solve`).
         let max_friction = k.friction[l] * new_n;
         let t = k.tangent_impulse[l];
-        let new_t = clamp(t - mass * vt, -max_friction, max_friction);
+        let new_t = clamp(
+            t - mass * (vt - k.tangent_speed[l]),
+            -max_friction,
+            max_friction,
+        );
         let dt = new_t - t;
         k.tangent_impulse[l] = new_t;
         v.apply(k, l, nx * dn + tx * dt, ny * dn + ty * dt);

@@ -275,7 +275,11 @@ pub(crate) fn solve(
         let max_friction = c.friction * new_n;
         // `greater` then `lesser`, as the wide passes (`f32::clamp` would
         // pass a NaN through, and panic on bounds the wrong way round).
-        let new_t = clamp(c.tangent_impulse - c.mass * vt, -max_friction, max_friction);
+        let new_t = clamp(
+            c.tangent_impulse - c.mass * (vt - c.tangent_speed),
+            -max_friction,
+            max_friction,
+        );
         let dt = new_t - c.tangent_impulse;
         c.tangent_impulse = new_t;
         let impulse = c.normal * dn + tangent * dt;

@@ -202,7 +202,7 @@ impl SubstepPlan {
                 restitution_threshold: settings.restitution_threshold,
                 carry_push,
             },
-            restitution: world.census.bouncy > 0,
+            restitution: world.census.bouncy > 0 || world.hooks.is_some(),
             sweep: settings.continuous,
             shock: settings.shock_propagation
                 && world
@@ -210,8 +210,14 @@ impl SubstepPlan {
                     .forces
                     .gravity
                     .is_some_and(|g| g != Vec2::ZERO),
-            replay: settings.warm_starting && settings.relax_iterations > 0 && substeps > 1,
-            joints: !world.joint_rows.rows.is_empty(),
+            // Not with joints: their directions turn with their bodies, so
+            // a substep's change replayed along the last one's directions
+            // pushed a pendulum along its swing and added energy.
+            replay: settings.warm_starting
+                && settings.relax_iterations > 0
+                && substeps > 1
+                && world.joints.count == 0,
+            joints: !world.joint_rows.rows.is_empty() || !world.joint_rows.rods.is_empty(),
             // Filled in from the rest of the plan just below.
             stages: StageList::EMPTY,
         };
@@ -295,6 +301,20 @@ impl World {
         };
         cw.relocate_last_contacts(&self.dynamic, &self.statics, |id| self.collider_of(id));
         cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
+        if self.joints.count > 0 {
+            let rows = &mut self.joint_rows;
+            if std::mem::take(&mut rows.apart_stale) {
+                self.joints.apart(&mut rows.apart);
+            }
+            cw.drop_joined(&rows.apart);
+        }
+        if let Some(hooks) = self.hooks.clone() {
+            let info = |id| crate::PairInfo {
+                id,
+                user_data: self.body_user_data(id),
+            };
+            cw.run_hooks(&*hooks, &self.dynamic, info, params.gravity, params.h);
+        }
         if cw.crowded() > 0 {
             self.stats.crowded_steps = self.stats.crowded_steps.saturating_add(1);
         }
@@ -338,7 +358,14 @@ impl World {
         }
         let mut resets = 0;
         let (on_bodies, on_copy, after) = plan.stages.parts();
+        let body_forces = self.has_body_forces();
         for substep in 0..plan.substeps {
+            if body_forces {
+                // At the substep's positions and velocities: a force
+                // frozen over the step's substeps adds energy to what it
+                // holds up (a floating crate bobbed for ever).
+                self.add_body_forces(plan.solver.h, substep == 0);
+            }
             for &stage in on_bodies {
                 resets += self.run_on_bodies(stage, &plan, &mut correction);
             }
@@ -365,9 +392,6 @@ impl World {
             let far = cw.regions.far_states().map(|(homes, far)| (homes, &*far));
             cw.motion
                 .unload(self.dynamic.vel.view_mut(), plan.replay, self.parallel, far);
-            if plan.replay && plan.joints {
-                self.joint_rows.untrack(&mut cw.motion.replay);
-            }
         }
         cw.regions.store(&mut cw.solved.rows, self.parallel);
         for &stage in after {
@@ -542,8 +566,6 @@ impl World {
     /// already: the pass then only carries the push in a deep pile.
     fn warm_start(&mut self, cw: &mut ContactWorld, plan: &SubstepPlan, pass: SubstepPass) {
         if plan.joints {
-            // Every substep: the replay leaves the joints out (see
-            // `JointRows::untrack`).
             let motion = &mut cw.motion;
             self.joint_rows.warm_start(&mut motion.state, &motion.delta);
         }

@@ -65,6 +65,10 @@ pub enum Stage {
     CentralGravity,
     /// The game's own [`ForceModel`](crate::ForceModel)s.
     CustomForces,
+    /// Gravity scaled per body ([`BodyDef::gravity_scale`](crate::BodyDef::gravity_scale))
+    /// and force zones ([`World::add_force_zone`]): forces added before
+    /// the step.
+    BodyForces,
     /// Quadratic drag.
     QuadraticDrag,
     /// Linear drag.
@@ -105,6 +109,7 @@ impl StepPlan {
             (f.spring.is_some(), Stage::Spring),
             (f.central_gravity.is_some(), Stage::CentralGravity),
             (!world.custom.is_empty(), Stage::CustomForces),
+            (world.has_body_forces(), Stage::BodyForces),
             (f.quadratic_drag.is_some(), Stage::QuadraticDrag),
             (f.linear_drag.is_some(), Stage::LinearDrag),
             (f.surface_friction.is_some(), Stage::SurfaceFriction),
@@ -179,11 +184,15 @@ impl World {
                     );
                 }
                 self.note_kinematic_motion();
+                if self.has_body_forces() {
+                    self.add_body_forces(dt, true);
+                }
                 forces_cleared = self.step_bodies(dt, plan.limits);
                 self.move_kinematic(dt);
             }
         }
         self.clear_forces(forces_cleared);
+        self.restore_limits();
         self.count_down_drop_through(dt);
         debug_assert_eq!(
             self.census,

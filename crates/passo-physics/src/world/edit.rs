@@ -323,6 +323,41 @@ impl World {
         Ok(())
     }
 
+    /// Sets how much of the world's gravity acts on a dynamic body (see
+    /// [`BodyDef::gravity_scale`](crate::BodyDef::gravity_scale)). The body
+    /// wakes.
+    ///
+    /// # Errors
+    /// A stale id, a scale that is not finite or beyond
+    /// [`MAX_GRAVITY_SCALE`](crate::constants::MAX_GRAVITY_SCALE), or a
+    /// static or kinematic body.
+    pub fn set_gravity_scale(&mut self, id: BodyId, scale: f32) -> Result<(), PhysicsError> {
+        crate::body::def::check_gravity_scale("gravity_scale", scale)?;
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        let Location::Dynamic(i) = location else {
+            return Err(PhysicsError::OutOfRange {
+                what: "gravity_scale",
+                value: scale,
+                allowed: "set only on dynamic bodies",
+            });
+        };
+        let meta = &mut self.dynamic.meta[i as usize];
+        if meta.kinematic {
+            return Err(PhysicsError::OutOfRange {
+                what: "gravity_scale",
+                value: scale,
+                allowed: "set only on dynamic bodies",
+            });
+        }
+        let before = BodyCensus::share(meta, false);
+        meta.gravity_scale = scale;
+        let after = BodyCensus::share(meta, false);
+        self.census.remove(before);
+        self.census.add(after);
+        self.wake_index(i as usize);
+        Ok(())
+    }
+
     /// Makes a dynamic body a bullet, or an ordinary body again (see
     /// [`BodyDef::bullet`](crate::BodyDef::bullet)).
     ///

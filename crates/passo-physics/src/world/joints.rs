@@ -76,6 +76,7 @@ impl World {
             });
         }
         self.wake_joint_ends(&def);
+        self.joint_rows.apart_stale = true;
         Ok(self.joints.insert(def.normalized()))
     }
 
@@ -84,6 +85,7 @@ impl World {
     pub fn remove_joint(&mut self, id: JointId) -> Option<JointDef> {
         let joint = self.joints.remove(id)?;
         self.wake_joint_ends(&joint.def);
+        self.joint_rows.apart_stale = true;
         Some(joint.def)
     }
 

@@ -7,6 +7,7 @@ pub(crate) mod settings;
 pub(crate) mod query_cache;
 pub(crate) mod edit;
 pub(crate) mod joints;
+pub(crate) mod zones;
 pub(crate) mod snapshot;
 
 use crate::body::census::BodyCensus;
@@ -16,6 +17,7 @@ use crate::contact_world::ContactWorld;
 use crate::forces::integrator::Forces;
 use crate::forces::kernel::PointMassKernel;
 use crate::forces::models::{Dissipation, Drive};
+use crate::forces::zones::ForceZone;
 use crate::joint::solve::JointRows;
 use crate::joint::{BrokenJoint, Joints};
 use crate::switches::TestSwitches;
@@ -169,6 +171,13 @@ pub struct World {
     pub(crate) joint_rows: JointRows,
     /// The joints that broke in the last step.
     pub(crate) broken_joints: Vec<BrokenJoint>,
+    /// Force zones, by their sensor bodies, in the order they act.
+    pub(crate) zones: Vec<(BodyId, ForceZone)>,
+    /// The forces game code applied for this step, while the substeps add
+    /// the zones' forces to them (scratch).
+    pub(crate) applied_force: crate::columns::Columns,
+    /// The game's contact hooks, if any.
+    pub(crate) hooks: Option<Arc<dyn crate::ContactHooks>>,
 }
 
 impl Default for World {
@@ -217,6 +226,9 @@ impl World {
             joints: Joints::default(),
             joint_rows: JointRows::default(),
             broken_joints: Vec::new(),
+            zones: Vec::new(),
+            applied_force: Default::default(),
+            hooks: None,
         })
     }
 
@@ -264,6 +276,48 @@ impl World {
     pub fn add_force_model(&mut self, model: Arc<dyn ForceModel>) {
         self.wake_all();
         self.custom.push(model);
+    }
+
+    /// Sets the game's contact hooks (see [`ContactHooks`](crate::ContactHooks)),
+    /// or removes them with `None`. Every body wakes, so that the new
+    /// hooks see every contact from the next step on.
+    ///
+    /// ```
+    /// use passo_physics::{BodyDef, ContactHooks, PreSolve, Shape, World, glam::Vec2};
+    /// use std::sync::Arc;
+    ///
+    /// /// The body with user data 7 is a belt moving right at 2 m/s.
+    /// struct Belt;
+    /// impl ContactHooks for Belt {
+    ///     fn pre_solve(&self, contact: &mut PreSolve) {
+    ///         for end in [contact.a, contact.b] {
+    ///             if end.user_data == 7 {
+    ///                 contact.conveyor(end.id, Vec2::new(2.0, 0.0));
+    ///             }
+    ///         }
+    ///     }
+    /// }
+    ///
+    /// let mut world = World::default();
+    /// let belt = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(40.0, 1.0));
+    /// world.add_body(belt.with_user_data(7)).unwrap();
+    /// let crate_ = world.add_body(BodyDef::new_dynamic(Vec2::new(0.0, 0.25), Shape::rect(0.5, 0.5))).unwrap();
+    /// world.set_contact_hooks(Some(Arc::new(Belt)));
+    /// for _ in 0..120 {
+    ///     world.step(1.0 / 60.0);
+    /// }
+    /// let v = world.body(crate_).unwrap().velocity.x;
+    /// assert!((v - 2.0).abs() < 0.02, "carried at {v} m/s");
+    /// ```
+    pub fn set_contact_hooks(&mut self, hooks: Option<Arc<dyn crate::ContactHooks>>) {
+        self.wake_all();
+        self.forget_all_reuse();
+        self.hooks = hooks;
+    }
+
+    /// Whether the world has contact hooks.
+    pub fn has_contact_hooks(&self) -> bool {
+        self.hooks.is_some()
     }
 
     /// Removes every custom force model.
@@ -436,6 +490,11 @@ impl World {
             drop_through: 0.0,
             character: false,
             bullet: def.bullet,
+            gravity_scale: if def.kind == BodyKind::Dynamic {
+                def.gravity_scale
+            } else {
+                1.0
+            },
             min_speed: def.min_speed,
             max_speed: def.max_speed,
             user_data: def.user_data,
@@ -465,6 +524,9 @@ impl World {
     pub fn remove_body(&mut self, id: BodyId) -> Option<Body> {
         let location = self.locate(id)?;
         self.remove_joints_of(id);
+        if !self.zones.is_empty() {
+            self.forget_zone_of(id);
+        }
         let body = self.view(location);
         let share = match location {
             Location::Dynamic(i) => BodyCensus::share(&self.dynamic.meta[i as usize], false),
@@ -588,7 +650,9 @@ impl World {
     /// limits for every body, `None` when some body has its own (kinematic
     /// bodies have none).
     pub(crate) fn speed_limits(&self) -> Option<Option<SpeedLimits>> {
-        let uniform = self.census.speed_overrides == 0 && self.dynamic.kinematic.is_empty();
+        let uniform = self.census.speed_overrides == 0
+            && self.dynamic.kinematic.is_empty()
+            && !self.has_liquid();
         self.has_speed_limits()
             .then(|| uniform.then(|| self.world_limits()))
     }
@@ -597,6 +661,15 @@ impl World {
         self.census.speed_overrides > 0
             || self.settings.min_speed > 0.0
             || self.settings.max_speed < f32::INFINITY
+    }
+
+    /// A live body's user data (0 for a stale id).
+    pub(crate) fn body_user_data(&self, id: BodyId) -> u64 {
+        match self.locate(id) {
+            Some(Location::Dynamic(i)) => self.dynamic.meta[i as usize].user_data,
+            Some(Location::Static(i)) => self.statics.meta[i as usize].user_data,
+            None => 0,
+        }
     }
 
     pub(crate) fn locate(&self, id: BodyId) -> Option<Location> {

@@ -46,6 +46,9 @@ pub struct WorldSnapshot {
     /// The joints, with their impulses.
     #[cfg_attr(feature = "serde", serde(default))]
     pub(crate) joints: Joints,
+    /// The force zones, by their sensor bodies.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub(crate) zones: Vec<(crate::BodyId, crate::ForceZone)>,
     /// The world (instance) and version of static bodies these statics
     /// are a copy of, so restoring into that world as it is skips them.
     /// Not saved: a snapshot from a file always copies them.
@@ -74,6 +77,7 @@ impl PartialEq for WorldSnapshot {
             && self.contacts == other.contacts
             && self.custom_force_models == other.custom_force_models
             && self.joints == other.joints
+            && self.zones == other.zones
     }
 }
 
@@ -92,6 +96,7 @@ impl WorldSnapshot {
             + self.statics.heap_bytes()
             + self.contacts.as_ref().map_or(0, ContactState::heap_bytes)
             + self.joints.heap_bytes()
+            + heap(&self.zones)
     }
 
     /// Steps the world had taken.
@@ -281,6 +286,23 @@ impl WorldSnapshot {
                 return bad(format!("{id:?} names a body that does not exist"));
             }
         }
+        for (i, (body, zone)) in self.zones.iter().enumerate() {
+            zone.validate()?;
+            let sensor_box = |meta: &crate::body::store::BodyMeta| {
+                meta.sensor && matches!(meta.shape, Some(crate::Shape::Box { .. }))
+            };
+            let meta = match self.slots.get(body.index as usize) {
+                Some(s) if s.generation == body.generation => match s.location {
+                    Some(Location::Dynamic(d)) => self.dynamic.meta.get(d as usize),
+                    Some(Location::Static(d)) => self.statics.meta.get(d as usize),
+                    None => None,
+                },
+                _ => None,
+            };
+            if !meta.is_some_and(sensor_box) || self.zones[..i].iter().any(|z| z.0 == *body) {
+                return bad(format!("the zone of {body:?} is not on one sensor box"));
+            }
+        }
         Ok(())
     }
 
@@ -346,6 +368,7 @@ impl World {
         }
         out.custom_force_models = self.custom.len();
         out.joints.clone_from(&self.joints);
+        out.zones.clone_from(&self.zones);
         out.made_here = true;
     }
 
@@ -384,6 +407,8 @@ impl World {
         self.game_friction = snapshot.game_friction;
         self.stats = snapshot.stats;
         self.joints.clone_from(&snapshot.joints);
+        self.joint_rows.apart_stale = true;
+        self.zones.clone_from(&snapshot.zones);
         self.broken_joints.clear();
         match (&snapshot.contacts, &mut self.contacts) {
             (Some(state), Some(cw)) => cw.restore(state, !same_statics),

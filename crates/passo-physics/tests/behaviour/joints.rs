@@ -629,3 +629,40 @@ fn a_joint_kind_reads_back_as_given() {
         JointKind::Prismatic { motor: None, .. }
     ));
 }
+
+#[test]
+fn joined_bodies_pass_through_each_other_unless_the_joint_says_they_collide() {
+    for collide in [false, true] {
+        let mut world = World::default();
+        let frame = world
+            .add_body(BodyDef::new_static(
+                Vec2::new(0.0, 4.0),
+                Shape::rect(0.6, 0.2),
+            ))
+            .unwrap();
+        let door = world
+            .add_body(BodyDef::new_dynamic(
+                Vec2::new(0.0, 1.0),
+                Shape::rect(0.5, 2.0),
+            ))
+            .unwrap();
+        let slider = JointDef::prismatic(frame, Some(door), Vec2::Y)
+            .limits(-3.0, -0.5)
+            .motor(1.0, 1000.0);
+        let slider = if collide { slider.colliding() } else { slider };
+        world.add_joint(slider).unwrap();
+        for _ in 0..240 {
+            world.step(DT);
+        }
+        let y = world.body(door).unwrap().position.y;
+        if collide {
+            // Its top (y + 1) stops at the frame's bottom (3.9).
+            assert!((y - 2.9).abs() < 0.01, "caught on its frame: {y}");
+        } else {
+            assert!(
+                (y - 3.5).abs() < 0.01,
+                "through its frame to the limit: {y}"
+            );
+        }
+    }
+}

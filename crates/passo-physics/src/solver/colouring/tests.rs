@@ -21,6 +21,7 @@ fn row(a: u32, b: Option<u32>, inv_mass_b: f32) -> Constraint {
         tangent_impulse: 0.0,
         push_impulse: 0.0,
         max_normal_impulse: 1.0,
+        tangent_speed: 0.0,
     }
 }
 

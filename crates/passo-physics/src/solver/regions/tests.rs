@@ -30,6 +30,7 @@ fn lattice(side: u32) -> (Vec<Vec2>, Vec<Vec2>, Vec<Constraint>) {
         tangent_impulse: 0.01,
         push_impulse: 0.0,
         max_normal_impulse: 0.0,
+        tangent_speed: 0.0,
     };
     for y in 0..side {
         for x in 0..side {
@@ -293,6 +294,7 @@ fn random_pile(seed: u64) -> Scene {
             tangent_impulse: between(-0.02, 0.02),
             push_impulse: between(0.0, 0.03),
             max_normal_impulse: 0.0,
+            tangent_speed: 0.0,
         });
     }
     let deep = match seed % 2 {
