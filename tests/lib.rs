@@ -22,6 +22,8 @@ pub mod guide {
     pub mod tiled {}
     #[doc = include_str!("../docs/guide/src/character-mover.md")]
     pub mod character_mover {}
+    #[doc = include_str!("../docs/guide/src/joints-and-zones.md")]
+    pub mod joints_and_zones {}
     #[doc = include_str!("../docs/guide/src/queries-and-events.md")]
     pub mod queries_and_events {}
     #[doc = include_str!("../docs/guide/src/determinism.md")]

@@ -527,3 +527,107 @@ fn assert_saved_and_loaded_the_same(scene: &Scene, built: &passo_scene::BuiltSce
         .unwrap();
     assert_eq!(again.world.state_hash(), built.world.state_hash());
 }
+
+#[test]
+fn joints_and_zones_in_scene_files_build_save_and_bad_ones_name_the_joint() {
+    let scene = load("joints");
+    let mut built = scene.build().unwrap();
+    // 13 bridge rods, 5 chain rods, 2 ropes, 1 slider.
+    assert_eq!(built.world.joint_len(), 21);
+    for _ in 0..30 {
+        built.step(1.0 / 60.0);
+    }
+    let saved = Scene {
+        file: scene_from_world(&built.world, &scene.file, &built.bodies),
+        source: "saved".into(),
+    };
+    let again = Scene::parse(&saved.to_ron(), "again.ron")
+        .unwrap()
+        .build()
+        .unwrap();
+    let kinds = |w: &passo_physics::World| -> Vec<_> {
+        w.joints()
+            .map(|(_, j)| (j.def.kind, j.def.break_force))
+            .collect()
+    };
+    assert_eq!(kinds(&again.world), kinds(&built.world));
+    let water = load("water").build().unwrap();
+    assert_eq!(water.world.force_zones().count(), 3);
+
+    let base = "(name: \"x\", collisions: (), bodies: [(name: \"a\", shape: Circle(radius: 0.5)), (name: \"b\", kind: Static, shape: Circle(radius: 0.5), position: (3, 0))], joints: [JOINT])";
+    let bad = [
+        (
+            "(a: \"a\", b: Some(\"c\"), kind: Rod())",
+            "no body is named \"c\"",
+        ),
+        (
+            "(a: \"a\", b: Some(\"b\"), kind: Slider(axis: (0, 0)))",
+            "axis",
+        ),
+        ("(a: \"b\", kind: Rope())", "dynamic body"),
+        (
+            "(a: \"a\", b: Some(\"b\"), kind: Rod(length: Some(-1)))",
+            "length",
+        ),
+    ];
+    for (joint, says) in bad {
+        let text = base.replace("JOINT", joint);
+        let err = Scene::parse(&text, "x.ron")
+            .and_then(|s| s.build())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("joints[0]") && err.contains(says),
+            "{joint}: {err}"
+        );
+    }
+    let no_collisions = base
+        .replace("collisions: (), ", "")
+        .replace("JOINT", "(a: \"a\", b: Some(\"b\"), kind: Rod())");
+    let err = Scene::parse(&no_collisions, "x.ron")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("joints") && err.contains("collisions"),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_player_crosses_the_rope_bridge() {
+    let mut built = load("joints").build().unwrap();
+    let player = built.body_named("player").unwrap();
+    let planks: Vec<_> = (0..12)
+        .map(|i| built.body_named(&format!("plank {i}")).unwrap())
+        .collect();
+    for _ in 0..480 {
+        let v = built.world.body(player).unwrap().velocity;
+        built
+            .world
+            .set_velocity(player, passo_physics::glam::Vec2::new(3.0, v.y));
+        built.step(1.0 / 60.0);
+        for &p in &planks {
+            let y = built.world.body(p).unwrap().position.y;
+            assert!(y > 2.0, "a plank sagged to {y}");
+        }
+    }
+    let at = built.world.body(player).unwrap().position;
+    assert!(at.x > 7.0 && at.y > 3.5, "on the right bank: {at}");
+    assert_eq!(built.world.joint_len(), 21, "nothing broke");
+}
+
+#[test]
+fn the_water_scene_floats_a_light_crate_at_its_depth() {
+    let mut built = load("water").build().unwrap();
+    let balsa = built.body_named("balsa").unwrap();
+    for _ in 0..1800 {
+        built.step(1.0 / 60.0);
+    }
+    // 1 kg/m² in 4 kg/m²: a quarter of its 1 m height under the surface
+    // at y = -0.5.
+    let y = built.world.body(balsa).unwrap().position.y;
+    assert!((y - (-0.5 - 0.25 + 0.5)).abs() < 1e-3, "at {y}");
+    let iron = built.body_named("iron").unwrap();
+    let y = built.world.body(iron).unwrap().position.y;
+    assert!((y - (-4.0 + 0.3)).abs() < 0.01, "on the pool's floor: {y}");
+}

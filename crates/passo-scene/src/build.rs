@@ -2,11 +2,13 @@
 
 use crate::art::LevelArt;
 use crate::error::SceneError;
-use crate::format::{BodySpec, Colour, MAX_BODIES, SceneFile};
+use crate::format::{BodySpec, Colour, JointSpec, JointSpecKind, MAX_BODIES, SceneFile};
 use crate::generate::generate;
 use crate::map_ref::PlatformPath;
 use passo_physics::glam::Vec2;
-use passo_physics::{Aabb, BodyDef, BodyId, BodyKind, ForceModels, World, WorldSettings};
+use passo_physics::{
+    Aabb, BodyDef, BodyId, BodyKind, ForceModels, JointDef, JointSpring, World, WorldSettings,
+};
 
 /// Dynamic bodies without a colour cycle through these (sRGB).
 const PALETTE: [[u8; 4]; 6] = [
@@ -223,10 +225,89 @@ pub(crate) fn body_def(spec: &BodySpec, position: Vec2) -> BodyDef {
         sensor: spec.sensor,
         one_way: spec.one_way,
         bullet: spec.bullet,
+        gravity_scale: spec.gravity_scale.unwrap_or(1.0),
         min_speed: spec.min_speed,
         max_speed: spec.max_speed,
         user_data: 0,
     }
+}
+
+/// Finds a body by name: its id and position, or why there is none.
+pub(crate) type FindBody<'a> = dyn FnMut(&str) -> Result<(BodyId, Vec2), String> + 'a;
+
+/// The physics joint of a scene joint; `find` gives a body's id and
+/// position by name (the first body of that name), or says none has it.
+pub(crate) fn joint_def(spec: &JointSpec, find: &mut FindBody<'_>) -> Result<JointDef, String> {
+    let (a, pa) = find(&spec.a)?;
+    let (b, pb) = match &spec.b {
+        Some(name) => {
+            let (id, at) = find(name)?;
+            (Some(id), at)
+        }
+        None => (None, Vec2::ZERO),
+    };
+    // The distance between the anchors as placed.
+    let placed = ((pb + spec.anchor_b) - (pa + spec.anchor_a)).length();
+    let def = match spec.kind {
+        JointSpecKind::Rod { length } => JointDef::distance(a, b, length.unwrap_or(placed)),
+        JointSpecKind::Rope { length } => JointDef::rope(a, b, length.unwrap_or(placed)),
+        JointSpecKind::Spring {
+            length,
+            hertz,
+            damping_ratio,
+            limits,
+        } => {
+            let def = JointDef::spring(
+                a,
+                b,
+                length.unwrap_or(placed),
+                JointSpring::new(hertz, damping_ratio),
+            );
+            match limits {
+                Some((min, max)) => def.limits(min, max),
+                None => def,
+            }
+        }
+        JointSpecKind::Slider {
+            axis,
+            limits,
+            motor,
+        } => {
+            let mut def = JointDef::prismatic(a, b, axis);
+            if let Some((min, max)) = limits {
+                def = def.limits(min, max);
+            }
+            if let Some(m) = motor {
+                def = def.motor(m.speed, m.max_force);
+            }
+            def
+        }
+        JointSpecKind::Weld {
+            hertz,
+            damping_ratio,
+        } => {
+            // Held as placed: B's centre where it is now, seen from A's
+            // (or A's centre where it is, in the world).
+            let def = match b {
+                Some(_) => JointDef::weld(a, b, pb - pa),
+                None => JointDef::weld(a, None, pa),
+            };
+            if hertz > 0.0 {
+                def.with_spring(hertz, damping_ratio)
+            } else {
+                def
+            }
+        }
+    };
+    let def = match spec.kind {
+        JointSpecKind::Weld { .. } => def,
+        _ => def.anchors(spec.anchor_a, spec.anchor_b),
+    };
+    Ok(JointDef {
+        break_force: spec.break_force,
+        collide: spec.collide,
+        ..def
+    })
 }
 
 pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneError> {
@@ -322,6 +403,10 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
     let mut add = |spec: &BodySpec, position: Vec2, path_of: &dyn Fn() -> String| {
         let def = body_def(spec, position);
         let id = world.add_body(def).map_err(|e| invalid(path_of(), e))?;
+        if let Some(zone) = spec.zone {
+            (world.add_force_zone(id, zone))
+                .map_err(|e| invalid(format!("{}.zone", path_of()), e))?;
+        }
         let half = spec.shape.map_or(Vec2::ZERO, |s| s.half_extents());
         let aabb = Aabb::from_centre(position, half);
         bounds = Some(bounds.map_or(aabb, |b| b.union(&aabb)));
@@ -404,6 +489,19 @@ pub(crate) fn build(file: &SceneFile, source: &str) -> Result<BuiltScene, SceneE
             let point = Aabb::from_centre(*p, Vec2::ZERO);
             bounds = Some(bounds.map_or(point, |b| b.union(&point)));
         }
+    }
+    for (i, spec) in file.joints.iter().enumerate() {
+        let field = format!("joints[{i}]");
+        let mut find = |name: &str| {
+            let id = bodies
+                .iter()
+                .find(|b| b.name.as_deref() == Some(name))
+                .map(|b| b.id)
+                .ok_or_else(|| format!("no body is named {name:?}"))?;
+            Ok((id, world.body(id).map_or(Vec2::ZERO, |b| b.position)))
+        };
+        let def = joint_def(spec, &mut find).map_err(|m| fail(field.clone(), m))?;
+        world.add_joint(def).map_err(|e| invalid(field, e))?;
     }
     let camera = match &file.camera {
         Some(c) => Aabb {

@@ -9,14 +9,17 @@ use passo_physics::constants::{
 };
 use passo_physics::glam::Vec2;
 use passo_physics::{
-    BodyKind, CentralGravity, CollisionFilter, ContactSettings, ForceForm, FrictionMix, Integrator,
-    LinearDrag, QuadraticDrag, Shape, Spring, SurfaceFriction,
+    BodyKind, CentralGravity, CollisionFilter, ContactSettings, ForceForm, ForceZone, FrictionMix,
+    Integrator, JointMotor, LinearDrag, QuadraticDrag, Shape, Spring, SurfaceFriction,
 };
 use ron::extensions::Extensions;
 use serde::{Deserialize, Serialize};
 
 /// Most bodies a scene may make (explicit and generated together).
 pub const MAX_BODIES: usize = 1_000_000;
+
+/// Most joints a scene may list.
+pub const MAX_SCENE_JOINTS: usize = 1_000_000;
 
 /// A whole scene file. Only `name` is required.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -69,6 +72,139 @@ pub struct SceneFile {
     /// A level on a grid: a Tiled map or ASCII art (see [`TileMapRef`](crate::TileMapRef)).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilemap: Option<crate::map_ref::TileMapRef>,
+    /// Joints between named bodies (at most [`MAX_SCENE_JOINTS`]). They
+    /// need `collisions`.
+    #[serde(
+        default,
+        skip_serializing_if = "Vec::is_empty",
+        deserialize_with = "at_most_max_joints"
+    )]
+    pub joints: Vec<JointSpec>,
+}
+
+/// A joint between two named bodies of the scene, or a named body and the
+/// world.
+///
+/// ```ron
+/// joints: [
+///     // A rope from the ceiling: as long as the bodies are placed apart.
+///     (a: "lamp", b: Some("ceiling"), kind: Rope()),
+///     // A sliding door driven up at 1 m/s with at most 400 N.
+///     (a: "frame", b: Some("door"), kind: Slider(axis: (0, 1), limits: Some((0, 2)),
+///         motor: Some((speed: 1, max_force: 400)))),
+/// ]
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointSpec {
+    /// The first body's name.
+    pub a: String,
+    /// The second body's name, or none for the world (then `anchor_b` is a
+    /// point of the world).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub b: Option<String>,
+    /// Where the joint holds A: an offset from its centre, m. Default (0, 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub anchor_a: Vec2,
+    /// Where it holds B: an offset from its centre, or a point of the world
+    /// with no `b`. Default (0, 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub anchor_b: Vec2,
+    /// What it holds.
+    pub kind: JointSpecKind,
+    /// Breaks above this force, N. Default: never.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub break_force: Option<f32>,
+    /// The two bodies still collide with each other. Default false.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub collide: bool,
+}
+
+fn is_zero(v: &Vec2) -> bool {
+    *v == Vec2::ZERO
+}
+
+/// What a scene joint holds. A length left out is the distance between the
+/// anchors as the bodies are placed.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum JointSpecKind {
+    /// A rigid rod.
+    Rod {
+        /// Length, m. Default: as placed.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        length: Option<f32>,
+    },
+    /// A rope: at most `length` apart, free to come closer.
+    Rope {
+        /// Longest, m. Default: as placed.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        length: Option<f32>,
+    },
+    /// A spring toward `length`, with optional limits.
+    Spring {
+        /// Rest length, m. Default: as placed.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        length: Option<f32>,
+        /// Frequency, Hz, >= 0.
+        hertz: f32,
+        /// Damping ratio, >= 0. Default 0.
+        #[serde(default)]
+        damping_ratio: f32,
+        /// Shortest and longest, m. Default: none.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        limits: Option<(f32, f32)>,
+    },
+    /// A slider along `axis`.
+    Slider {
+        /// The direction of travel.
+        axis: Vec2,
+        /// Least and most travel, m. Default: none.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        limits: Option<(f32, f32)>,
+        /// A motor. Default: none.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        motor: Option<JointMotor>,
+    },
+    /// The bodies held as placed, rigidly or by a spring.
+    Weld {
+        /// A spring's frequency, Hz; 0 (the default) is rigid.
+        #[serde(default)]
+        hertz: f32,
+        /// Its damping ratio. Default 0.
+        #[serde(default)]
+        damping_ratio: f32,
+    },
+}
+
+/// Reads `joints`, refusing the list as soon as it holds more than
+/// [`MAX_SCENE_JOINTS`].
+fn at_most_max_joints<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<JointSpec>, D::Error> {
+    struct Bounded;
+    impl<'de> serde::de::Visitor<'de> for Bounded {
+        type Value = Vec<JointSpec>;
+
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            write!(f, "a list of at most {MAX_SCENE_JOINTS} joints")
+        }
+
+        fn visit_seq<A: serde::de::SeqAccess<'de>>(
+            self,
+            mut seq: A,
+        ) -> Result<Self::Value, A::Error> {
+            let mut joints = Vec::new();
+            while let Some(joint) = seq.next_element()? {
+                if joints.len() == MAX_SCENE_JOINTS {
+                    return Err(serde::de::Error::custom(format!(
+                        "`joints` lists more than {MAX_SCENE_JOINTS} joints"
+                    )));
+                }
+                joints.push(joint);
+            }
+            Ok(joints)
+        }
+    }
+    d.deserialize_seq(Bounded)
 }
 
 /// Reads `bodies`, refusing the list as soon as it holds more than
@@ -314,6 +450,14 @@ pub struct BodySpec {
     /// Own maximum speed, m/s, > 0. Default: the scene's.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_speed: Option<f32>,
+    /// Share of the scene's gravity, in [-1000, 1000]. Default 1.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gravity_scale: Option<f32>,
+    /// Makes a sensor box a force zone: its own gravity, wind, drag or a
+    /// liquid, e.g. `zone: Some((liquid: Some((density: 6, drag: 3))))`.
+    /// Default none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub zone: Option<ForceZone>,
 }
 
 /// Patterns that make many bodies from one template `body`, whose

@@ -36,7 +36,10 @@ mod validate;
 pub use art::{LevelArt, TileSprite};
 pub use build::{BuiltScene, KINEMATIC_COLOUR, Platform, SceneBody};
 pub use error::SceneError;
-pub use format::{BodySpec, Camera, Colour, Forces, Generator, MAX_BODIES, Material, SceneFile};
+pub use format::{
+    BodySpec, Camera, Colour, Forces, Generator, JointSpec, JointSpecKind, MAX_BODIES,
+    MAX_SCENE_JOINTS, Material, SceneFile,
+};
 pub use level::Level;
 pub use limits::{
     MAX_FILE_BYTES, MAX_JSON_VALUES, MAX_MAP_BYTES, MAX_OBJECTS, MAX_TILE_DATA_BYTES,

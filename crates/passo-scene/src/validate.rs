@@ -176,7 +176,73 @@ impl SceneFile {
             path.check_speed(self.max_speed)
                 .map_err(|m| c.fail("tilemap.path", m))?;
         }
+        self.validate_joints(c, settings)
+    }
+
+    /// The joints: each names bodies the scene makes and is one the
+    /// physics takes, checked in a world of the bodies they name. (A map
+    /// file's objects may be named too: with one, the names are checked
+    /// when the scene is built.)
+    fn validate_joints(
+        &self,
+        c: &Check<'_>,
+        settings: passo_physics::WorldSettings,
+    ) -> Result<(), SceneError> {
+        if self.joints.is_empty() {
+            return Ok(());
+        }
+        if self.collisions.is_none() {
+            return Err(c.fail(
+                "joints",
+                "need `collisions`: joints are solved with the contacts".to_owned(),
+            ));
+        }
+        if self.tilemap.as_ref().is_some_and(|t| t.file.is_some()) {
+            return Ok(());
+        }
+        let mut world = passo_physics::World::new(settings)
+            .map_err(|e| c.fail("joints", physics_message(&e)))?;
+        let mut placed: Vec<(String, passo_physics::BodyId, Vec2)> = Vec::new();
+        for (i, joint) in self.joints.iter().enumerate() {
+            let field = format!("joints[{i}]");
+            let mut find = |name: &str| -> Result<(passo_physics::BodyId, Vec2), String> {
+                if let Some((_, id, at)) = placed.iter().find(|(n, _, _)| n == name) {
+                    return Ok((*id, *at));
+                }
+                let (spec, at) = self
+                    .first_named(name)
+                    .ok_or_else(|| format!("no body is named {name:?}"))?;
+                let def = crate::build::body_def(&spec, at);
+                let id = world.add_body(def).map_err(|e| physics_message(&e))?;
+                placed.push((name.to_owned(), id, at));
+                Ok((id, at))
+            };
+            let def = crate::build::joint_def(joint, &mut find).map_err(|m| c.fail(&field, m))?;
+            world
+                .add_joint(def)
+                .map_err(|e| c.fail(&field, physics_message(&e)))?;
+        }
         Ok(())
+    }
+
+    /// The first body the scene makes with this name (listed bodies come
+    /// before generated ones), and where.
+    fn first_named(&self, name: &str) -> Option<(BodySpec, Vec2)> {
+        if let Some(b) = self.bodies.iter().find(|b| b.name.as_deref() == Some(name)) {
+            return Some((b.clone(), b.position));
+        }
+        for g in &self.generators {
+            let mut first = None;
+            crate::generate::generate(g, |spec, position| {
+                if first.is_none() && spec.name.as_deref() == Some(name) {
+                    first = Some((spec.clone(), position));
+                }
+            });
+            if first.is_some() {
+                return first;
+            }
+        }
+        None
     }
 
     fn validate_forces(&self, c: &Check<'_>) -> Result<(), SceneError> {
@@ -227,6 +293,16 @@ pub(crate) fn check_body(spec: &BodySpec, source: &str, path: &str) -> Result<()
 impl BodySpec {
     fn validate(&self, c: &Check<'_>, path: &str) -> Result<(), SceneError> {
         let at = |field: &str| format!("{path}.{field}");
+        if let Some(zone) = &self.zone {
+            if !self.sensor || !matches!(self.shape, Some(Shape::Box { .. })) {
+                return Err(c.fail(
+                    &at("zone"),
+                    "needs a sensor body with a Box shape".to_owned(),
+                ));
+            }
+            zone.validate()
+                .map_err(|e| c.fail(&at("zone"), physics_message(&e)))?;
+        }
         if let Some(shape) = &self.shape {
             match *shape {
                 Shape::Circle { radius } => c.positive(&at("shape.radius"), radius, "m")?,

@@ -19,6 +19,10 @@ pub const FORCE_COLOUR: [u8; 4] = [240, 200, 80, 255];
 pub const CONTACT_COLOUR: [u8; 4] = [240, 90, 200, 255];
 /// Bodies the scene gave no colour (sRGB).
 pub const DEFAULT_COLOUR: [u8; 4] = [200, 200, 210, 255];
+/// Joints: a line between their anchors (sRGB).
+pub const JOINT_COLOUR: [u8; 4] = [236, 226, 196, 255];
+/// How wide a joint is drawn, pixels.
+pub const JOINT_WIDTH_PX: f32 = 2.0;
 
 /// What to draw besides the bodies.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -146,6 +150,26 @@ impl LevelTiles {
     }
 }
 
+/// Adds each joint as a line between its anchors (at the bodies'
+/// interpolated positions), with a dot at each.
+pub fn add_joints(list: &mut DrawList, world: &World, options: &DrawOptions) {
+    let at = |id: BodyId| {
+        world
+            .interpolated_position(id, options.alpha)
+            .or_else(|| world.body(id).map(|b| b.position))
+            .unwrap_or(Vec2::ZERO)
+    };
+    for (_, joint) in world.joints() {
+        let def = joint.def;
+        let a = at(def.a) + def.anchor_a + options.offset;
+        let b = def.b.map_or(Vec2::ZERO, at) + def.anchor_b + options.offset;
+        list.line(a, b, JOINT_WIDTH_PX, JOINT_COLOUR);
+        for p in [a, b] {
+            list.circle(p, 0.05, JOINT_COLOUR);
+        }
+    }
+}
+
 /// Clears `list` (keeping its capacity), then draws the world into it.
 pub fn draw_world(list: &mut DrawList, world: &World, bodies: &[SceneBody], options: &DrawOptions) {
     draw_world_with_tiles(list, world, bodies, &LevelTiles::default(), options);
@@ -226,6 +250,7 @@ pub fn add_world_hiding(
             }
         }
     }
+    add_joints(list, world, options);
     for body in world.bodies() {
         let p = world
             .interpolated_position(body.id, options.alpha)

@@ -85,6 +85,8 @@ pub const BUILTIN: &[BuiltIn] = &[
         "platformer",
         include_str!("../../../assets/scenes/platformer.ron"),
     ),
+    BuiltIn::new("joints", include_str!("../../../assets/scenes/joints.ron")),
+    BuiltIn::new("water", include_str!("../../../assets/scenes/water.ron")),
 ];
 
 /// The scenes directory next to the working directory, if there is one.

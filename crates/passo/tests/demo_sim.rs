@@ -221,6 +221,53 @@ fn spawning_and_flinging_bodies() {
 }
 
 #[test]
+fn dragging_a_body_pulls_it_to_the_pointer_and_letting_go_drops_it() {
+    fn world(sim: &Sim) -> &passo_physics::World {
+        &sim.scene.lanes[0].world
+    }
+    let mut sim = load(&Entry::File("joints".into())).unwrap();
+    run(&mut sim, 30, Input::default());
+    let crate_ = sim
+        .scene
+        .pick(Vec2::new(-8.0, 8.5))
+        .expect("the chain's last crate");
+    let start = world(&sim).body(crate_).unwrap().position;
+    let grab = |id: passo_physics::BodyId, at: Vec2| Command::Grab {
+        index: id.index(),
+        generation: id.generation(),
+        at: at.to_array(),
+    };
+    sim.command(grab(crate_, start)).unwrap();
+    assert_eq!(world(&sim).joint_len(), 22, "a target joint more");
+    // Pull it 3 m to the right: it swings out on its chain.
+    let target = start + Vec2::new(3.0, 0.0);
+    sim.command(Command::Drag {
+        at: target.to_array(),
+    })
+    .unwrap();
+    run(&mut sim, 120, Input::default());
+    let pulled = world(&sim).body(crate_).unwrap().position;
+    assert!(
+        pulled.x > start.x + 1.5,
+        "pulled toward the pointer: {pulled}"
+    );
+    sim.command(Command::Release).unwrap();
+    assert_eq!(world(&sim).joint_len(), 21, "let go");
+    // It swings on its chain, which holds it no farther from the beam
+    // than it hung (straight while it swings).
+    let hook = Vec2::new(-8.0, 12.8);
+    let hung = (start - hook).length();
+    for _ in 0..120 {
+        run(&mut sim, 1, Input::default());
+        let at = world(&sim).body(crate_).unwrap().position;
+        assert!((at - hook).length() < hung + 0.02, "the chain holds: {at}");
+    }
+    // A grab of a body that is gone does nothing.
+    sim.command(Command::Release).unwrap();
+    sim.command(Command::Drag { at: [0.0, 0.0] }).unwrap();
+}
+
+#[test]
 fn the_rain_count_slider_rebuilds_the_scene() {
     let mut sim = load(&Entry::File("rain".into())).unwrap();
     assert_eq!(sim.scene.rain_count(), Some(2000));

@@ -15,7 +15,25 @@ pub enum Command {
         /// A ball rather than a box.
         round: bool,
     },
-    /// Set a body's velocity (the mouse fling).
+    /// Take hold of a body with the mouse: a target joint from the point
+    /// `at` on it, pulled toward the pointer (see `SceneState::grab`).
+    Grab {
+        /// The body's slot index.
+        index: u32,
+        /// Its generation.
+        generation: u32,
+        /// The point taken, metres.
+        at: [f32; 2],
+    },
+    /// Move the held body's target to the pointer.
+    Drag {
+        /// The pointer, metres.
+        at: [f32; 2],
+    },
+    /// Let go of the held body.
+    Release,
+    /// Set a body's velocity (the mouse fling of earlier versions; kept so
+    /// their replays still play).
     Fling {
         /// The body's slot index.
         index: u32,

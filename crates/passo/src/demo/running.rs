@@ -40,8 +40,9 @@ pub(super) struct Keys {
 pub(super) struct Mouse {
     /// Cursor, physical pixels.
     pub(super) at: Vec2,
-    /// A body being flung: its id and the world point the drag started at.
-    fling: Option<(BodyId, Vec2)>,
+    /// Holding a body (a target joint, see `SceneState::grab`): the last
+    /// point its target was sent to.
+    held: Option<Vec2>,
     /// Panning with the right or middle button.
     pub(super) panning: bool,
 }
@@ -210,7 +211,18 @@ impl Running {
         match (button, down) {
             (MouseButton::Left, true) if on_panel => {}
             (MouseButton::Left, true) => match self.sim.scene.pick(world_at) {
-                Some(id) => self.mouse.fling = Some((id, world_at)),
+                Some(id) => {
+                    self.mouse.held = Some(world_at);
+                    let command = Command::Grab {
+                        index: id.index(),
+                        generation: id.generation(),
+                        at: world_at.to_array(),
+                    };
+                    self.act(Actions {
+                        commands: vec![command],
+                        ..Default::default()
+                    });
+                }
                 None => {
                     let command = Command::Spawn {
                         at: world_at.to_array(),
@@ -222,19 +234,11 @@ impl Running {
                     });
                 }
             },
-            (MouseButton::Left, false) => {
-                if let Some((id, from)) = self.mouse.fling.take() {
-                    // A slingshot: 4 m/s for every metre dragged.
-                    let command = Command::Fling {
-                        index: id.index(),
-                        generation: id.generation(),
-                        velocity: ((world_at - from) * 4.0).to_array(),
-                    };
-                    self.act(Actions {
-                        commands: vec![command],
-                        ..Default::default()
-                    });
-                }
+            (MouseButton::Left, false) if self.mouse.held.take().is_some() => {
+                self.act(Actions {
+                    commands: vec![Command::Release],
+                    ..Default::default()
+                });
             }
             (MouseButton::Right | MouseButton::Middle, pressed) => self.mouse.panning = pressed,
             _ => {}
@@ -320,6 +324,18 @@ impl Running {
     /// Returns `Ok(None)` when the frame was skipped, else whether a
     /// screenshot was taken.
     pub(super) fn redraw(&mut self, capture: bool) -> Result<Option<Option<RgbaImage>>> {
+        // A held body's target follows the pointer: one command a frame
+        // at most, and none while the pointer holds still.
+        if let Some(sent) = self.mouse.held {
+            let at = (self.camera).pixel_to_world(self.mouse.at, self.surface.size());
+            if at != sent {
+                self.mouse.held = Some(at);
+                self.act(Actions {
+                    commands: vec![Command::Drag { at: at.to_array() }],
+                    ..Default::default()
+                });
+            }
+        }
         let frame_time = self.clock.frame_time();
         let frame_time = self.hitch.take().unwrap_or(frame_time);
         self.sim.scene.set_input(Input {

@@ -9,7 +9,9 @@ use super::lanes::{Lane, integrator_lanes};
 use crate::scenes::Plot;
 use anyhow::Result;
 use glam::Vec2;
-use passo_physics::{Aabb, BodyId, BodyKind, Integrator, WorldSnapshot};
+use passo_physics::{
+    Aabb, BodyId, BodyKind, Integrator, JointDef, JointId, JointKind, World, WorldSnapshot,
+};
 use passo_scene::{BuiltScene, Generator, LevelArt, Platform, Scene, SceneFile};
 use std::collections::VecDeque;
 use std::sync::Arc;
@@ -497,6 +499,47 @@ impl SceneState {
             .find(|id| id.index() == index && id.generation() == generation)
     }
 
+    /// Takes hold of dynamic body `id` of lane 0 at the world point `at`:
+    /// a target joint from that point of the body, pulled toward the
+    /// pointer by a 5 Hz spring with at most 1 000 times the body's weight
+    /// (as Box2D's samples drag bodies). What held a body before lets go.
+    pub fn grab(&mut self, id: BodyId, at: Vec2) {
+        self.release();
+        let world = &mut self.lanes[0].world;
+        let Some(body) = world.body(id) else {
+            return;
+        };
+        let g = world
+            .settings()
+            .forces
+            .gravity
+            .map_or(9.81, |g| g.length().max(9.81));
+        let def = JointDef::target(id, at)
+            .anchors(at - body.position, at)
+            .max_force(1000.0 * body.mass * g);
+        if let Err(e) = world.add_joint(def) {
+            log::warn!("grab refused: {e}");
+        }
+    }
+
+    /// Moves the held body's target to `at`.
+    pub fn drag_to(&mut self, at: Vec2) {
+        let world = &mut self.lanes[0].world;
+        if let Some(id) = grab_joint(world)
+            && let Err(e) = world.set_joint_target(id, at)
+        {
+            log::warn!("drag refused: {e}");
+        }
+    }
+
+    /// Lets go of the held body, if any.
+    pub fn release(&mut self) {
+        let world = &mut self.lanes[0].world;
+        while let Some(id) = grab_joint(world) {
+            world.remove_joint(id);
+        }
+    }
+
     /// Sets a body's velocity (a fling).
     pub fn fling(&mut self, id: BodyId, velocity: Vec2) {
         if let Err(e) = self.lanes[0].world.try_set_velocity(id, velocity) {
@@ -523,6 +566,16 @@ impl SceneState {
         }
         Some(file)
     }
+}
+
+/// The joint by which the mouse holds a body: the world's target joint
+/// (scene files make none), found in the world rather than remembered, so
+/// a rewind or a replay that removes it leaves nothing stale.
+fn grab_joint(world: &World) -> Option<JointId> {
+    world
+        .joints()
+        .find(|(_, j)| matches!(j.def.kind, JointKind::Target { .. }))
+        .map(|(id, _)| id)
 }
 
 #[cfg(test)]

@@ -257,6 +257,17 @@ impl Sim {
             Command::Spawn { at, round } => {
                 self.spawn(Vec2::from_array(*at), *round);
             }
+            Command::Grab {
+                index,
+                generation,
+                at,
+            } => {
+                if let Some(id) = self.scene.body_with(*index, *generation) {
+                    self.scene.grab(id, Vec2::from_array(*at));
+                }
+            }
+            Command::Drag { at } => self.scene.drag_to(Vec2::from_array(*at)),
+            Command::Release => self.scene.release(),
             Command::Fling {
                 index,
                 generation,

@@ -526,7 +526,7 @@ fn help(ui: &mut egui::Ui) {
         "P: pause, N: single step, R: reset",
         "Backspace (hold): rewind (up to 10 s); or drag the timeline",
         "left click: spawn (Shift: box)",
-        "left drag on a body: fling it",
+        "left drag on a body: pull it (a target joint)",
         "right drag: pan, wheel: zoom, F: fit",
         "V: velocity arrows",
     ] {
