@@ -101,7 +101,10 @@ fn energy_drift_is_bounded_for_semi_implicit_euler_grows_for_explicit_euler_and_
     assert!((-0.02..=-0.008).contains(&rk4), "rk4: {rk4}");
     // The per-case drift column: conservative cases only.
     for r in &data().rows {
-        let conservative = matches!(r.case, "projectile" | "spring" | "kepler");
+        let conservative = matches!(
+            r.case,
+            "projectile" | "spring" | "kepler" | "pendulum_small" | "pendulum_large"
+        );
         assert_eq!(
             r.energy_drift.is_some(),
             conservative,
@@ -175,8 +178,9 @@ fn the_report_files_are_written() {
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), data().rows.len() + 4);
     assert!(rows.iter().all(|r| r.len() == 6));
-    // 7 cases; 6 steps each; 4 methods on conservative cases, 6 elsewhere.
-    assert_eq!(data().rows.len(), 6 * (3 * 4 + 4 * 6));
+    // 10 cases; 6 steps each; 4 methods where no drag or friction acts
+    // (6 cases), 6 where they do (4).
+    assert_eq!(data().rows.len(), 6 * (6 * 4 + 4 * 6));
     let md = std::fs::read_to_string(dir.join("accuracy.md")).unwrap();
     for heading in [
         "## projectile",
@@ -188,6 +192,6 @@ fn the_report_files_are_written() {
         assert!(md.contains(heading), "{heading}");
     }
     let png = passo_render::RgbaImage::load_png(dir.join("work_precision.png")).unwrap();
-    assert_eq!((png.width, png.height), (1500, 1000));
+    assert_eq!((png.width, png.height), (1500, 1400));
     std::fs::remove_dir_all(dir).unwrap();
 }

@@ -2,8 +2,8 @@
 
 use passo_physics::glam::Vec2;
 use passo_physics::{
-    BodyDef, CentralGravity, ForceForm, ForceModels, Integrator, LinearDrag, QuadraticDrag, Spring,
-    SurfaceFriction, World, WorldSettings,
+    BodyDef, BodyId, CentralGravity, ContactSettings, ForceForm, ForceModels, Integrator, JointDef,
+    JointSpring, LinearDrag, QuadraticDrag, Spring, SurfaceFriction, World, WorldSettings,
 };
 
 /// A problem with a closed-form solution.
@@ -29,6 +29,9 @@ pub struct Case {
     pub smooth: bool,
     /// What to know when reading the case's numbers.
     pub note: &'static str,
+    /// A joint holding the body, made for a body and the offset of its
+    /// copy (see [`world`]); `None` for a free body.
+    pub joint: Option<fn(BodyId, Vec2) -> JointDef>,
 }
 
 impl Case {
@@ -88,6 +91,7 @@ pub fn cases() -> Vec<Case> {
             smooth: true,
             note: "Constant acceleration: both Euler methods miss the parabola by exactly 1/2 g dt t \
                    (first order); Verlet and RK4 are exact, so their errors are f32 rounding alone.",
+            joint: None,
         },
         Case {
             name: "linear_drag",
@@ -112,6 +116,7 @@ pub fn cases() -> Vec<Case> {
             smooth: true,
             note: "The stable forms are exact for drag alone, but the Euler step that moves the \
                    body is first order; the plain explicit forms go unstable once b dt / m > 2.",
+            joint: None,
         },
         Case {
             name: "quadratic_drag_fall",
@@ -139,6 +144,7 @@ pub fn cases() -> Vec<Case> {
             smooth: true,
             note: "Gravity and drag together: the stable split is first order; Verlet and RK4 \
                    evaluate drag at every stage and reach the rounding floor quickly.",
+            joint: None,
         },
         Case {
             name: "drag_coast",
@@ -168,6 +174,7 @@ pub fn cases() -> Vec<Case> {
             smooth: true,
             note: "Drag alone: the stable velocity update is exact, so the stable Euler error is \
                    the first-order position update only.",
+            joint: None,
         },
         Case {
             name: "friction_slide",
@@ -191,6 +198,7 @@ pub fn cases() -> Vec<Case> {
                    Verlet and RK4 apply friction exactly for half a step before their stages and \
                    half after, so the slide itself is exact and only rounding and the last step \
                    remain.",
+            joint: None,
         },
         Case {
             name: "spring",
@@ -214,6 +222,7 @@ pub fn cases() -> Vec<Case> {
             note: "Explicit Euler multiplies the energy by 1 + w² dt² per step and blows up at the \
                    coarse steps; the others' error is mostly phase error. RK4 reaches the f32 \
                    rounding floor from dt = 1/240.",
+            joint: None,
         },
         Case {
             name: "kepler",
@@ -236,8 +245,130 @@ pub fn cases() -> Vec<Case> {
                    Kepler's equation solved in f64. Over one whole period the symmetric orbit \
                    cancels the first-order error of semi-implicit Euler, which converges at \
                    second order here.",
+            joint: None,
+        },
+        pendulum_case(
+            "pendulum_small",
+            "pendulum on a 1 m rod, released at 10 degrees, 5 s",
+            PENDULUM_SMALL,
+            |t| pendulum(PENDULUM_SMALL, t),
+        ),
+        pendulum_case(
+            "pendulum_large",
+            "pendulum on a 1 m rod, released at 150 degrees, 5 s",
+            PENDULUM_LARGE,
+            |t| pendulum(PENDULUM_LARGE, t),
+        ),
+        Case {
+            name: "spring_joint",
+            title: "body on a spring joint, 2 Hz, damping ratio 0.1, released 0.5 m out, 3 s",
+            end_time: 3.0,
+            forces: none,
+            body: body(v2(SPRING_REST + 0.5, 0.0), Vec2::ZERO),
+            exact: |t| [SPRING_REST + damped(t), 0.0],
+            conservative: false,
+            dissipative: false,
+            smooth: true,
+            note: "The joint's spring is solved in the contact step's substeps (four a step) \
+                   whatever the integrator, so the methods differ little: explicit (no \
+                   numerical damping) while the spring is soft for the substep.",
+            joint: Some(|id, offset| {
+                let spring = JointSpring::new(SPRING_HERTZ as f32, SPRING_ZETA as f32);
+                JointDef::spring(id, None, SPRING_REST as f32, spring).anchors(Vec2::ZERO, offset)
+            }),
         },
     ]
+}
+
+/// Pendulum release angles, radians.
+const PENDULUM_SMALL: f64 = 10.0 * std::f64::consts::PI / 180.0;
+const PENDULUM_LARGE: f64 = 150.0 * std::f64::consts::PI / 180.0;
+
+/// A point mass on a rigid rod of 1 m from the origin, released at rest
+/// `amplitude` radians from straight down.
+fn pendulum_case(
+    name: &'static str,
+    title: &'static str,
+    amplitude: f64,
+    exact: fn(f64) -> [f64; 2],
+) -> Case {
+    Case {
+        name,
+        title,
+        end_time: 5.0,
+        forces: ForceModels {
+            gravity: Some(v2(0.0, -G)),
+            ..ForceModels::none()
+        },
+        body: BodyDef {
+            position: v2(amplitude.sin(), -amplitude.cos()),
+            ..Default::default()
+        },
+        exact,
+        conservative: true,
+        dissipative: false,
+        smooth: true,
+        note: "Against the exact motion, theta = 2 asin(k sn(K - w t | k^2)) with k = \
+               sin(theta0 / 2) (the period is 4 K sqrt(L / g), K the complete elliptic \
+               integral). The rod is solved in the contact step's substeps whatever the \
+               integrator, so the methods differ only in how gravity enters each substep.",
+        joint: Some(|id, offset| JointDef::distance(id, None, 1.0).anchors(Vec2::ZERO, offset)),
+    }
+}
+
+/// The pendulum's position at `t`: the angle from Jacobi's sn (see
+/// `pendulum_case`).
+fn pendulum(amplitude: f64, t: f64) -> [f64; 2] {
+    let k = (amplitude / 2.0).sin();
+    let m = k * k;
+    let w = G.sqrt();
+    let theta = 2.0 * (k * jacobi_sn(complete_k(m) - w * t, m)).asin();
+    [theta.sin(), -theta.cos()]
+}
+
+/// The complete elliptic integral of the first kind K(m), by the
+/// arithmetic-geometric mean.
+fn complete_k(m: f64) -> f64 {
+    let (mut a, mut b) = (1.0f64, (1.0 - m).sqrt());
+    for _ in 0..40 {
+        (a, b) = (0.5 * (a + b), (a * b).sqrt());
+    }
+    std::f64::consts::PI / (2.0 * a)
+}
+
+/// Jacobi's sn(u | m), by the descending Landen transformation.
+fn jacobi_sn(u: f64, m: f64) -> f64 {
+    let (mut a, mut c) = ([0.0f64; 24], [0.0f64; 24]);
+    a[0] = 1.0;
+    c[0] = m.sqrt();
+    let mut b = (1.0 - m).sqrt();
+    let mut n = 0;
+    while n < 23 && c[n].abs() > 1e-16 {
+        a[n + 1] = 0.5 * (a[n] + b);
+        c[n + 1] = 0.5 * (a[n] - b);
+        b = (a[n] * b).sqrt();
+        n += 1;
+    }
+    let mut phi = 2f64.powi(n as i32) * a[n] * u;
+    for k in (1..=n).rev() {
+        phi = 0.5 * (phi + (c[k] / a[k] * phi.sin()).asin());
+    }
+    phi.sin()
+}
+
+/// Spring joint: rest length, m, frequency, Hz, and damping ratio (unit
+/// mass).
+const SPRING_REST: f64 = 1.0;
+const SPRING_HERTZ: f64 = 2.0;
+const SPRING_ZETA: f64 = 0.1;
+
+/// The spring joint's stretch at `t`, released at rest 0.5 m out:
+/// underdamped, x = x0 e^(-z w t) (cos(wd t) + z w / wd sin(wd t)).
+fn damped(t: f64) -> f64 {
+    let w = std::f64::consts::TAU * SPRING_HERTZ;
+    let wd = w * (1.0 - SPRING_ZETA * SPRING_ZETA).sqrt();
+    let decay = (-SPRING_ZETA * w * t).exp();
+    0.5 * decay * ((wd * t).cos() + SPRING_ZETA * w / wd * (wd * t).sin())
 }
 
 /// The Kepler orbit with GM = 1, a = 1, e = 0.6 from perihelion (0.4, 0)
@@ -331,13 +462,20 @@ pub fn world(case: &Case, method: &Method, count: usize, min_speed: f32) -> Worl
         min_speed,
         max_speed: f32::INFINITY,
         interpolation: false,
-        contacts: None,
+        // Joints are solved in the contact step.
+        contacts: case.joint.map(|_| ContactSettings::default()),
     })
     .expect("report settings are valid");
     for i in 0..count {
         let mut def = case.body;
-        def.position += Vec2::new(0.0, i as f32 * 1e-3);
-        world.add_body(def).expect("report bodies are valid");
+        let offset = Vec2::new(0.0, i as f32 * 1e-3);
+        def.position += offset;
+        let id = world.add_body(def).expect("report bodies are valid");
+        if let Some(joint) = case.joint {
+            world
+                .add_joint(joint(id, offset))
+                .expect("report joints are valid");
+        }
     }
     world
 }

@@ -54,7 +54,7 @@ pub(crate) fn work_precision(report: &Report, path: &Path) -> Result<()> {
         epaint_default_fonts::UBUNTU_LIGHT,
     )
     .map_err(|_| anyhow!("the built-in font did not load"))?;
-    let (w, h) = (1500u32, 1000u32);
+    let (w, h) = (1500u32, 1400u32);
     let mut rgb = vec![0u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
@@ -67,7 +67,7 @@ pub(crate) fn work_precision(report: &Report, path: &Path) -> Result<()> {
             )
             .map_err(|e| anyhow!("{e}"))?;
         let all = cases();
-        let panels = body.split_evenly((2, 4));
+        let panels = body.split_evenly((3, 4));
         for (case, panel) in all.iter().zip(panels.iter()) {
             let rows: Vec<_> = report
                 .rows
