@@ -66,9 +66,15 @@ pub fn copy(passo: &World, sleep: bool) -> Box2d {
             .with_friction(b.friction)
             .and_then(|m| m.with_restitution(b.restitution))
             .expect("a material");
+        let filter = boxdd::filter::Filter {
+            category_bits: u64::from(b.filter.layers),
+            mask_bits: u64::from(b.filter.mask),
+            ..Default::default()
+        };
         let shape_def = ShapeDef::builder()
             .density(density)
             .material(material)
+            .filter(filter)
             .build()
             .expect("a shape definition");
         let mut body = world.body(id).expect("the body");
@@ -122,6 +128,34 @@ pub fn copy(passo: &World, sleep: bool) -> Box2d {
             }
         }
         bodies.push((b.id, id));
+    }
+    // Rigid distance joints (rods), as Box2D distance joints between the
+    // same anchors, the bodies not colliding with each other.
+    let box_id = |id| bodies.iter().find(|(p, _)| *p == id).map(|(_, b)| *b);
+    for (_, joint) in passo.joints() {
+        let def = joint.def;
+        let passo_physics::JointKind::Distance {
+            length,
+            min_length,
+            max_length,
+            spring: None,
+        } = def.kind
+        else {
+            panic!("only rods are carried over to Box2D, not {:?}", def.kind);
+        };
+        assert_eq!(
+            min_length, max_length,
+            "only rods are carried over to Box2D"
+        );
+        let (a, b) = (box_id(def.a), def.b.and_then(box_id));
+        let (a, b) = (a.expect("body a"), b.expect("body b"));
+        let (pa, pb) = joint.anchors;
+        world
+            .distance(a, b)
+            .anchors_world([pa.x, pa.y], [pb.x, pb.y])
+            .length(length)
+            .build()
+            .expect("a distance joint");
     }
     Box2d { world, bodies }
 }

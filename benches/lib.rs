@@ -537,6 +537,94 @@ fn unit_sequence(seed: u64) -> impl FnMut() -> f32 {
     move || (next() >> 40) as f32 / (1u64 << 24) as f32
 }
 
+/// Box2D's `joint_grid` benchmark without rotation: `n × n` circles of
+/// radius 0.4 m one metre apart, each linked to its neighbours below and
+/// to the right by a rod of 1 m (a distance joint between centres), the
+/// seven middle bodies of the top row static, and no two circles
+/// colliding (layer 2, mask all but 2). It falls and swings as a net.
+pub fn joint_grid(n: usize) -> World {
+    let mut world = World::default();
+    let filter = passo_physics::CollisionFilter {
+        layers: 2,
+        mask: !2,
+    };
+    let mut ids = Vec::with_capacity(n * n);
+    for k in 0..n {
+        for i in 0..n {
+            let position = Vec2::new(k as f32, -(i as f32));
+            let middle = k + 3 >= n / 2 && k <= n / 2 + 3;
+            let shape = Shape::circle(0.4);
+            let def = if middle && i == 0 {
+                BodyDef::new_static(position, shape)
+            } else {
+                BodyDef {
+                    mass: std::f32::consts::PI * 0.16,
+                    ..BodyDef::new_dynamic(position, shape)
+                }
+            };
+            let fixed = def.kind == BodyKind::Static;
+            let id = world.add_body(def.with_filter(filter)).expect("valid body");
+            // (Two static neighbours need no joint: Box2D ignores one.)
+            let mut link = |other: (passo_physics::BodyId, bool)| {
+                if !(fixed && other.1) {
+                    let rod = passo_physics::JointDef::distance(other.0, Some(id), 1.0);
+                    world.add_joint(rod).expect("valid joint");
+                }
+            };
+            if i > 0 {
+                link(ids[ids.len() - 1]);
+            }
+            if k > 0 {
+                link(ids[ids.len() - n]);
+            }
+            ids.push((id, fixed));
+        }
+    }
+    world
+}
+
+/// A bridge of `n` planks (0.9 m × 0.2 m, 2 kg) one metre apart between
+/// two static posts, each plank's ends linked to its neighbours' by rods
+/// of 0.1 m: straight as built, it sags under its weight as far as the
+/// rods give. Planks do not collide with each other.
+pub fn bridge_world(n: usize) -> World {
+    let mut world = World::default();
+    let width = n as f32;
+    let post = |world: &mut World, x: f32| {
+        let def = BodyDef::new_static(Vec2::new(x, -1.0), Shape::rect(1.0, 2.0));
+        world.add_body(def).expect("valid post")
+    };
+    let left = post(&mut world, -0.5 * width - 0.5);
+    let right = post(&mut world, 0.5 * width + 0.5);
+    let mut last = (left, Vec2::new(0.5, 1.0));
+    for i in 0..n {
+        let x = -0.5 * width + 0.5 + i as f32;
+        let def = BodyDef {
+            mass: 2.0,
+            ..BodyDef::new_dynamic(Vec2::new(x, -0.1), Shape::rect(0.9, 0.2))
+        };
+        let plank = world.add_body(def).expect("valid plank");
+        let rod = passo_physics::JointDef::distance(last.0, Some(plank), 0.05)
+            .anchors(last.1, Vec2::new(-0.45, 0.1));
+        world.add_joint(rod).expect("valid joint");
+        last = (plank, Vec2::new(0.45, 0.1));
+    }
+    let rod = passo_physics::JointDef::distance(last.0, Some(right), 0.05)
+        .anchors(last.1, Vec2::new(-0.5, 1.0));
+    world.add_joint(rod).expect("valid joint");
+    world
+}
+
+/// How far the lowest plank of a bridge (every dynamic body) hangs below
+/// where it was built, metres.
+pub fn sag(start: &World, now: &World) -> f32 {
+    start
+        .bodies()
+        .filter(|b| b.kind == BodyKind::Dynamic)
+        .map(|b| b.position.y - now.body(b.id).map_or(b.position.y, |n| n.position.y))
+        .fold(0.0, f32::max)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

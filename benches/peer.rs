@@ -24,7 +24,9 @@
 //! compares with Box2D's one-thread time of the same run.
 //!
 //! Run: `cargo run --release -p passo-benches --features rapier --bin peer [N | pN ...]`
-//! (N: a rain of N circles; pN: a pyramid of base N; `--features rapier,box2d`
+//! (N: a rain of N circles; pN: a pyramid of base N; gridN: Box2D's joint
+//! grid of N × N without rotation, rods between centres, which rapier's
+//! columns leave out (`–`); `--features rapier,box2d`
 //! or `rapier,box2d-avx2` for the Box2D columns, and `parallel` for the
 //! pool's column).
 
@@ -78,7 +80,7 @@ fn rapier_copy(passo: &World, sleep: bool) -> Rapier {
                     .iter()
                     .map(|v| v.to_array().into())
                     .collect();
-                ColliderBuilder::convex_polygon(&points).expect("a convex polygon")
+                ColliderBuilder::convex_polyline(points).expect("a convex polygon")
             }
         }
         .friction(0.6)
@@ -122,6 +124,20 @@ fn main() {
                 (
                     format!("rain {n} on 1000 boxes"),
                     passo_benches::rain_on_hills(n, true),
+                )
+            }),
+            // `bridgeN`: a bridge of N planks on rods.
+            None if a.starts_with("bridge") => a["bridge".len()..].parse().ok().map(|n| {
+                (
+                    format!("bridge of {n} planks"),
+                    passo_benches::bridge_world(n),
+                )
+            }),
+            // `gridN`: Box2D's joint grid, N × N, without rotation.
+            None if a.starts_with("grid") => a["grid".len()..].parse().ok().map(|n| {
+                (
+                    format!("joint grid {n} × {n}"),
+                    passo_benches::joint_grid(n),
                 )
             }),
             None if a.starts_with("hills") => a["hills".len()..].parse().ok().map(|n| {
@@ -180,6 +196,9 @@ fn main() {
         let (mut p, mut ps, mut r, mut s) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let mut pool = Vec::<f64>::new();
         let (mut passo_pen, mut rapier_pen) = (0.0, 0.0);
+        // How far the bridge hangs (with joints only).
+        #[cfg_attr(not(feature = "box2d"), allow(unused_mut))]
+        let (mut passo_sag, mut box2d_sag) = (0.0f32, None::<f32>);
         // Filled only with the Box2D columns.
         #[cfg_attr(not(feature = "box2d"), allow(unused_mut))]
         let (mut b, mut bs, mut box2d_pen) = (Vec::<f64>::new(), Vec::<f64>::new(), 0.0f32);
@@ -189,12 +208,14 @@ fn main() {
                 let mut awake = box2d::copy(&start, false);
                 b.push(time_steps(ticks, || awake.step()).mean_ms);
                 box2d_pen = awake.penetration(&start);
+                box2d_sag = Some(passo_benches::sag(&start, &awake.state(&start)));
                 let mut sleepy = box2d::copy(&start, true);
                 bs.push(time_steps(ticks, || sleepy.step()).mean_ms);
             }
             let mut passo = awake_start.clone();
             p.push(time_steps(ticks, || passo.step(1.0 / 60.0)).mean_ms);
             passo_pen = passo.max_penetration();
+            passo_sag = passo_benches::sag(&start, &passo);
             if cfg!(feature = "parallel") {
                 let mut passo = awake_start.clone();
                 passo.set_parallel(true);
@@ -202,13 +223,23 @@ fn main() {
             }
             let mut passo_sleepy = start.clone();
             ps.push(time_steps(ticks, || passo_sleepy.step(1.0 / 60.0)).mean_ms);
+            // The rapier columns carry no joints over: a scene with joints
+            // has none.
+            if start.joint_len() > 0 {
+                continue;
+            }
             let mut awake = rapier_copy(&start, false);
             r.push(time_steps(ticks, || awake.world.step()).mean_ms);
             rapier_pen = rapier_penetration(&start, &awake);
             let mut sleepy = rapier_copy(&start, true);
             s.push(time_steps(ticks, || sleepy.world.step()).mean_ms);
         }
-        let (p, ps, r, s) = (median(p), median(ps), median(r), median(s));
+        let (p, ps) = (median(p), median(ps));
+        let (r, s) = if r.is_empty() {
+            (f64::NAN, f64::NAN)
+        } else {
+            (median(r), median(s))
+        };
         let box2d = if b.is_empty() {
             String::new()
         } else {
@@ -220,16 +251,22 @@ fn main() {
         } else {
             format!(" {} |", ms(median(pool)))
         };
+        let or_dash = |v: f64, text: String| if v.is_nan() { "–".to_owned() } else { text };
         println!(
-            "| {n} | {} | {} | {:.2}× | {:.1} mm | {:.1} mm | {} | {} |{box2d}{pool}",
+            "| {n} | {} | {} | {} | {:.1} mm | {} | {} | {} |{box2d}{pool}",
             ms(p),
-            ms(r),
-            r / p,
+            or_dash(r, ms(r)),
+            or_dash(r, format!("{:.2}×", r / p)),
             passo_pen * 1e3,
-            rapier_pen * 1e3,
+            or_dash(r, format!("{:.1} mm", rapier_pen * 1e3)),
             ms(ps),
-            ms(s),
+            or_dash(s, ms(s)),
         );
+        if start.joint_len() > 0 {
+            let box2d =
+                box2d_sag.map_or(String::new(), |s| format!(", Box2D v3 {:.1} mm", s * 1e3));
+            eprintln!("{n}: sags {:.1} mm in Passo{box2d}", passo_sag * 1e3);
+        }
     }
 }
 

@@ -147,6 +147,14 @@ fn main() {
             let w = with_sleeping(&rain_world(1_000), false);
             println!("rain 1000 awake: {:.3} ms/step", ms_per_step(w, 60, 600));
         }
+        "joints" => {
+            // Box2D's joint grid without rotation (see `joint_grid`).
+            let w = with_sleeping(&passo_benches::joint_grid(100), false);
+            println!(
+                "joint grid 100 awake: {:.3} ms/step",
+                ms_per_step(w, 30, 300)
+            );
+        }
         "pyramid50" => {
             // The pyramid of base 50 alone, short enough for a profiler
             // that counts instructions (`valgrind --tool=cachegrind`).
@@ -318,7 +326,7 @@ fn main() {
         }
         _ => {
             eprintln!(
-                "usage: steps integration|rain|pyramid|pyramid50|ticks|still|shuffled|sleep|settle|rays|threads|pool|tuning|rest"
+                "usage: steps integration|rain|joints|pyramid|pyramid50|ticks|still|shuffled|sleep|settle|rays|threads|pool|tuning|rest"
             );
             std::process::exit(2);
         }
