@@ -154,8 +154,8 @@ fn each_untrusted_edit_is_refused_with_a_message() {
         (
             "a static bullet",
             &[(
-                "bullet:false,character:false,min_speed:None,max_speed:None,user_data:0)]),speed_overrides",
-                "bullet:true,character:false,min_speed:None,max_speed:None,user_data:0)]),speed_overrides",
+                "bullet:false,character:false,gravity_scale:1.0,min_speed:None,max_speed:None,user_data:0)]),speed_overrides",
+                "bullet:true,character:false,gravity_scale:1.0,min_speed:None,max_speed:None,user_data:0)]),speed_overrides",
             )],
         ),
     ];
