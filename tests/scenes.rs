@@ -631,3 +631,33 @@ fn the_water_scene_floats_a_light_crate_at_its_depth() {
     let y = built.world.body(iron).unwrap().position.y;
     assert!((y - (-4.0 + 0.3)).abs() < 0.01, "on the pool's floor: {y}");
 }
+
+/// Box2D v3's sag of the same bridge of 40 planks on rods, fixed rotation,
+/// after 300 ticks: 205.9 mm, printed by `cargo run --release -p
+/// passo-benches --features rapier,box2d-avx2 --bin peer bridge40`
+/// (BENCHMARKS.md, "Joints"). Box2D does not build in the test suite.
+const BOX2D_BRIDGE_SAG: f32 = 0.2059;
+
+#[test]
+fn a_bridge_of_40_planks_sags_no_more_than_box2d_s() {
+    let start = passo_benches::bridge_world(40);
+    let mut world = start.clone();
+    world.set_parallel(false);
+    for _ in 0..300 {
+        world.step(1.0 / 60.0);
+    }
+    let sag = passo_benches::sag(&start, &world);
+    assert!(sag > 0.01, "it sags: {sag} m");
+    assert!(
+        sag <= BOX2D_BRIDGE_SAG,
+        "{sag} m against Box2D's {BOX2D_BRIDGE_SAG} m"
+    );
+    // A bridge built straight sags only as far as its rods give: at 11 cm
+    // of sag over 40 m the end rods pull with about 40 kN, and stretch
+    // from 5 cm to 10.
+    for (_, joint) in world.joints() {
+        let (a, b) = joint.anchors;
+        let length = (a - b).length();
+        assert!(length < 0.05 + 0.06, "a rod stretched to {length} m");
+    }
+}
