@@ -517,15 +517,20 @@ fn polygons_in_scene_files_build_save_and_bad_ones_are_refused() {
 /// Saves a running world as a scene, reads it back and builds it: the
 /// same state.
 fn assert_saved_and_loaded_the_same(scene: &Scene, built: &passo_scene::BuiltScene) {
+    let again = saved_and_loaded(scene, built);
+    assert_eq!(again.world.state_hash(), built.world.state_hash());
+}
+
+/// A running world saved as a scene, read back and built.
+fn saved_and_loaded(scene: &Scene, built: &passo_scene::BuiltScene) -> passo_scene::BuiltScene {
     let saved = Scene {
         file: scene_from_world(&built.world, &scene.file, &built.bodies),
         source: "saved".into(),
     };
-    let again = Scene::parse(&saved.to_ron(), "again.ron")
+    Scene::parse(&saved.to_ron(), "again.ron")
         .unwrap()
         .build()
-        .unwrap();
-    assert_eq!(again.world.state_hash(), built.world.state_hash());
+        .unwrap()
 }
 
 #[test]
@@ -537,14 +542,7 @@ fn joints_and_zones_in_scene_files_build_save_and_bad_ones_name_the_joint() {
     for _ in 0..30 {
         built.step(1.0 / 60.0);
     }
-    let saved = Scene {
-        file: scene_from_world(&built.world, &scene.file, &built.bodies),
-        source: "saved".into(),
-    };
-    let again = Scene::parse(&saved.to_ron(), "again.ron")
-        .unwrap()
-        .build()
-        .unwrap();
+    let again = saved_and_loaded(&scene, &built);
     let kinds = |w: &passo_physics::World| -> Vec<_> {
         w.joints()
             .map(|(_, j)| (j.def.kind, j.def.break_force))

@@ -224,6 +224,7 @@ pub(crate) fn body_def(spec: &BodySpec, position: Vec2) -> BodyDef {
         filter: spec.filter.unwrap_or_default(),
         sensor: spec.sensor,
         one_way: spec.one_way,
+        conveyor: spec.conveyor,
         bullet: spec.bullet,
         gravity_scale: spec.gravity_scale.unwrap_or(1.0),
         min_speed: spec.min_speed,

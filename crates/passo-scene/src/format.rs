@@ -180,62 +180,57 @@ pub enum JointSpecKind {
 /// Reads `joints`, refusing the list as soon as it holds more than
 /// [`MAX_SCENE_JOINTS`].
 fn at_most_max_joints<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<JointSpec>, D::Error> {
-    struct Bounded;
-    impl<'de> serde::de::Visitor<'de> for Bounded {
-        type Value = Vec<JointSpec>;
-
-        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-            write!(f, "a list of at most {MAX_SCENE_JOINTS} joints")
-        }
-
-        fn visit_seq<A: serde::de::SeqAccess<'de>>(
-            self,
-            mut seq: A,
-        ) -> Result<Self::Value, A::Error> {
-            let mut joints = Vec::new();
-            while let Some(joint) = seq.next_element()? {
-                if joints.len() == MAX_SCENE_JOINTS {
-                    return Err(serde::de::Error::custom(format!(
-                        "`joints` lists more than {MAX_SCENE_JOINTS} joints"
-                    )));
-                }
-                joints.push(joint);
-            }
-            Ok(joints)
-        }
-    }
-    d.deserialize_seq(Bounded)
+    at_most(d, MAX_SCENE_JOINTS, "joints")
 }
 
 /// Reads `bodies`, refusing the list as soon as it holds more than
 /// [`MAX_BODIES`]: a file of ten million `()` (30 MB) took 1.5 GB to read
 /// before its count was checked.
 fn at_most_max_bodies<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<BodySpec>, D::Error> {
-    struct Bounded;
-    impl<'de> serde::de::Visitor<'de> for Bounded {
-        type Value = Vec<BodySpec>;
+    at_most(d, MAX_BODIES, "bodies")
+}
+
+/// Reads the list `what`, refusing it as soon as it holds more than `max`
+/// entries (before reading the rest).
+fn at_most<'de, D, T>(d: D, max: usize, what: &'static str) -> Result<Vec<T>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Deserialize<'de>,
+{
+    struct Bounded<T> {
+        max: usize,
+        what: &'static str,
+        entries: std::marker::PhantomData<T>,
+    }
+    impl<'de, T: Deserialize<'de>> serde::de::Visitor<'de> for Bounded<T> {
+        type Value = Vec<T>;
 
         fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-            write!(f, "a list of at most {MAX_BODIES} bodies")
+            write!(f, "a list of at most {} {}", self.max, self.what)
         }
 
         fn visit_seq<A: serde::de::SeqAccess<'de>>(
             self,
             mut seq: A,
         ) -> Result<Self::Value, A::Error> {
-            let mut bodies = Vec::new();
-            while let Some(body) = seq.next_element()? {
-                if bodies.len() == MAX_BODIES {
+            let (max, what) = (self.max, self.what);
+            let mut entries = Vec::new();
+            while let Some(entry) = seq.next_element()? {
+                if entries.len() == max {
                     return Err(serde::de::Error::custom(format!(
-                        "`bodies` lists more than {MAX_BODIES} bodies; at most {MAX_BODIES} are allowed"
+                        "`{what}` lists more than {max} {what}; at most {max} are allowed"
                     )));
                 }
-                bodies.push(body);
+                entries.push(entry);
             }
-            Ok(bodies)
+            Ok(entries)
         }
     }
-    d.deserialize_seq(Bounded)
+    d.deserialize_seq(Bounded {
+        max,
+        what,
+        entries: std::marker::PhantomData,
+    })
 }
 
 fn default_rate() -> f64 {
@@ -450,6 +445,10 @@ pub struct BodySpec {
     /// Own maximum speed, m/s, > 0. Default: the scene's.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_speed: Option<f32>,
+    /// A conveyor belt: the velocity its surface moves at, m/s; what
+    /// touches it is carried along. Default none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub conveyor: Option<Vec2>,
     /// Share of the scene's gravity, in [-1000, 1000]. Default 1.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gravity_scale: Option<f32>,

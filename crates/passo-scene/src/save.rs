@@ -36,6 +36,7 @@ pub fn scene_from_world(world: &World, base: &SceneFile, bodies: &[SceneBody]) -
                 colour: record.map(|r| r.colour),
                 sensor: b.sensor,
                 one_way: b.one_way,
+                conveyor: b.conveyor,
                 bullet: b.bullet,
                 path: None,
                 filter: (b.filter != CollisionFilter::default()).then_some(b.filter),

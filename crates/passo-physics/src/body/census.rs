@@ -28,6 +28,8 @@ pub(crate) struct BodyCensus {
     pub(crate) speed_overrides: usize,
     /// Dynamic bodies whose gravity scale is not 1.
     pub(crate) gravity_scaled: usize,
+    /// Conveyors, of any kind.
+    pub(crate) conveyors: usize,
 }
 
 impl BodyCensus {
@@ -41,6 +43,7 @@ impl BodyCensus {
             dropping: usize::from(moving && meta.drop_through > 0.0),
             speed_overrides: usize::from(moving && has_overrides(meta)),
             gravity_scaled: usize::from(moving && !meta.kinematic && meta.gravity_scale != 1.0),
+            conveyors: usize::from(meta.conveyor.is_some()),
         }
     }
 
@@ -52,6 +55,7 @@ impl BodyCensus {
         self.dropping += share.dropping;
         self.speed_overrides += share.speed_overrides;
         self.gravity_scaled += share.gravity_scaled;
+        self.conveyors += share.conveyors;
     }
 
     /// Counts a body out.
@@ -68,6 +72,7 @@ impl BodyCensus {
         out(&mut self.dropping, share.dropping);
         out(&mut self.speed_overrides, share.speed_overrides);
         out(&mut self.gravity_scaled, share.gravity_scaled);
+        out(&mut self.conveyors, share.conveyors);
     }
 
     /// The census counted from the bodies.

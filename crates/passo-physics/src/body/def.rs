@@ -104,6 +104,12 @@ pub struct BodyDef {
     /// with their velocity unchanged, and so does a body already partly
     /// inside it. Default `None` (solid from every side).
     pub one_way: Option<Vec2>,
+    /// A conveyor belt: the velocity its surface moves at, m/s. What
+    /// touches the body is carried along its surface at that speed (within
+    /// friction's limit), the body itself staying where it is; the part
+    /// along the contact's normal is ignored. Default `None`.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub conveyor: Option<Vec2>,
     /// A bullet: a dynamic body swept against every other body when it
     /// moves farther in a step than its speculative contacts reach, so it
     /// never passes through a thin dynamic body either (a projectile
@@ -145,6 +151,7 @@ impl Default for BodyDef {
             filter: CollisionFilter::default(),
             sensor: false,
             one_way: None,
+            conveyor: None,
             bullet: false,
             gravity_scale: 1.0,
             min_speed: None,
@@ -301,6 +308,9 @@ impl BodyDef {
         }
         check_drag_area("BodyDef::drag_area", self.drag_area)?;
         check_gravity_scale("BodyDef::gravity_scale", self.gravity_scale)?;
+        if let Some(v) = self.conveyor {
+            finite_vec("BodyDef::conveyor", v)?;
+        }
         check_friction("BodyDef::friction", self.friction)?;
         unit_interval("BodyDef::restitution", self.restitution)?;
         if let Some(normal) = self.one_way {
@@ -402,6 +412,8 @@ pub struct Body {
     pub sensor: bool,
     /// The solid side of a one-way platform (unit), if it is one.
     pub one_way: Option<Vec2>,
+    /// Its surface's velocity, if it is a conveyor.
+    pub conveyor: Option<Vec2>,
     /// Whether the body is a bullet (see [`BodyDef::bullet`]).
     pub bullet: bool,
     /// Its share of the world's gravity (see [`BodyDef::gravity_scale`]).
@@ -440,6 +452,7 @@ impl Body {
             filter: self.filter,
             sensor: self.sensor,
             one_way: self.one_way,
+            conveyor: self.conveyor,
             bullet: self.bullet,
             gravity_scale: self.gravity_scale,
             min_speed: self.min_speed,

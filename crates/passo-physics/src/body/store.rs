@@ -78,6 +78,9 @@ pub(crate) struct BodyMeta {
     /// The solid side of a one-way platform (unit).
     #[cfg_attr(feature = "serde", serde(default))]
     pub one_way: Option<Vec2>,
+    /// A conveyor's surface velocity (see `BodyDef::conveyor`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub conveyor: Option<Vec2>,
     /// Seconds left in which this body passes through one-way platforms
     /// (see `World::drop_through`).
     #[cfg_attr(feature = "serde", serde(default))]
@@ -118,6 +121,7 @@ impl BodyMeta {
             filter: self.filter,
             sensor: self.sensor,
             one_way: self.one_way,
+            conveyor: self.conveyor,
             bullet: self.bullet,
             gravity_scale: self.gravity_scale,
             min_speed: self.min_speed,

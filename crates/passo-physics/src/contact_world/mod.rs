@@ -132,6 +132,23 @@ impl ContactWorld {
         solved.infos.truncate(kept);
     }
 
+    /// Sets each contact's tangent speed from its bodies' conveyors
+    /// (`conveyor` gives a body's surface velocity, if it has one; see
+    /// `PreSolve::conveyor` for the sign).
+    pub(crate) fn apply_conveyors(&mut self, conveyor: impl Fn(crate::BodyId) -> Option<Vec2>) {
+        let solved = &mut self.solved;
+        for (row, info) in solved.rows.iter_mut().zip(&mut solved.infos) {
+            let tangent = row.normal.perp();
+            let (a, b) = (conveyor(info.id_a), conveyor(info.id_b));
+            if a.is_some() || b.is_some() {
+                let speed = |v: Option<Vec2>| v.map_or(0.0, |v| v.dot(tangent));
+                row.tangent_speed = speed(a) - speed(b);
+                // Found afresh each step, as a hook's.
+                info.reusable = false;
+            }
+        }
+    }
+
     /// Runs the game's contact hooks over this step's contacts and sensor
     /// candidates, in key order (see `ContactHooks`): drops the pairs the
     /// filter refuses and the contacts a pre-solve disables, and takes the

@@ -323,6 +323,32 @@ impl World {
         Ok(())
     }
 
+    /// Makes a body a conveyor whose surface moves at `velocity` (see
+    /// [`BodyDef::conveyor`](crate::BodyDef::conveyor)), or an ordinary body
+    /// again with `None`. What touches it wakes.
+    ///
+    /// # Errors
+    /// A stale id, or a velocity that is not finite.
+    pub fn set_conveyor(&mut self, id: BodyId, velocity: Option<Vec2>) -> Result<(), PhysicsError> {
+        if let Some(v) = velocity {
+            crate::error::finite_vec("conveyor", v)?;
+        }
+        let location = self.locate(id).ok_or(PhysicsError::StaleBody(id))?;
+        let is_static = matches!(location, Location::Static(_));
+        let meta = self.meta_mut(location);
+        let before = BodyCensus::share(meta, is_static);
+        meta.conveyor = velocity;
+        let after = BodyCensus::share(meta, is_static);
+        self.census.remove(before);
+        self.census.add(after);
+        self.contacts_changed(id, location);
+        if is_static {
+            self.revisions.statics_changed();
+        }
+        self.wake_after_change(location);
+        Ok(())
+    }
+
     /// Sets how much of the world's gravity acts on a dynamic body (see
     /// [`BodyDef::gravity_scale`](crate::BodyDef::gravity_scale)). The body
     /// wakes.

@@ -487,6 +487,7 @@ impl World {
             filter: def.filter,
             sensor: def.sensor,
             one_way: def.one_way.and_then(crate::body::def::unit_direction),
+            conveyor: def.conveyor,
             drop_through: 0.0,
             character: false,
             bullet: def.bullet,

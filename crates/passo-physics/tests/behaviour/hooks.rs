@@ -54,6 +54,39 @@ fn a_conveyor_moves_a_crate_at_its_belt_speed_within_one_percent() {
     }
 }
 
+#[test]
+fn a_conveyor_body_carries_what_lies_on_it_without_a_hook() {
+    for speed in [-4.0f32, 1.0, 3.0] {
+        let mut world = World::default();
+        let belt = BodyDef {
+            conveyor: Some(Vec2::new(speed, 0.0)),
+            ..BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(400.0, 1.0))
+        };
+        let belt = world.add_body(belt).unwrap();
+        let parcel = world
+            .add_body(BodyDef::new_dynamic(
+                Vec2::new(0.0, 0.2),
+                Shape::rect(0.6, 0.4),
+            ))
+            .unwrap();
+        for _ in 0..180 {
+            world.step(DT);
+        }
+        let v = world.body(parcel).unwrap().velocity.x;
+        assert!(
+            (v - speed).abs() <= 0.01 * speed.abs(),
+            "{speed} m/s belt: {v}"
+        );
+        // Stopped, the belt lets the parcel slide to rest.
+        world.set_conveyor(belt, None).unwrap();
+        for _ in 0..180 {
+            world.step(DT);
+        }
+        let v = world.body(parcel).unwrap().velocity.x;
+        assert!(v.abs() < 1e-3, "a stopped belt: {v}");
+    }
+}
+
 /// Bodies whose user data is odd pass through each other; a body with
 /// user data 10 has ice under it (friction 0); one with 20 bounces fully.
 struct Rules;
