@@ -241,6 +241,19 @@ fn large_world_with_a_sweeper(point_mass: bool) -> World {
 }
 
 /// The state hash of each of `ticks` steps of `world`.
+/// Runs `run` on a pool of `threads` workers, or on this thread with
+/// `None`.
+fn on_threads<T: Send>(threads: Option<usize>, run: impl FnOnce() -> T + Send) -> T {
+    match threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .unwrap()
+            .install(run),
+        None => run(),
+    }
+}
+
 fn hashes_of_steps(world: &mut World, ticks: usize) -> Vec<u64> {
     (0..ticks)
         .map(|_| {
@@ -337,15 +350,7 @@ fn the_same_bits_whatever_the_number_of_threads() {
         let mut world = big_rain(6000);
         assert!(world.dynamic_len() >= passo_physics::constants::PARALLEL_MIN_ITEMS);
         world.set_parallel(parallel);
-        let mut run = || hashes_of_steps(&mut world, 90);
-        let hashes = match threads {
-            Some(n) => rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .unwrap()
-                .install(run),
-            None => run(),
-        };
+        let hashes = on_threads(threads, || hashes_of_steps(&mut world, 90));
         // From 4 096 bodies the solver splits the pile in two regions and
         // solves them side by side; here with thousands of contacts each.
         let contacts = world.contacts().count();
@@ -465,15 +470,7 @@ fn joints_give_the_same_bits_whatever_the_number_of_threads() {
         let mut world = passo_benches::joint_grid(70);
         assert!(world.dynamic_len() >= passo_physics::constants::PARALLEL_MIN_ITEMS);
         world.set_parallel(parallel);
-        let mut run = || hashes_of_steps(&mut world, 60);
-        match threads {
-            Some(n) => rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .unwrap()
-                .install(run),
-            None => run(),
-        }
+        on_threads(threads, || hashes_of_steps(&mut world, 60))
     };
     let single = hashes(false, None);
     assert_eq!(hashes(true, None), single, "the global pool");
