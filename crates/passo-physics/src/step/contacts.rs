@@ -309,12 +309,7 @@ impl World {
             cw.drop_joined(&rows.apart);
         }
         if self.census.conveyors > 0 {
-            let conveyor = |id| match self.locate(id) {
-                Some(crate::world::Location::Dynamic(i)) => self.dynamic.meta[i as usize].conveyor,
-                Some(crate::world::Location::Static(i)) => self.statics.meta[i as usize].conveyor,
-                None => None,
-            };
-            cw.apply_conveyors(conveyor);
+            cw.apply_conveyors(|id| self.meta_of(id).and_then(|m| m.conveyor));
         }
         if let Some(hooks) = self.hooks.clone() {
             let info = |id| crate::PairInfo {

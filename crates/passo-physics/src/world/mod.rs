@@ -666,11 +666,15 @@ impl World {
 
     /// A live body's user data (0 for a stale id).
     pub(crate) fn body_user_data(&self, id: BodyId) -> u64 {
-        match self.locate(id) {
-            Some(Location::Dynamic(i)) => self.dynamic.meta[i as usize].user_data,
-            Some(Location::Static(i)) => self.statics.meta[i as usize].user_data,
-            None => 0,
-        }
+        self.meta_of(id).map_or(0, |m| m.user_data)
+    }
+
+    /// A live body's cold data, or `None` for a stale id.
+    pub(crate) fn meta_of(&self, id: BodyId) -> Option<&BodyMeta> {
+        Some(match self.locate(id)? {
+            Location::Dynamic(i) => &self.dynamic.meta[i as usize],
+            Location::Static(i) => &self.statics.meta[i as usize],
+        })
     }
 
     pub(crate) fn locate(&self, id: BodyId) -> Option<Location> {
