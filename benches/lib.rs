@@ -8,6 +8,7 @@ use std::time::Instant;
 
 #[cfg(feature = "box2d")]
 pub mod box2d;
+pub mod hashes;
 pub mod stability;
 pub mod tables;
 

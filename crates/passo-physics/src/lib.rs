@@ -100,6 +100,12 @@ pub use world::settings::WorldSettings;
 pub use world::snapshot::WorldSnapshot;
 pub use world::{StepStats, World};
 
+/// How many contacts the wide solver solves side by side in this build:
+/// eight where the compiler may use AVX (`-C target-cpu=native` on a CPU
+/// that has it), four elsewhere (SSE2, NEON, wasm's `simd128`, or plain
+/// scalar code). The width changes the speed, never the bits.
+pub const SOLVER_LANES: usize = solver::lanes::LANES;
+
 /// Helpers shared by the unit tests.
 #[cfg(test)]
 mod testing {
