@@ -1,8 +1,15 @@
 //! Real time, for games: the one place that reads a clock.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+// The standard library's clock panics in a browser: there, `web-time` reads
+// `performance.now()`, a monotonic clock, behind the same API.
+#[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
+use std::time::Instant;
+#[cfg(all(target_arch = "wasm32", target_os = "unknown"))]
+use web_time::Instant;
 
-/// Measures real frame times with [`Instant`] (a monotonic clock).
+/// Measures real frame times with a monotonic clock: `std`'s `Instant`,
+/// or in a browser (`wasm32-unknown-unknown`) `performance.now()`.
 ///
 /// ```
 /// use passo_loop::{FixedTimestep, RealClock};

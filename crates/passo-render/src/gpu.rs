@@ -78,6 +78,8 @@ pub struct Gpu {
 
 impl Gpu {
     /// Opens a device for off-screen rendering (no window, no display).
+    /// Blocks until it is open: in a browser, where nothing may block, it
+    /// returns an error; use [`open`](Self::open) there.
     pub fn headless(choice: AdapterChoice) -> Result<Self, RenderError> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
@@ -85,18 +87,40 @@ impl Gpu {
     }
 
     /// Opens a device on `instance` that can present to `surface`, if given.
+    /// Blocks until it is open; in a browser, where nothing may block, use
+    /// [`open`](Self::open).
     pub fn with_instance(
         instance: wgpu::Instance,
         choice: AdapterChoice,
         surface: Option<&wgpu::Surface<'_>>,
     ) -> Result<Self, RenderError> {
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::default(),
-            force_fallback_adapter: choice == AdapterChoice::Software,
-            compatible_surface: surface,
-            ..Default::default()
-        }))
-        .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        #[cfg(not(target_arch = "wasm32"))]
+        return pollster::block_on(Self::open(instance, choice, surface));
+        #[cfg(target_arch = "wasm32")]
+        {
+            let _ = (instance, choice, surface);
+            Err(RenderError::NoAdapter(
+                "a browser cannot wait for a GPU: open it with `Gpu::open(..).await`".into(),
+            ))
+        }
+    }
+
+    /// Opens a device on `instance` that can present to `surface`, if
+    /// given, without blocking. A WebGL2 adapter gets WebGL2's limits.
+    pub async fn open(
+        instance: wgpu::Instance,
+        choice: AdapterChoice,
+        surface: Option<&wgpu::Surface<'_>>,
+    ) -> Result<Self, RenderError> {
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::default(),
+                force_fallback_adapter: choice == AdapterChoice::Software,
+                compatible_surface: surface,
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
         let info = adapter.get_info();
         log::info!(
             "adapter: {} ({:?}, {:?} backend, driver {} {})",
@@ -106,12 +130,19 @@ impl Gpu {
             info.driver,
             info.driver_info
         );
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("passo device"),
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
-            ..Default::default()
-        }))
-        .map_err(|e| RenderError::Device(e.to_string()))?;
+        let limits = if info.backend == wgpu::Backend::Gl {
+            wgpu::Limits::downlevel_webgl2_defaults()
+        } else {
+            wgpu::Limits::downlevel_defaults()
+        };
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("passo device"),
+                required_limits: limits.using_resolution(adapter.limits()),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| RenderError::Device(e.to_string()))?;
         Ok(Self {
             instance,
             adapter,

@@ -54,10 +54,23 @@ impl RgbaImage {
     /// Reads an 8-bit RGBA or RGB PNG file.
     pub fn load_png(path: impl AsRef<Path>) -> Result<Self, RenderError> {
         let path = path.as_ref();
-        let err =
-            |e: &dyn std::fmt::Display| RenderError::Image(format!("{}: {e}", path.display()));
-        let file = std::fs::File::open(path).map_err(|e| err(&e))?;
-        let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
+        let file = std::fs::File::open(path)
+            .map_err(|e| RenderError::Image(format!("{}: {e}", path.display())))?;
+        Self::read_png(std::io::BufReader::new(file), &path.display().to_string())
+    }
+
+    /// Decodes an 8-bit RGBA or RGB PNG held in memory; `name` names it in
+    /// errors.
+    pub fn decode_png(bytes: &[u8], name: &str) -> Result<Self, RenderError> {
+        Self::read_png(std::io::Cursor::new(bytes), name)
+    }
+
+    fn read_png(
+        source: impl std::io::BufRead + std::io::Seek,
+        name: &str,
+    ) -> Result<Self, RenderError> {
+        let err = |e: &dyn std::fmt::Display| RenderError::Image(format!("{name}: {e}"));
+        let mut decoder = png::Decoder::new(source);
         decoder.set_transformations(png::Transformations::EXPAND);
         let mut reader = decoder.read_info().map_err(|e| err(&e))?;
         let mut buf = vec![

@@ -27,6 +27,7 @@ mod error;
 mod format;
 mod generate;
 mod level;
+mod files;
 mod limits;
 mod map_ref;
 mod save;
@@ -36,6 +37,7 @@ mod validate;
 pub use art::{LevelArt, TileSprite};
 pub use build::{BuiltScene, KINEMATIC_COLOUR, Platform, SceneBody};
 pub use error::SceneError;
+pub use files::embed_files;
 pub use format::{
     BodySpec, Camera, Colour, Forces, Generator, JointSpec, JointSpecKind, MAX_BODIES,
     MAX_SCENE_JOINTS, Material, SceneFile,

@@ -71,7 +71,7 @@ impl MapBudget {
         Self {
             bytes: std::cell::Cell::new(MAX_MAP_BYTES),
             values: std::cell::Cell::new(MAX_JSON_VALUES),
-            root: root.canonicalize().ok(),
+            root: crate::files::real_path(root).ok(),
         }
     }
 
@@ -80,10 +80,10 @@ impl MapBudget {
     /// is none of a map's business.
     pub(crate) fn check_place(&self, path: &Path) -> std::io::Result<()> {
         let refused = |why: String| std::io::Error::new(std::io::ErrorKind::PermissionDenied, why);
-        if !std::fs::metadata(path)?.is_file() {
+        if !crate::files::is_file(path)? {
             return Err(refused("is not a regular file".into()));
         }
-        let real = path.canonicalize()?;
+        let real = crate::files::real_path(path)?;
         match &self.root {
             Some(root) if real.starts_with(root) => Ok(()),
             Some(root) => Err(refused(format!(
@@ -178,9 +178,10 @@ pub(crate) fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
 /// Reads `path` whole, if it is at most `limit` bytes long: never more
 /// than `limit + 1` bytes are read, so a device or a pipe that never ends
 /// (`/dev/zero`) is an error, not all the memory there is. (The size a
-/// file's metadata gives is no bound: it is 0 for those.)
+/// file's metadata gives is no bound: it is 0 for those.) After
+/// [`embed_files`](crate::embed_files), it reads the embedded files.
 pub fn read_at_most(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
-    let file = std::fs::File::open(path)?;
+    let file = crate::files::open(path)?;
     let mut bytes = Vec::new();
     file.take(limit.saturating_add(1)).read_to_end(&mut bytes)?;
     if bytes.len() as u64 > limit {

@@ -2,7 +2,7 @@
 
 use glam::Vec2;
 use passo_physics::{BodyId, BodyKind, Shape, World};
-use passo_render::{DrawList, Renderer, RgbaImage, TextureId};
+use passo_render::{DrawList, Renderer, TextureId};
 use passo_scene::{BuiltScene, LevelArt, SceneBody, TileSprite};
 use std::path::Path;
 
@@ -86,7 +86,7 @@ impl LevelTiles {
     /// drawn as boxes, as without tiles.
     pub fn load(renderer: &mut Renderer, built: &BuiltScene) -> Self {
         Self::from_art(&built.art, &built.cell_bodies, |path| {
-            let image = RgbaImage::load_png(path).map_err(|e| e.to_string())?;
+            let image = crate::load_image(path)?;
             renderer.add_texture(&image).map_err(|e| e.to_string())
         })
     }

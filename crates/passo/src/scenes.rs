@@ -89,6 +89,28 @@ pub const BUILTIN: &[BuiltIn] = &[
     BuiltIn::new("water", include_str!("../../../assets/scenes/water.ron")),
 ];
 
+/// The files the built-in scenes' levels read (`assets/levels/`), at the
+/// paths the built-in scenes name them by: the web demo, which has no
+/// disk, hands them to [`passo_scene::embed_files`]. A test checks that
+/// every file there is listed.
+pub const LEVEL_FILES: &[(&str, &[u8])] = &[
+    (
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/levels/first.tmx"),
+        include_bytes!("../../../assets/levels/first.tmx"),
+    ),
+    (
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/levels/first.tmj"),
+        include_bytes!("../../../assets/levels/first.tmj"),
+    ),
+    (
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../assets/levels/blocks.png"
+        ),
+        include_bytes!("../../../assets/levels/blocks.png"),
+    ),
+];
+
 /// The scenes directory next to the working directory, if there is one.
 pub fn assets_dir() -> Option<PathBuf> {
     let dir = Path::new("assets/scenes");
@@ -192,6 +214,26 @@ mod tests {
         for b in BUILTIN {
             Scene::parse(b.text, b.name).unwrap();
         }
+    }
+
+    #[test]
+    fn every_level_file_is_embedded_with_its_bytes() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/levels");
+        let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().path().canonicalize().unwrap())
+            .collect();
+        files.sort();
+        let mut embedded: Vec<std::path::PathBuf> = LEVEL_FILES
+            .iter()
+            .map(|(path, bytes)| {
+                let path = Path::new(path).canonicalize().unwrap();
+                assert_eq!(std::fs::read(&path).unwrap(), *bytes, "{}", path.display());
+                path
+            })
+            .collect();
+        embedded.sort();
+        assert_eq!(files, embedded);
     }
 
     #[test]

@@ -16,7 +16,7 @@ use std::sync::Arc;
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, MouseScrollDelta, WindowEvent};
-use winit::event_loop::ActiveEventLoop;
+use winit::event_loop::{ActiveEventLoop, EventLoopProxy};
 use winit::keyboard::PhysicalKey;
 use winit::window::{Window, WindowId};
 
@@ -59,14 +59,19 @@ pub fn run(args: DemoArgs) -> Result<()> {
     let sim = load(&first)?;
     let no_display =
         std::env::var_os("DISPLAY").is_none() && std::env::var_os("WAYLAND_DISPLAY").is_none();
-    let event_loop = match winit::event_loop::EventLoop::new() {
+    let event_loop = match winit::event_loop::EventLoop::with_user_event().build() {
         Ok(event_loop) => event_loop,
         Err(e) => bail!(no_display_message(&e.to_string(), no_display)),
     };
-    let mut app = App::new(args, sim, first);
+    let mut app = App::new(args, sim, first, event_loop.create_proxy());
     event_loop.run_app(&mut app)?;
     app.finish()
 }
+
+/// What the window waits for after it opens: the GPU and the window's
+/// surface, or why they could not be had. Natively they come at once; in a
+/// browser, where nothing may block, later, as this event.
+pub(super) struct GpuReady(Result<(Gpu, wgpu::Surface<'static>)>);
 
 /// What to say when there is no display to open a window on.
 pub fn no_display_message(detail: &str, no_display: bool) -> String {
@@ -83,9 +88,20 @@ pub fn no_display_message(detail: &str, no_display: bool) -> String {
 }
 
 /// The winit application.
-struct App {
+pub(super) struct App {
     args: DemoArgs,
     pending: Option<(Sim, Entry)>,
+    /// The window, while its GPU is being opened (in a browser).
+    window: Option<Arc<Window>>,
+    /// Sends [`GpuReady`] to the event loop (used in a browser).
+    #[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
+    proxy: EventLoopProxy<GpuReady>,
+    /// In a browser: run exactly this many ticks as fast as frames come,
+    /// then pause (the page's `?ticks=N`, for tests).
+    pub(super) stop_at_tick: Option<u64>,
+    /// In a browser: WebGL2 even where WebGPU is there (`?backend=webgl`).
+    #[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
+    pub(super) webgl_only: bool,
     running: Option<Running>,
     error: Option<anyhow::Error>,
     presented: u64,
@@ -99,10 +115,19 @@ struct App {
 }
 
 impl App {
-    fn new(args: DemoArgs, sim: Sim, entry: Entry) -> Self {
+    pub(super) fn new(
+        args: DemoArgs,
+        sim: Sim,
+        entry: Entry,
+        proxy: EventLoopProxy<GpuReady>,
+    ) -> Self {
         Self {
             args,
             pending: Some((sim, entry)),
+            window: None,
+            proxy,
+            stop_at_tick: None,
+            webgl_only: false,
             running: None,
             error: None,
             presented: 0,
@@ -141,34 +166,91 @@ impl App {
     }
 
     fn fail(&mut self, event_loop: &ActiveEventLoop, e: anyhow::Error) {
+        // A page has no exit status: the error shows there.
+        #[cfg(target_arch = "wasm32")]
+        super::page::report_error(&e);
         self.error.get_or_insert(e);
         event_loop.exit();
     }
 
+    /// Opens the window, then its GPU: at once natively, and in a browser
+    /// later, as a [`GpuReady`] event.
     fn start(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
-        let (sim, entry) = self.pending.take().expect("started once");
+        let title = match &self.pending {
+            Some((sim, _)) => format!("Passo: {}", sim.scene.name),
+            None => "Passo".to_owned(),
+        };
         let (w, h) = self.args.size;
         let attributes = Window::default_attributes()
-            .with_title(format!("Passo: {}", sim.scene.name))
+            .with_title(title)
             .with_inner_size(PhysicalSize::new(w, h));
+        // In a browser the page's style sizes the canvas (the whole page),
+        // and the window follows it.
+        #[cfg(target_arch = "wasm32")]
+        let attributes = {
+            use winit::platform::web::WindowAttributesExtWebSys;
+            let mut attributes = attributes.with_append(true).with_prevent_default(true);
+            attributes.inner_size = None;
+            attributes
+        };
         let window = Arc::new(
             event_loop
                 .create_window(attributes)
                 .map_err(|e| anyhow!(no_display_message(&e.to_string(), false)))?,
         );
-        let instance =
-            wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
-                Box::new(event_loop.owned_display_handle()),
-            ));
-        let surface = instance
-            .create_surface(window.clone())
-            .context("creating the window surface")?;
+        let descriptor = wgpu::InstanceDescriptor::new_with_display_handle_from_env(Box::new(
+            event_loop.owned_display_handle(),
+        ));
         let choice = if self.args.software {
             AdapterChoice::Software
         } else {
             AdapterChoice::from_env()?
         };
-        let gpu = Gpu::with_instance(instance, choice, Some(&surface))?;
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let instance = wgpu::Instance::new(descriptor);
+            let surface = instance
+                .create_surface(window.clone())
+                .context("creating the window surface")?;
+            let gpu = Gpu::with_instance(instance, choice, Some(&surface))?;
+            self.finish_start(window, gpu, surface)
+        }
+        #[cfg(target_arch = "wasm32")]
+        {
+            let proxy = self.proxy.clone();
+            let target = window.clone();
+            let webgl_only = self.webgl_only;
+            wasm_bindgen_futures::spawn_local(async move {
+                let opened = async {
+                    let mut descriptor = descriptor;
+                    if webgl_only {
+                        descriptor.backends = wgpu::Backends::GL;
+                    }
+                    // WebGPU where the browser can give an adapter, else
+                    // WebGL2.
+                    let instance = wgpu::util::new_instance_with_webgpu_detection(descriptor).await;
+                    let surface = instance
+                        .create_surface(target)
+                        .context("creating the canvas surface")?;
+                    let gpu = Gpu::open(instance, choice, Some(&surface)).await?;
+                    Ok((gpu, surface))
+                };
+                // The event loop outlives the page: sending cannot fail.
+                let _ = proxy.send_event(GpuReady(opened.await));
+            });
+            self.window = Some(window);
+            Ok(())
+        }
+    }
+
+    /// Everything that needs the GPU: the surface, the renderers, egui.
+    fn finish_start(
+        &mut self,
+        window: Arc<Window>,
+        gpu: Gpu,
+        surface: wgpu::Surface<'static>,
+    ) -> Result<()> {
+        let (sim, entry) = self.pending.take().expect("started once");
         log::info!("demo on {}", gpu.adapter_summary());
         let size = window.inner_size();
         let capture = self.args.screenshot.is_some();
@@ -234,12 +316,25 @@ impl App {
     }
 }
 
-impl ApplicationHandler for App {
+impl ApplicationHandler<GpuReady> for App {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.running.is_none()
+            && self.window.is_none()
             && self.pending.is_some()
             && let Err(e) = self.start(event_loop)
         {
+            self.fail(event_loop, e);
+        }
+    }
+
+    fn user_event(&mut self, event_loop: &ActiveEventLoop, event: GpuReady) {
+        let Some(window) = self.window.take() else {
+            return;
+        };
+        let started = event
+            .0
+            .and_then(|(gpu, surface)| self.finish_start(window, gpu, surface));
+        if let Err(e) = started {
             self.fail(event_loop, e);
         }
     }
@@ -256,6 +351,15 @@ impl ApplicationHandler for App {
             }
             WindowEvent::RedrawRequested => {
                 self.attempted += 1;
+                if let Some(n) = self.stop_at_tick {
+                    // Exactly `n` ticks, then the loop stays paused.
+                    let timestep = &mut r.sim.session.timestep;
+                    timestep.pause();
+                    let left = n.saturating_sub(timestep.tick()).min(60) as u32;
+                    if left > 0 {
+                        r.sim.frame_of_ticks(left);
+                    }
+                }
                 if self.args.stress {
                     r.stress(self.attempted);
                 }
@@ -271,6 +375,8 @@ impl ApplicationHandler for App {
                     Ok(None) => self.skipped += 1,
                     Err(e) => return self.fail(event_loop, e),
                 }
+                #[cfg(target_arch = "wasm32")]
+                super::page::publish(r, self.presented);
                 let replay_done = self.args.replay.is_some()
                     && r.sim
                         .session

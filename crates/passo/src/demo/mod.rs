@@ -3,7 +3,10 @@
 //!
 //! The files, each one concept, from the window down (a file imports only
 //! those below it):
+//! - `web` (in a browser only): starting the demo on a page.
 //! - `app`: the window, its events and the frame loop; `passo demo`'s options.
+//! - `page` (in a browser only): the page's options, where errors show,
+//!   and what tests read.
 //! - `running`: what exists while the window does (surface, renderer, egui,
 //!   scene, camera), what keys and clicks do to it, and drawing a frame.
 //! - `ui`: the panel.
@@ -16,7 +19,11 @@
 //! - `lanes`: the worlds, and the integrator comparison.
 //! - `controls`: the keys, the sliders and the player's controller.
 
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 mod app;
+#[cfg(target_arch = "wasm32")]
+mod page;
 mod catalogue;
 mod controls;
 mod history;

@@ -129,7 +129,7 @@ impl Tiles {
             if let Some(&id) = textures.get(path) {
                 return Ok(id);
             }
-            let image = RgbaImage::load_png(path).map_err(|e| e.to_string())?;
+            let image = crate::load_image(path)?;
             let id = renderer.add_texture(&image).map_err(|e| e.to_string())?;
             textures.insert(path.to_path_buf(), id);
             Ok(id)

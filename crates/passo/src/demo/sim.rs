@@ -8,12 +8,13 @@ use super::controls::Knobs;
 use super::replay::{Command, Replay};
 use super::scene_state::{Clock, SceneState};
 use super::session::{Session, Stats};
+use crate::Instant;
 use anyhow::Result;
 use glam::Vec2;
 use passo_loop::{FixedTimestep, Frame};
 use passo_physics::BodyId;
 use passo_scene::SceneFile;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// A running demo scene.
 #[derive(Debug)]
@@ -100,6 +101,19 @@ impl Sim {
             }
         }
         let frame = self.session.timestep.advance(frame_time);
+        self.run_frame(frame)
+    }
+
+    /// Runs exactly `n` ticks now, whatever the clock says and paused or
+    /// not: for drivers that count ticks (the web demo's `?ticks=N`).
+    pub fn frame_of_ticks(&mut self, n: u32) -> Frame {
+        let frame = self.session.timestep.advance_ticks(n);
+        self.run_frame(frame)
+    }
+
+    /// Runs the ticks of `frame` (fewer when a replay ends, the timeline
+    /// holds the scene, or the scene rewinds instead).
+    fn run_frame(&mut self, frame: Frame) -> Frame {
         let started = Instant::now();
         let mut rewound = false;
         for _ in frame.tick_numbers() {

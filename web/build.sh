@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Builds the web demo into a static folder (default target/web-demo/) that any
+# static file server can serve: index.html, passo-web.js and
+# passo-web_bg.wasm. Needs the wasm32 target, wasm-bindgen-cli at the
+# version of the wasm-bindgen crate in Cargo.lock, and binaryen's wasm-opt
+# (optional: without it the .wasm is larger):
+#   rustup target add wasm32-unknown-unknown
+#   cargo install wasm-bindgen-cli --version 0.2.130 --locked
+#   sudo apt-get install binaryen
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out="${1:-target/web-demo}"
+
+cargo build --profile web --target wasm32-unknown-unknown -p passo --bin passo-web
+mkdir -p "$out"
+wasm="target/wasm32-unknown-unknown/web/passo-web.wasm"
+if command -v wasm-opt > /dev/null; then
+    # Size, not speed: the physics' float arithmetic is left as it is
+    # (wasm-opt keeps IEEE semantics), so the bits stay those of native.
+    # It runs before wasm-bindgen, whose table of JavaScript values an
+    # older wasm-opt (Debian 12's) breaks. The features are those rustc's
+    # wasm32 target turns on.
+    wasm-opt -Oz --enable-bulk-memory --enable-multivalue --enable-mutable-globals \
+        --enable-nontrapping-float-to-int --enable-reference-types --enable-sign-ext \
+        "$wasm" -o "$out/passo-web.opt.wasm"
+    wasm="$out/passo-web.opt.wasm"
+else
+    echo "warning: wasm-opt not found (apt-get install binaryen): the .wasm is not shrunk" >&2
+fi
+wasm-bindgen --target web --no-typescript --out-dir "$out" --out-name passo-web "$wasm"
+rm -f "$out/passo-web.opt.wasm"
+cp web/index.html "$out/index.html"
+ls -l "$out"
