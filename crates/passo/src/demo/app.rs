@@ -376,7 +376,19 @@ impl ApplicationHandler<GpuReady> for App {
                     Err(e) => return self.fail(event_loop, e),
                 }
                 #[cfg(target_arch = "wasm32")]
-                super::page::publish(r, self.presented);
+                super::page::publish(&super::page::Shown {
+                    scene: &r.sim.session.entry_name,
+                    tick: r.sim.session.timestep.tick(),
+                    hash: r.sim.scene.state_hash(),
+                    player: (r.sim.scene.player)
+                        .and_then(|id| r.sim.scene.lanes[0].world.body(id))
+                        .map(|b| b.position.to_array()),
+                    backend: format!("{:?}", r.gpu.adapter.get_info().backend),
+                    frames: self.presented,
+                    size: r.surface.size(),
+                    panel: r.panel_px,
+                    camera: [r.camera.centre.x, r.camera.centre.y, r.camera.height],
+                });
                 let replay_done = self.args.replay.is_some()
                     && r.sim
                         .session

@@ -5,8 +5,6 @@
 //! those below it):
 //! - `web` (in a browser only): starting the demo on a page.
 //! - `app`: the window, its events and the frame loop; `passo demo`'s options.
-//! - `page` (in a browser only): the page's options, where errors show,
-//!   and what tests read.
 //! - `running`: what exists while the window does (surface, renderer, egui,
 //!   scene, camera), what keys and clicks do to it, and drawing a frame.
 //! - `ui`: the panel.
@@ -18,12 +16,12 @@
 //! - `history`: the plot's samples and reference lines.
 //! - `lanes`: the worlds, and the integrator comparison.
 //! - `controls`: the keys, the sliders and the player's controller.
+//! - `page` (in a browser only): the page's options, where errors show,
+//!   downloads, and what tests read.
 
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 mod app;
-#[cfg(target_arch = "wasm32")]
-mod page;
 mod catalogue;
 mod controls;
 mod history;
@@ -34,6 +32,8 @@ mod scene_state;
 mod session;
 mod sim;
 mod ui;
+#[cfg(target_arch = "wasm32")]
+mod page;
 
 pub use app::{DemoArgs, no_display_message, run};
 pub use catalogue::{Entry, catalogue};
@@ -41,6 +41,8 @@ pub use controls::{Input, Knobs};
 pub use history::History;
 pub use lanes::Lane;
 pub use replay::{Command, Replay};
+#[cfg(not(target_arch = "wasm32"))]
+pub use running::render_scene_offscreen;
 pub use scene_state::{REWIND_BYTES, SceneState};
 pub use session::{Session, Stats};
 pub use sim::{Sim, load, run_replay};

@@ -1,8 +1,8 @@
 //! The web demo's page (in a browser only): its address's options, where
-//! errors show, and the state it shows tests (`window.passo`, see `web`).
+//! errors show, downloads, and the state it shows tests (`window.passo`,
+//! see `web`).
 
-use super::running::Running;
-use wasm_bindgen::JsValue;
+use wasm_bindgen::{JsCast, JsValue};
 
 /// The value of `name` in the page's query string.
 pub(super) fn query(name: &str) -> Option<String> {
@@ -25,35 +25,67 @@ pub(super) fn report_error(e: &anyhow::Error) {
     }
 }
 
-/// Sets `window.passo` to the running scene's state.
-pub(super) fn publish(r: &Running, frames: u64) {
+/// What the page shows its tests each frame (see `web`).
+pub(super) struct Shown<'a> {
+    pub(super) scene: &'a str,
+    pub(super) tick: u64,
+    pub(super) hash: u64,
+    pub(super) player: Option<[f32; 2]>,
+    pub(super) backend: String,
+    pub(super) frames: u64,
+    pub(super) size: (u32, u32),
+    pub(super) panel: f32,
+    /// Centre x, y and height, metres.
+    pub(super) camera: [f32; 3],
+}
+
+/// Sets `window.passo` to `shown`.
+pub(super) fn publish(shown: &Shown<'_>) {
     let Some(window) = web_sys::window() else {
         return;
     };
-    let scene = &r.sim.scene;
     let state = js_sys::Object::new();
     let set = |k: &str, v: JsValue| {
         let _ = js_sys::Reflect::set(&state, &k.into(), &v);
     };
-    set("scene", r.sim.session.entry_name.as_str().into());
-    set("tick", (r.sim.session.timestep.tick() as f64).into());
-    set("hash", format!("{:016x}", scene.state_hash()).into());
-    let player = scene
-        .player
-        .and_then(|id| scene.lanes[0].world.body(id))
-        .map(|b| {
-            let xy = js_sys::Array::new();
-            xy.push(&b.position.x.into());
-            xy.push(&b.position.y.into());
-            JsValue::from(xy)
-        });
-    set("player", player.unwrap_or(JsValue::NULL));
-    set(
-        "backend",
-        format!("{:?}", r.gpu.adapter.get_info().backend).into(),
-    );
-    set("frames", (frames as f64).into());
+    let array = |values: &[f32]| {
+        let a = js_sys::Array::new();
+        for v in values {
+            a.push(&(*v).into());
+        }
+        JsValue::from(a)
+    };
+    set("scene", shown.scene.into());
+    set("tick", (shown.tick as f64).into());
+    set("hash", format!("{:016x}", shown.hash).into());
+    set("player", shown.player.map_or(JsValue::NULL, |p| array(&p)));
+    set("backend", shown.backend.as_str().into());
+    set("frames", (shown.frames as f64).into());
+    set("width", shown.size.0.into());
+    set("height", shown.size.1.into());
+    set("panel", shown.panel.into());
+    set("camera", array(&shown.camera));
     let _ = js_sys::Reflect::set(&window, &"passo".into(), &state);
+}
+
+/// Offers `text` to the user as a file named `name`: the browser's own
+/// download (a page has no disk of its own to write to).
+pub(super) fn download(name: &str, text: &str) -> Result<(), String> {
+    let fail = |e: JsValue| format!("{e:?}");
+    let window = web_sys::window().ok_or("no window")?;
+    let document = window.document().ok_or("no document")?;
+    let parts = js_sys::Array::of1(&text.into());
+    let blob = web_sys::Blob::new_with_str_sequence(&parts).map_err(fail)?;
+    let url = web_sys::Url::create_object_url_with_blob(&blob).map_err(fail)?;
+    let link: web_sys::HtmlAnchorElement = document
+        .create_element("a")
+        .map_err(fail)?
+        .dyn_into()
+        .map_err(|_| "not a link".to_owned())?;
+    link.set_href(&url);
+    link.set_download(name);
+    link.click();
+    web_sys::Url::revoke_object_url(&url).map_err(fail)
 }
 
 /// `log` on the browser's console.

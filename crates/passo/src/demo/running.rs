@@ -283,11 +283,19 @@ impl Running {
 
     /// Stops the recording under way, if any, and saves it: to the
     /// `--record` file if one was given, else to
-    /// `replays/<scene>-<ticks>.ron`. It is also kept to replay.
+    /// `replays/<scene>-<ticks>.ron`; in a browser, as a download. It is
+    /// also kept to replay.
     pub(super) fn save_recording(&mut self) -> Result<()> {
         let Some(replay) = self.sim.stop_recording() else {
             return Ok(());
         };
+        let saved = self.save_replay(&replay);
+        self.last_replay = Some(replay);
+        saved
+    }
+
+    #[cfg(not(target_arch = "wasm32"))]
+    fn save_replay(&mut self, replay: &Replay) -> Result<()> {
         let path = match &self.record_to {
             Some(path) => path.clone(),
             None => {
@@ -296,18 +304,28 @@ impl Running {
                 dir.join(format!("{}-{}.ron", replay.scene, replay.ticks))
             }
         };
-        let saved = replay.save(&path);
-        if saved.is_ok() {
-            let said = format!(
-                "replay of {} ticks saved to {}",
-                replay.ticks,
-                path.display()
-            );
-            eprintln!("{said}");
-            self.message = Some(said);
-        }
-        self.last_replay = Some(replay);
-        saved
+        replay.save(&path)?;
+        let said = format!(
+            "replay of {} ticks saved to {}",
+            replay.ticks,
+            path.display()
+        );
+        eprintln!("{said}");
+        self.message = Some(said);
+        Ok(())
+    }
+
+    /// A page has no disk: the browser downloads the file instead.
+    #[cfg(target_arch = "wasm32")]
+    fn save_replay(&mut self, replay: &Replay) -> Result<()> {
+        let name = format!("{}-{}.ron", replay.scene, replay.ticks);
+        super::page::download(&name, &replay.to_ron())
+            .map_err(|e| anyhow::anyhow!("the replay could not be downloaded ({e})"))?;
+        self.message = Some(format!(
+            "replay of {} ticks downloaded as {name}",
+            replay.ticks
+        ));
+        Ok(())
     }
 
     /// Fits the scene into the part of the window beside the panel.
@@ -391,31 +409,17 @@ impl Running {
                 let view = frame
                     .texture
                     .create_view(&wgpu::TextureViewDescriptor::default());
-                self.list.clear(BACKGROUND);
                 let scene = &self.sim.scene;
                 self.tiles
                     .refresh(&mut self.renderer, &scene.art, &scene.cell_bodies);
-                self.tiles.drawn.add_to(&mut self.list, Vec2::ZERO);
-                for (i, lane) in self.sim.scene.lanes.iter().enumerate() {
-                    let options = DrawOptions {
-                        alpha: self.sim.session.stats.alpha,
-                        velocity_vectors: self.view.velocities,
-                        force_vectors: self.view.forces,
-                        contact_normals: self.view.contacts,
-                        dim_sleeping: self.view.sleeping,
-                        offset: lane.offset,
-                        ..Default::default()
-                    };
-                    let hidden = if i == 0 {
-                        self.tiles.drawn.hidden()
-                    } else {
-                        &[]
-                    };
-                    add_world_hiding(&mut self.list, &lane.world, &lane.bodies, hidden, &options);
-                }
-                // Nothing under the panel, which has no fill of its own.
-                let left = (self.panel_px.floor() as u32).min(size.0);
-                self.list.clip = Some([left, 0, size.0 - left, size.1]);
+                add_scene(
+                    &mut self.list,
+                    &self.tiles.drawn,
+                    &self.sim,
+                    &self.view,
+                    size,
+                    self.panel_px,
+                );
                 let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("passo demo frame"),
                 });
@@ -484,4 +488,58 @@ impl Running {
             self.sim.scene.state_hash()
         )
     }
+}
+
+/// The scene's part of a frame, as the demo draws it: the level's tiles and
+/// every lane's bodies, nothing under the panel (`panel_px` wide, which
+/// has no fill of its own).
+fn add_scene(
+    list: &mut DrawList,
+    tiles: &LevelTiles,
+    sim: &Sim,
+    view: &ViewOptions,
+    size: (u32, u32),
+    panel_px: f32,
+) {
+    list.clear(BACKGROUND);
+    tiles.add_to(list, Vec2::ZERO);
+    for (i, lane) in sim.scene.lanes.iter().enumerate() {
+        let options = DrawOptions {
+            alpha: sim.session.stats.alpha,
+            velocity_vectors: view.velocities,
+            force_vectors: view.forces,
+            contact_normals: view.contacts,
+            dim_sleeping: view.sleeping,
+            offset: lane.offset,
+            ..Default::default()
+        };
+        let hidden = if i == 0 { tiles.hidden() } else { &[] };
+        add_world_hiding(list, &lane.world, &lane.bodies, hidden, &options);
+    }
+    let left = (panel_px.floor() as u32).min(size.0);
+    list.clip = Some([left, 0, size.0 - left, size.1]);
+}
+
+/// The scene part of the demo's frame for `sim` as it is now, drawn
+/// off-screen: `size` pixels through `camera`, the panel's `panel_px`
+/// left empty (the background), debug drawing off. The web demo's check
+/// compares the browser's frames with it.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn render_scene_offscreen(
+    sim: &Sim,
+    camera: Camera2D,
+    size: (u32, u32),
+    panel_px: f32,
+    choice: passo_render::AdapterChoice,
+) -> Result<RgbaImage> {
+    let gpu = Gpu::headless(choice)?;
+    let target = passo_render::OffscreenTarget::new(&gpu, size.0, size.1);
+    let mut renderer = Renderer::new(&gpu, target.format());
+    let mut tiles = Tiles::default();
+    tiles.refresh(&mut renderer, &sim.scene.art, &sim.scene.cell_bodies);
+    let mut list = DrawList::new(BACKGROUND);
+    let view = ViewOptions::default();
+    add_scene(&mut list, &tiles.drawn, sim, &view, size, panel_px);
+    renderer.render(target.view(), target.size(), &camera, &list);
+    Ok(target.read(&gpu)?)
 }

@@ -8,9 +8,10 @@
 //! - `&ticks=N`: run exactly N ticks as fast as frames come, then pause.
 //!
 //! Each frame the page's `window.passo` holds `{ scene, tick, hash,
-//! player, backend, frames }` (`hash` as 16 hex digits, `player` as
-//! `[x, y]` or `null`), and `window.passoError` any error that stopped the
-//! demo.
+//! player, backend, frames, width, height, panel, camera }`: `hash` as 16
+//! hex digits, `player` as `[x, y]` or `null`, the canvas's size and the
+//! panel's width in pixels, `camera` as `[x, y, height]`. An error that
+//! stopped the demo is in `window.passoError`.
 
 use super::app::{App, DemoArgs, GpuReady};
 use super::catalogue::Entry;
