@@ -12,6 +12,10 @@
 //! `bash web/build.sh && cargo run --release -p passo-web-check -- [--ticks N] [--scenes a,b] [--backends webgpu,webgl] [--dir DIR] [--save DIR]`
 //!
 //! It prints a table and exits with 1 when a check fails.
+//!
+//! `--bench` instead times the physics on one thread natively and in the
+//! browser, in one run (`passo::bench::BROWSER_CASES`), and prints the
+//! ratio; `--bench --write` puts that table in BENCHMARKS.md.
 
 mod cdp;
 mod serve;
@@ -30,7 +34,7 @@ use std::time::{Duration, Instant};
 const CHANNEL_TOLERANCE: u8 = 48;
 /// The share of the scene's drawn pixels (not the background) that may
 /// differ.
-const MAX_DIFFERENT: f64 = 0.05;
+const MAX_DIFFERENT: f64 = 0.03;
 /// The browser's page size, CSS pixels (one device pixel each).
 const PAGE: (u32, u32) = (1280, 720);
 
@@ -50,6 +54,8 @@ struct Args {
     scenes: Vec<String>,
     backends: Vec<String>,
     save: Option<PathBuf>,
+    bench: bool,
+    write: bool,
 }
 
 fn parse_args() -> Result<Args> {
@@ -62,6 +68,8 @@ fn parse_args() -> Result<Args> {
             .collect(),
         backends: vec!["webgpu".into(), "webgl".into()],
         save: None,
+        bench: false,
+        write: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
@@ -72,6 +80,8 @@ fn parse_args() -> Result<Args> {
             "--scenes" => args.scenes = value()?.split(',').map(str::to_owned).collect(),
             "--backends" => args.backends = value()?.split(',').map(str::to_owned).collect(),
             "--save" => args.save = Some(PathBuf::from(value()?)),
+            "--bench" => args.bench = true,
+            "--write" => args.write = true,
             _ => bail!("unknown option {flag}; see the file's comment for the options"),
         }
     }
@@ -299,9 +309,58 @@ fn main() -> std::process::ExitCode {
     }
 }
 
+/// The physics' speed natively and in the browser, in one run.
+fn bench(base: &str, write: bool) -> Result<bool> {
+    let browser = Browser::launch(&[])?;
+    let mut page = Page::open(&browser)?;
+    page.call("Page.navigate", json!({ "url": format!("{base}/?bench") }))?;
+    let start = Instant::now();
+    let web = loop {
+        let v = page.eval("window.passoBench || null")?;
+        if v.is_array() {
+            break v;
+        }
+        if start.elapsed() > Duration::from_secs(300) {
+            bail!("the page's benchmark did not finish in 5 minutes");
+        }
+        std::thread::sleep(Duration::from_millis(200));
+    };
+    let mut table = String::from(
+        "| world | native, ms a tick | Chromium (wasm32), ms a tick | wasm ÷ native | same bits |\n\
+         |---|---:|---:|---:|---|\n",
+    );
+    let mut same = true;
+    for (i, case) in passo::bench::BROWSER_CASES.iter().enumerate() {
+        let (native_ms, hash) = passo::bench::time_case(case);
+        let row = &web[i];
+        let web_ms = row["ms"].as_f64().unwrap_or(f64::NAN);
+        let equal = row["hash"].as_str() == Some(format!("{hash:016x}").as_str());
+        same &= equal;
+        table.push_str(&format!(
+            "| {} | {native_ms:.3} | {web_ms:.3} | {:.2} | {} |\n",
+            case.name,
+            web_ms / native_ms,
+            if equal { "yes" } else { "**no**" }
+        ));
+    }
+    print!("{table}");
+    if write {
+        let path = passo_benches::tables::benchmarks_md();
+        let doc = std::fs::read_to_string(&path)?;
+        let doc =
+            passo_benches::tables::replace(&doc, "web_speed", &table).map_err(|e| anyhow!(e))?;
+        std::fs::write(&path, doc)?;
+        println!("written to {}", path.display());
+    }
+    Ok(same)
+}
+
 fn run() -> Result<bool> {
     let args = parse_args()?;
     let base = serve::serve(&args.dir)?;
+    if args.bench {
+        return bench(&base, args.write);
+    }
     println!(
         "The web demo in headless Chromium against the native build: state hash after {} ticks, \
          and the share of the scene's drawn pixels (not background) differing by more than \

@@ -9,9 +9,12 @@ mod scenes;
 mod stress;
 // Needs a GPU adapter (or lavapipe).
 mod render;
+// Run in a browser too: the web demo's `?bench`.
+mod browser;
 
 use anyhow::Result;
 pub use args::*;
+pub use browser::{BROWSER_CASES, BrowserCase, time_case};
 pub use integration::{
     INTEGRATION_BYTES, bare_soa_ns, copy_bandwidth, fitted_exponent, integration_ns,
     triad_bandwidth,

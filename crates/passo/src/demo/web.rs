@@ -5,7 +5,9 @@
 //! The page's address takes these options:
 //! - `?scene=NAME`: the scene to open (default `playground`);
 //! - `&backend=webgl`: WebGL2 even where WebGPU is there;
-//! - `&ticks=N`: run exactly N ticks as fast as frames come, then pause.
+//! - `&ticks=N`: run exactly N ticks as fast as frames come, then pause;
+//! - `?bench`: no demo: time the physics on the page's thread and set
+//!   `window.passoBench` (see `bench::BROWSER_CASES`).
 //!
 //! Each frame the page's `window.passo` holds `{ scene, tick, hash,
 //! player, backend, frames, width, height, panel, camera }`: `hash` as 16
@@ -26,6 +28,9 @@ pub fn start() {
     console_error_panic_hook::set_once();
     let _ = log::set_logger(&ConsoleLog).map(|()| log::set_max_level(log::LevelFilter::Info));
     passo_scene::embed_files(crate::scenes::LEVEL_FILES);
+    if query("bench").is_some() {
+        return bench();
+    }
     if let Err(e) = try_start() {
         report_error(&e);
     }
@@ -45,6 +50,25 @@ fn try_start() -> anyhow::Result<()> {
     app.webgl_only = query("backend").as_deref() == Some("webgl");
     event_loop.spawn_app(app);
     Ok(())
+}
+
+/// The page's `?bench`: times the physics cases of
+/// [`BROWSER_CASES`](crate::bench::BROWSER_CASES) (no demo, no GPU) and
+/// sets `window.passoBench` to `[{ name, ms, hash }]`.
+fn bench() {
+    let results = js_sys::Array::new();
+    for case in &crate::bench::BROWSER_CASES {
+        let (ms, hash) = crate::bench::time_case(case);
+        log::info!("{}: {ms:.3} ms a tick", case.name);
+        let row = js_sys::Object::new();
+        let _ = js_sys::Reflect::set(&row, &"name".into(), &case.name.into());
+        let _ = js_sys::Reflect::set(&row, &"ms".into(), &ms.into());
+        let _ = js_sys::Reflect::set(&row, &"hash".into(), &format!("{hash:016x}").into());
+        results.push(&row);
+    }
+    if let Some(window) = web_sys::window() {
+        let _ = js_sys::Reflect::set(&window, &"passoBench".into(), &results);
+    }
 }
 
 /// The page's inner size, CSS pixels (the canvas fills it).
