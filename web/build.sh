@@ -41,7 +41,8 @@ if command -v wasm-opt > /dev/null; then
 else
     echo "warning: wasm-opt not found (apt-get install binaryen): the .wasm is not shrunk" >&2
 fi
-wasm-bindgen --target web --no-typescript --out-dir "$out" --out-name passo-web "$wasm"
+wasm-bindgen --target web --no-typescript --remove-name-section --remove-producers-section \
+    --out-dir "$out" --out-name passo-web "$wasm"
 rm -f "$out/passo-web.opt.wasm"
 cp web/index.html "$out/index.html"
 ls -l "$out"

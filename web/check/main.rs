@@ -381,6 +381,16 @@ fn run() -> Result<bool> {
         };
         let browser = Browser::launch(flags)?;
         let mut page = Page::open(&browser)?;
+        // The check of console errors must see one: make one and look.
+        page.eval("console.error('web_check: a console error, to see it is seen')")?;
+        page.eval("1")?;
+        if !page
+            .take_errors()
+            .iter()
+            .any(|e| e.contains("to see it is seen"))
+        {
+            bail!("console errors do not reach the check: it could not fail on one");
+        }
         page.call(
             "Emulation.setDeviceMetricsOverride",
             json!({ "width": PAGE.0, "height": PAGE.1, "deviceScaleFactor": 1, "mobile": false }),
