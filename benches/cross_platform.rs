@@ -1,17 +1,18 @@
 //! Checks that every shipped scene hashes the same, tick by tick, on every
 //! platform and lane width Passo compiles for. It builds `scene_hashes` for
 //! each platform below, runs it (aarch64 under `qemu-aarch64`, wasm32 under
-//! Node.js's WASI), and compares each table with this machine's own build.
+//! Node.js's WASI), and compares each table with the x86-64 build's (so it
+//! runs on an x86-64 Linux machine).
 //! A mismatch is reported scene by scene with the first tick that differs,
 //! and the program exits with 1.
 //!
 //! `cargo run --release -p passo-benches --bin cross_platform [PLATFORM...]`
 //!
-//! Platforms: `x86-64` (SSE2; the reference on x86-64 machines),
+//! Platforms: `x86-64` (SSE2; the reference),
 //! `x86-64-avx2` (AVX2 and FMA, eight lanes; needs a CPU that has them),
 //! `aarch64` (NEON), `wasm32` (scalar) and `wasm32-simd128`. With none named,
 //! all of them. They need, on Debian: `apt-get install qemu-user
-//! gcc-aarch64-linux-gnu nodejs` and `rustup target add
+//! gcc-aarch64-linux-gnu libc6-dev-arm64-cross nodejs` and `rustup target add
 //! aarch64-unknown-linux-gnu wasm32-wasip1`. Each platform builds in its own
 //! folder under `target/cross-platform/`.
 
