@@ -683,3 +683,35 @@ fn slider_values_that_are_not_finite_are_refused() {
         },
     );
 }
+
+#[test]
+fn a_frame_of_ticks_runs_exactly_that_many_whatever_the_pause() {
+    // The web demo's `?ticks=N` runs paused frames of a counted number of
+    // ticks; they must give the state of N ordinary ticks.
+    for n in [1u32, 7, 60, 61, 150] {
+        let mut counted = playground();
+        counted.session.timestep.pause();
+        let mut left = n;
+        while left > 0 {
+            let k = left.min(60);
+            counted.frame_of_ticks(k);
+            left -= k;
+        }
+        let mut framed = playground();
+        run(&mut framed, n as usize, Input::default());
+        assert_eq!(counted.session.timestep.tick(), u64::from(n));
+        assert_eq!(
+            framed.session.timestep.tick(),
+            u64::from(n),
+            "one tick a frame"
+        );
+        assert_eq!(
+            counted.scene.state_hash(),
+            framed.scene.state_hash(),
+            "{n} ticks"
+        );
+        // Paused, an ordinary frame runs none.
+        counted.frame(FRAME * 5);
+        assert_eq!(counted.session.timestep.tick(), u64::from(n));
+    }
+}
