@@ -1,0 +1,375 @@
+//! Components to bodies and back: bodies made and removed as entities
+//! come and go, component changes applied before each tick, and
+//! positions and velocities written back after it.
+
+use bevy::ecs::change_detection::Tick;
+use bevy::ecs::query::QueryData;
+use bevy::ecs::system::SystemChangeTick;
+use bevy::prelude::*;
+use passo_physics as passo;
+
+use crate::components::{
+    BodyError, Bullet, Collider, Filter, GravityScale, LinearVelocity, Mass, OneWay, PassoBody,
+    PhysicsMaterial, Position, PreviousPosition, RigidBody, Sensor, TransformInterpolation,
+};
+use crate::convert::{to_bevy, to_passo};
+use crate::{BodyEntities, PassoWorld};
+
+/// Everything an entity says about its body.
+#[derive(QueryData)]
+pub(crate) struct BodyParts {
+    rigid_body: &'static RigidBody,
+    collider: Option<&'static Collider>,
+    mass: Option<&'static Mass>,
+    material: Option<&'static PhysicsMaterial>,
+    filter: Option<&'static Filter>,
+    sensor: Has<Sensor>,
+    one_way: Option<&'static OneWay>,
+    gravity: Option<&'static GravityScale>,
+    bullet: Has<Bullet>,
+    velocity: Option<&'static LinearVelocity>,
+    position: Option<&'static Position>,
+    transform: &'static Transform,
+}
+
+impl BodyPartsItem<'_, '_> {
+    /// Where the body is: its [`Position`], else its transform's x and y.
+    fn start(&self) -> Vec2 {
+        self.position
+            .map_or(self.transform.translation.truncate(), |p| p.0)
+    }
+
+    fn def(&self) -> passo::BodyDef {
+        let material = self.material.copied().unwrap_or_default();
+        passo::BodyDef {
+            kind: self.rigid_body.kind(),
+            position: to_passo(self.start()),
+            velocity: to_passo(self.velocity.map_or(Vec2::ZERO, |v| v.0)),
+            mass: self.mass.copied().unwrap_or_default().0,
+            shape: self.collider.map(|c| c.0),
+            friction: material.friction,
+            friction_mix: material.friction_mix,
+            restitution: material.restitution,
+            filter: self.filter.map(|f| f.0).unwrap_or_default(),
+            sensor: self.sensor,
+            one_way: self.one_way.map(|o| to_passo(o.0)),
+            bullet: self.bullet,
+            gravity_scale: self.gravity.copied().unwrap_or_default().0,
+            ..Default::default()
+        }
+    }
+}
+
+/// Makes the body of an entity that just got a [`RigidBody`] (one that
+/// already has a [`PassoBody`], such as a scene's, is left alone).
+/// Observers run in the order the spawns were queued, so bodies get their
+/// ids in that order.
+pub(crate) fn on_add_rigid_body(
+    add: On<Add, RigidBody>,
+    mut world: ResMut<PassoWorld>,
+    mut entities: ResMut<BodyEntities>,
+    parts: Query<(BodyParts, Has<PassoBody>, Has<TransformInterpolation>)>,
+    mut commands: Commands,
+    ticks: SystemChangeTick,
+) {
+    let entity = add.entity;
+    let Ok((parts, has_body, interpolated)) = parts.get(entity) else {
+        return;
+    };
+    if has_body {
+        return;
+    }
+    create(
+        entity,
+        &parts,
+        ticks.this_run(),
+        interpolated,
+        &mut world,
+        &mut entities,
+        &mut commands,
+    );
+}
+
+fn create(
+    entity: Entity,
+    parts: &BodyPartsItem<'_, '_>,
+    made: Tick,
+    interpolated: bool,
+    world: &mut PassoWorld,
+    entities: &mut BodyEntities,
+    commands: &mut Commands,
+) {
+    let start = parts.start();
+    match world.add_body(parts.def()) {
+        Ok(id) => {
+            entities.insert(id, entity);
+            let mut e = commands.entity(entity);
+            e.try_insert((PassoBody(id), Made(made), Position(start)))
+                .try_remove::<BodyError>();
+            // A body placed by its Position is drawn there from the start.
+            if parts.transform.translation.truncate() != start {
+                let mut transform = *parts.transform;
+                transform.translation.x = start.x;
+                transform.translation.y = start.y;
+                e.try_insert(transform);
+            }
+            if interpolated {
+                e.try_insert(PreviousPosition(start));
+            }
+        }
+        Err(error) => {
+            warn!("entity {entity}: no Passo body: {error}");
+            commands.entity(entity).try_insert(BodyError(error));
+        }
+    }
+}
+
+/// Removes the body of an entity that lost its [`RigidBody`] or was
+/// despawned.
+pub(crate) fn on_remove_rigid_body(
+    remove: On<Remove, RigidBody>,
+    mut world: ResMut<PassoWorld>,
+    mut entities: ResMut<BodyEntities>,
+    bodies: Query<&PassoBody>,
+    mut commands: Commands,
+) {
+    let entity = remove.entity;
+    if let Ok(&PassoBody(id)) = bodies.get(entity) {
+        world.remove_body(id);
+        entities.remove(id);
+        commands
+            .entity(entity)
+            .try_remove::<(PassoBody, Made, BodyError)>();
+    }
+}
+
+/// Asks for a rebuild of a body that lost a component shaping it: the
+/// body is made again from what is left, before the next tick.
+pub(crate) fn on_remove_part<T: Component>(remove: On<Remove, T>, mut commands: Commands) {
+    commands.entity(remove.entity).try_insert(Rebuild);
+}
+
+/// A body to make again from its entity's components before the next
+/// tick.
+#[derive(Component)]
+pub(crate) struct Rebuild;
+
+/// When the plugin last made an entity's body from its components (the
+/// change tick of the system that made it). A component written after
+/// that is a change the body has not seen yet.
+#[derive(Component, Clone, Copy, Debug)]
+pub(crate) struct Made(pub(crate) Tick);
+
+/// Whether the game changed `part` after the plugin made the body.
+fn changed_since<T: Component>(part: &Ref<T>, made: Made, this_run: Tick) -> bool {
+    part.is_changed() && part.last_changed().is_newer_than(made.0, this_run)
+}
+
+/// Bodies whose kind, shape or mass changed, or that lost a component,
+/// are made again; every other changed component is applied with the
+/// world's setters. Runs in [`PassoSystems::Prepare`](crate::PassoSystems).
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
+pub(crate) fn apply_changes(
+    mut world: ResMut<PassoWorld>,
+    mut entities: ResMut<BodyEntities>,
+    mut commands: Commands,
+    ticks: SystemChangeTick,
+    rebuilds: Query<
+        (
+            Entity,
+            Option<(&PassoBody, &Made)>,
+            Ref<RigidBody>,
+            Option<Ref<Collider>>,
+            Option<Ref<Mass>>,
+            Has<Rebuild>,
+        ),
+        Or<(
+            Changed<RigidBody>,
+            Changed<Collider>,
+            Changed<Mass>,
+            With<Rebuild>,
+            With<BodyError>,
+        )>,
+    >,
+    parts: Query<(BodyParts, Has<TransformInterpolation>)>,
+    edits: Query<
+        (
+            Entity,
+            &PassoBody,
+            &Made,
+            Option<Ref<PhysicsMaterial>>,
+            Option<Ref<Filter>>,
+            Option<Ref<Sensor>>,
+            Option<Ref<OneWay>>,
+            Option<Ref<GravityScale>>,
+            Option<Ref<Bullet>>,
+        ),
+        Or<(
+            Changed<PhysicsMaterial>,
+            Changed<Filter>,
+            Changed<Sensor>,
+            Changed<OneWay>,
+            Changed<GravityScale>,
+            Changed<Bullet>,
+        )>,
+    >,
+    mut moved: Query<
+        (
+            Entity,
+            &PassoBody,
+            &Made,
+            Ref<Position>,
+            Ref<LinearVelocity>,
+            Option<&mut PreviousPosition>,
+        ),
+        Or<(Changed<Position>, Changed<LinearVelocity>)>,
+    >,
+) {
+    let now = ticks.this_run();
+    // Rebuilds, in body id order (entities with no body yet last, in
+    // entity order) so ids are handed out the same way every run.
+    let mut again: Vec<(Option<passo::BodyId>, Entity)> = Vec::new();
+    for (entity, body, kind, shape, mass, rebuild) in &rebuilds {
+        let wanted = match body {
+            // A body that could not be made is tried again when it changes.
+            None => {
+                kind.is_changed()
+                    || shape.is_some_and(|s| s.is_changed())
+                    || mass.is_some_and(|m| m.is_changed())
+            }
+            Some((_, &made)) => {
+                rebuild
+                    || changed_since(&kind, made, now)
+                    || shape.is_some_and(|s| changed_since(&s, made, now))
+                    || mass.is_some_and(|m| changed_since(&m, made, now))
+            }
+        };
+        if wanted {
+            again.push((body.map(|b| b.0.0), entity));
+        }
+    }
+    again.sort_unstable_by_key(|&(id, entity)| (id.is_none(), id, entity));
+    let rebuilt: Vec<Entity> = again.iter().map(|&(_, entity)| entity).collect();
+    for (id, entity) in again {
+        let Ok((parts, interpolated)) = parts.get(entity) else {
+            continue;
+        };
+        commands.entity(entity).try_remove::<Rebuild>();
+        // Its Position and LinearVelocity hold where it is and how fast
+        // it goes (written back every tick), so the new body starts there.
+        if let Some(id) = id {
+            world.remove_body(id);
+            entities.remove(id);
+        }
+        create(
+            entity,
+            &parts,
+            now,
+            interpolated,
+            &mut world,
+            &mut entities,
+            &mut commands,
+        );
+    }
+
+    // Settings that have a setter, in body id order.
+    let mut changed: Vec<_> = edits.iter().filter(|e| !rebuilt.contains(&e.0)).collect();
+    changed.sort_unstable_by_key(|e| *e.1);
+    for (_, &PassoBody(id), &made, material, filter, sensor, one_way, gravity, bullet) in changed {
+        let mut results = Vec::new();
+        if let Some(material) = material.filter(|m| changed_since(m, made, now)) {
+            results.push(world.set_friction_mix(id, material.friction_mix));
+            results.push(world.try_set_friction(id, material.friction));
+            results.push(world.set_restitution(id, material.restitution));
+        }
+        if let Some(filter) = filter.filter(|f| changed_since(f, made, now)) {
+            results.push(world.set_filter(id, filter.0));
+        }
+        if sensor.is_some_and(|s| changed_since(&s, made, now)) {
+            results.push(world.set_sensor(id, true));
+        }
+        if let Some(one_way) = one_way.filter(|o| changed_since(o, made, now)) {
+            results.push(world.set_one_way(id, Some(to_passo(one_way.0))));
+        }
+        if let Some(gravity) = gravity.filter(|g| changed_since(g, made, now)) {
+            results.push(world.set_gravity_scale(id, gravity.0));
+        }
+        if bullet.is_some_and(|b| changed_since(&b, made, now)) {
+            results.push(world.set_bullet(id, true));
+        }
+        for error in results.into_iter().filter_map(Result::err) {
+            warn!("body {id:?}: change refused: {error}");
+        }
+    }
+
+    // Teleports and new velocities, in body id order.
+    let mut changed: Vec<_> = moved
+        .iter_mut()
+        .filter(|e| !rebuilt.contains(&e.0))
+        .collect();
+    changed.sort_unstable_by_key(|e| *e.1);
+    for (_, &PassoBody(id), &made, position, velocity, previous) in changed {
+        if changed_since(&position, made, now) {
+            if let Err(error) = world.try_set_position(id, to_passo(position.0)) {
+                warn!("body {id:?}: position refused: {error}");
+            }
+            // A teleport is drawn where it lands, not swept to.
+            if let Some(mut previous) = previous {
+                previous.0 = position.0;
+            }
+        }
+        if changed_since(&velocity, made, now)
+            && let Err(error) = world.try_set_velocity(id, to_passo(velocity.0))
+        {
+            warn!("body {id:?}: velocity refused: {error}");
+        }
+    }
+}
+
+/// After each tick: every body's [`Position`] and [`LinearVelocity`],
+/// its [`PreviousPosition`] (for [`TransformInterpolation`]), and the
+/// [`Transform`] of bodies that are not interpolated. Written without
+/// marking them changed, so only the game's own writes count as changes.
+pub(crate) fn write_back(
+    world: Res<PassoWorld>,
+    mut bodies: Query<(
+        &PassoBody,
+        &mut Position,
+        &mut LinearVelocity,
+        Option<&mut PreviousPosition>,
+        &mut Transform,
+        Has<TransformInterpolation>,
+    )>,
+) {
+    for (&PassoBody(id), mut position, mut velocity, previous, mut transform, interpolated) in
+        &mut bodies
+    {
+        let Some(body) = world.body(id) else {
+            continue;
+        };
+        let now = to_bevy(body.position);
+        if let Some(mut previous) = previous {
+            previous.bypass_change_detection().0 = position.0;
+        }
+        position.bypass_change_detection().0 = now;
+        velocity.bypass_change_detection().0 = to_bevy(body.velocity);
+        if !interpolated && transform.translation.truncate() != now {
+            transform.translation.x = now.x;
+            transform.translation.y = now.y;
+        }
+    }
+}
+
+/// Every frame, before transforms propagate: interpolated bodies are
+/// drawn between their last two ticks, at the fixed clock's overstep.
+pub(crate) fn interpolate_transforms(
+    time: Option<Res<Time<Fixed>>>,
+    mut bodies: Query<(&Position, &PreviousPosition, &mut Transform), With<TransformInterpolation>>,
+) {
+    let alpha = time.map_or(1.0, |t| t.overstep_fraction().clamp(0.0, 1.0));
+    for (position, previous, mut transform) in &mut bodies {
+        let at = previous.0.lerp(position.0, alpha);
+        transform.translation.x = at.x;
+        transform.translation.y = at.y;
+    }
+}
