@@ -570,6 +570,29 @@ fn component_changes_reach_the_body() {
     assert_eq!(body(&app).gravity_scale, 1.0);
 }
 
+fn spawn_in_two_steps(mut commands: Commands) {
+    let e = commands
+        .spawn((RigidBody::Dynamic, Transform::from_xyz(0.0, 2.0, 0.0)))
+        .id();
+    commands
+        .entity(e)
+        .insert((Collider::circle(0.25), Mass(3.0)));
+}
+
+/// Parts inserted by a later command than the RigidBody's still shape
+/// the body before its first tick.
+#[test]
+fn parts_inserted_after_the_spawn_shape_the_body() {
+    let mut app = app(60.0, 1.0 / 60.0);
+    app.add_systems(Startup, spawn_in_two_steps);
+    run_until(&mut app, 1);
+    let world = app.world().resource::<PassoWorld>();
+    let body = world.bodies().next().unwrap();
+    assert_eq!(body.shape, Some(passo::Shape::circle(0.25)));
+    assert_eq!(body.mass, 3.0);
+    assert_eq!(world.len(), 1);
+}
+
 /// The step's diagnostics reach Bevy's store.
 #[test]
 fn diagnostics_count_bodies_and_contacts() {
