@@ -49,6 +49,8 @@ use passo_physics as passo;
 
 pub mod components;
 mod convert;
+#[cfg(feature = "debug-draw")]
+pub mod debug_draw;
 pub mod diagnostics;
 pub mod messages;
 pub mod queries;
@@ -70,6 +72,17 @@ pub use passo_physics;
 pub use queries::{QueryFilter, RayHit, ShapeHit, SpatialQuery};
 pub use scene::{LoadScene, PassoLevel, SceneColour};
 
+/// The crate's README: its snippet runs as a test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadMe;
+
+/// The guide's Bevy chapter (`docs/guide/src/bevy.md`): its Rust snippets
+/// run as tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/guide/src/bevy.md")]
+pub struct GuideChapter;
+
 /// Everything a game usually needs: `use passo_bevy::prelude::*;`.
 pub mod prelude {
     pub use crate::{
@@ -81,6 +94,9 @@ pub mod prelude {
     };
     pub use passo_physics::{CharacterMover, CollisionFilter, FrictionMix, WorldSettings};
 }
+
+#[cfg(feature = "debug-draw")]
+pub use debug_draw::{PassoDebugDraw, PassoDebugDrawPlugin};
 
 /// The physics world: a resource holding Passo's [`World`](passo::World).
 /// Reach through it for everything the components do not cover; the
@@ -203,7 +219,7 @@ impl PassoPlugin {
 
 impl Plugin for PassoPlugin {
     fn build(&self, app: &mut App) {
-        let world = passo::World::new(self.settings.clone()).unwrap_or_else(|error| {
+        let world = passo::World::new(self.settings).unwrap_or_else(|error| {
             error!("Passo: invalid world settings ({error}); the defaults are used");
             passo::World::default()
         });

@@ -330,6 +330,7 @@ pub(crate) fn apply_changes(
 /// its [`PreviousPosition`] (for [`TransformInterpolation`]), and the
 /// [`Transform`] of bodies that are not interpolated. Written without
 /// marking them changed, so only the game's own writes count as changes.
+#[allow(clippy::type_complexity)]
 pub(crate) fn write_back(
     world: Res<PassoWorld>,
     mut bodies: Query<(

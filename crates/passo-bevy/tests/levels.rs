@@ -158,3 +158,18 @@ fn a_new_scene_replaces_the_old_bodies() {
     assert_eq!(world_len, entities);
     assert!(world_len > 1);
 }
+
+/// The guide's first app is the example that builds in `examples/bevy`.
+#[test]
+fn the_guides_first_app_is_the_hello_example() {
+    let root = format!("{}/../..", env!("CARGO_MANIFEST_DIR"));
+    let guide = std::fs::read_to_string(format!("{root}/docs/guide/src/bevy.md")).unwrap();
+    let example =
+        std::fs::read_to_string(format!("{root}/examples/bevy/src/bin/hello.rs")).unwrap();
+    let start = guide
+        .find("```rust,ignore\n")
+        .expect("the first app's block")
+        + "```rust,ignore\n".len();
+    let end = start + guide[start..].find("```").unwrap();
+    assert_eq!(&guide[start..end], example);
+}
