@@ -10,7 +10,9 @@
 //! A / D or the arrow keys walk, Space jumps, F1 turns the gizmos off
 //! and on. `--autopilot` walks right and jumps by itself; `--frames N`
 //! runs N frames and exits, printing where the player is;
-//! `--screenshot FILE` saves frame N as a PNG first.
+//! `--screenshot FILE` saves frame N as a PNG first; `--check` then reads
+//! the PNG back and fails unless the player's sprite is drawn where the
+//! physics and the camera put it.
 
 use bevy::camera::ScalingMode;
 use bevy::prelude::*;
@@ -29,6 +31,7 @@ struct Args {
     autopilot: bool,
     frames: Option<u32>,
     screenshot: Option<String>,
+    check: bool,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -37,6 +40,7 @@ fn parse_args() -> Result<Args, String> {
     while let Some(arg) = it.next() {
         match arg.as_str() {
             "--autopilot" => args.autopilot = true,
+            "--check" => args.check = true,
             "--frames" => {
                 let n = it.next().and_then(|v| v.parse().ok());
                 args.frames = Some(n.ok_or("--frames needs a number of frames")?);
@@ -49,6 +53,9 @@ fn parse_args() -> Result<Args, String> {
     }
     if args.screenshot.is_some() && args.frames.is_none() {
         return Err("--screenshot needs --frames N: the frame to save".into());
+    }
+    if args.check && args.screenshot.is_none() {
+        return Err("--check needs --screenshot FILE: the picture to check".into());
     }
     Ok(args)
 }
@@ -105,7 +112,10 @@ fn setup(mut commands: Commands) {
         }),
         Transform::from_xyz(8.0, 4.0, 0.0),
     ));
-    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/scenes/platformer.ron");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/scenes/platformer.ron"
+    );
     commands.queue(LoadScene::file(scene));
 }
 
@@ -131,9 +141,10 @@ fn dress_level(
     for (entity, collider, colour) in &bodies {
         if let passo_bevy::passo_physics::Shape::Box { .. } = collider.0 {
             let [r, g, b, a] = colour.0;
-            commands
-                .entity(entity)
-                .insert(Sprite::from_color(Color::srgba_u8(r, g, b, a), collider.half_extents() * 2.0));
+            commands.entity(entity).insert(Sprite::from_color(
+                Color::srgba_u8(r, g, b, a),
+                collider.half_extents() * 2.0,
+            ));
         }
     }
     let start = level.spawn("player").unwrap_or(Vec2::new(1.0, 3.0));
@@ -167,7 +178,10 @@ fn control(
         } else {
             let right = keys.any_pressed([KeyCode::KeyD, KeyCode::ArrowRight]);
             let left = keys.any_pressed([KeyCode::KeyA, KeyCode::ArrowLeft]);
-            (f32::from(right) - f32::from(left), keys.just_pressed(KeyCode::Space))
+            (
+                f32::from(right) - f32::from(left),
+                keys.just_pressed(KeyCode::Space),
+            )
         };
         let on_ground = outcome.outcome.on_ground;
         player.fall = if on_ground && jump {
@@ -208,13 +222,21 @@ fn follow(
     camera.translation.y = at.y;
 }
 
+/// Where the player's sprite was when the screenshot was asked for, in
+/// window pixels (origin top-left): its centre.
+#[derive(Resource, Clone, Copy, Debug)]
+struct Expected(Vec2);
+
 /// `--frames N`: saves frame N if asked, then exits once it is written.
+#[allow(clippy::too_many_arguments)]
 fn finish(
     mut commands: Commands,
     args: Res<Args>,
     mut frame: Local<u32>,
     world: Res<PassoWorld>,
-    players: Query<(&Position, &Player, &MoverOutcome)>,
+    players: Query<(&Position, &Player, &MoverOutcome, &Transform)>,
+    camera: Query<(&Camera, &GlobalTransform), With<Camera2d>>,
+    expected: Option<Res<Expected>>,
     mut exit: MessageWriter<AppExit>,
 ) {
     let Some(frames) = args.frames else { return };
@@ -225,6 +247,12 @@ fn finish(
         commands
             .spawn(Screenshot::primary_window())
             .observe(save_to_disk(path.clone()));
+        // Where this frame draws the player, through the camera.
+        if let (Ok((camera, view)), Ok((_, _, _, transform))) = (camera.single(), players.single())
+            && let Ok(at) = camera.world_to_viewport(view, transform.translation)
+        {
+            commands.insert_resource(Expected(at));
+        }
     }
     let saved = args
         .screenshot
@@ -232,7 +260,7 @@ fn finish(
         .is_none_or(|path| std::path::Path::new(path).exists());
     // The screenshot is written a few frames after it is asked for.
     if *frame >= frames && (saved || *frame > frames + 300) {
-        for (at, player, outcome) in &players {
+        for (at, player, outcome, _) in &players {
             println!(
                 "frames {} ticks {} player ({:.2}, {:.2}) on_ground {} jumps {}",
                 *frame,
@@ -243,6 +271,67 @@ fn finish(
                 player.jumps
             );
         }
-        exit.write(if saved { AppExit::Success } else { AppExit::error() });
+        let mut ok = saved;
+        if args.check
+            && let Some(path) = &args.screenshot
+        {
+            match check_picture(path, expected.as_deref().copied()) {
+                Ok(report) => println!("{report}"),
+                Err(error) => {
+                    eprintln!("check failed: {error}");
+                    ok = false;
+                }
+            }
+        }
+        exit.write(if ok {
+            AppExit::Success
+        } else {
+            AppExit::error()
+        });
+    }
+}
+
+/// The player's sprite colour covers most of the box it should fill in
+/// the screenshot (a margin of 6 px inside it, for a frame of motion),
+/// and little of the same box moved a body width to the side.
+fn check_picture(path: &str, expected: Option<Expected>) -> Result<String, String> {
+    let Expected(centre) = expected.ok_or("the player was not on screen")?;
+    let picture = image::open(path).map_err(|e| e.to_string())?.to_rgba8();
+    // 720 px show 9 m: 80 px a metre.
+    let scale = picture.height() as f32 / 9.0;
+    let half = PLAYER * scale / 2.0 - Vec2::splat(6.0);
+    let share = |centre: Vec2| {
+        let (mut inside, mut hits) = (0u32, 0u32);
+        for y in (centre.y - half.y) as i64..(centre.y + half.y) as i64 {
+            for x in (centre.x - half.x) as i64..(centre.x + half.x) as i64 {
+                let (Ok(x), Ok(y)) = (u32::try_from(x), u32::try_from(y)) else {
+                    continue;
+                };
+                let Some(pixel) = picture.get_pixel_checked(x, y) else {
+                    continue;
+                };
+                inside += 1;
+                let [r, g, b, _] = pixel.0;
+                // The sprite's sRGB colour, (242, 115, 89), within 24.
+                if r.abs_diff(242) < 24 && g.abs_diff(115) < 24 && b.abs_diff(89) < 24 {
+                    hits += 1;
+                }
+            }
+        }
+        f64::from(hits) / f64::from(inside.max(1))
+    };
+    let on = share(centre);
+    let beside = share(centre + Vec2::new(PLAYER.x * scale * 2.0, 0.0));
+    let report = format!(
+        "player drawn at ({:.0}, {:.0}) px: {:.0} % of its box in its colour, {:.0} % beside it",
+        centre.x,
+        centre.y,
+        on * 100.0,
+        beside * 100.0
+    );
+    if on > 0.6 && beside < 0.2 {
+        Ok(report)
+    } else {
+        Err(report)
     }
 }

@@ -22,7 +22,10 @@ fn setup(mut commands: Commands) {
         commands.spawn((
             RigidBody::Dynamic,
             Collider::rectangle(0.8, 0.8),
-            PhysicsMaterial { restitution: 0.3, ..default() },
+            PhysicsMaterial {
+                restitution: 0.3,
+                ..default()
+            },
             Sprite::from_color(Color::srgb(0.9, 0.6, 0.2), Vec2::splat(0.8)),
             TransformInterpolation,
             Transform::from_xyz(i as f32 - 2.0, 2.0 + i as f32, 0.0),
