@@ -66,7 +66,8 @@ pub use components::{
     Sensor, TransformInterpolation,
 };
 pub use messages::{
-    ContactBegan, ContactEnded, JointBroke, SceneLoadFailed, SensorEntered, SensorExited,
+    BodyPair, ContactBegan, ContactEnded, JointBroke, SceneLoadFailed, SensorEntered, SensorExited,
+    SensorVisit,
 };
 pub use passo_physics;
 pub use queries::{QueryFilter, RayHit, ShapeHit, SpatialQuery};

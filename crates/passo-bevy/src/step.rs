@@ -9,7 +9,9 @@ use passo_physics as passo;
 use crate::components::{KinematicTarget, Mover, MoverOutcome, PassoBody};
 use crate::convert::to_passo;
 use crate::diagnostics::StepDiagnostics;
-use crate::messages::{ContactBegan, ContactEnded, JointBroke, SensorEntered, SensorExited};
+use crate::messages::{
+    BodyPair, ContactBegan, ContactEnded, JointBroke, SensorEntered, SensorExited, SensorVisit,
+};
 use crate::scene::PassoLevel;
 use crate::{BodyEntities, PassoTimestep, PassoWorld};
 
@@ -95,45 +97,26 @@ pub(crate) fn step_world(
     diagnostics.finish(started, world);
 
     // 4. What happened, in the world's order.
-    let entity = |id| entities.entity(id);
     let events = world.events();
     // A world with nothing shaped has no events this step: what it holds
     // is from an earlier one.
     let fresh = events.step == world.stats().steps;
     let none = passo::ContactEvents::default();
     let events = if fresh { events } else { &none };
-    for pair in &events.begin {
-        messages.began.write(ContactBegan {
-            a: pair.a,
-            b: pair.b,
-            entity_a: entity(pair.a),
-            entity_b: entity(pair.b),
-        });
-    }
-    for pair in &events.end {
-        messages.ended.write(ContactEnded {
-            a: pair.a,
-            b: pair.b,
-            entity_a: entity(pair.a),
-            entity_b: entity(pair.b),
-        });
-    }
-    for pair in &events.sensor_begin {
-        messages.entered.write(SensorEntered {
-            sensor: pair.sensor,
-            visitor: pair.visitor,
-            sensor_entity: entity(pair.sensor),
-            visitor_entity: entity(pair.visitor),
-        });
-    }
-    for pair in &events.sensor_end {
-        messages.exited.write(SensorExited {
-            sensor: pair.sensor,
-            visitor: pair.visitor,
-            sensor_entity: entity(pair.sensor),
-            visitor_entity: entity(pair.visitor),
-        });
-    }
+    let pair = |p| BodyPair::new(p, &entities);
+    let visit = |p| SensorVisit::new(p, &entities);
+    messages
+        .began
+        .write_batch(events.begin.iter().map(|p| ContactBegan(pair(p))));
+    messages
+        .ended
+        .write_batch(events.end.iter().map(|p| ContactEnded(pair(p))));
+    messages
+        .entered
+        .write_batch(events.sensor_begin.iter().map(|p| SensorEntered(visit(p))));
+    messages
+        .exited
+        .write_batch(events.sensor_end.iter().map(|p| SensorExited(visit(p))));
     for broken in world.broken_joints() {
         messages.broke.write(JointBroke {
             id: broken.id,

@@ -19,6 +19,13 @@ fn named(app: &mut App, name: &str) -> Entity {
         .unwrap_or_else(|| panic!("no entity named {name}"))
 }
 
+/// Bodies in the world, and bodies with an entity.
+fn body_counts(app: &App) -> (usize, usize) {
+    let world = app.world().resource::<PassoWorld>().len();
+    let entities = app.world().resource::<passo_bevy::BodyEntities>();
+    (world, entities.iter().count())
+}
+
 /// The platformer scene (a Tiled map) becomes a world with an entity per
 /// object, spawn points, and a lift the plugin drives along its path.
 #[test]
@@ -35,12 +42,7 @@ fn the_platformer_scene_loads_with_its_objects_and_lift() {
     assert!((spawn.x - 1.0).abs() < 1e-5, "{spawn}");
     assert!(!level.cell_bodies.is_empty());
     assert_eq!(level.platforms.len(), 1);
-    let world_len = app.world().resource::<PassoWorld>().len();
-    let entities = app
-        .world()
-        .resource::<passo_bevy::BodyEntities>()
-        .iter()
-        .count();
+    let (world_len, entities) = body_counts(&app);
     assert_eq!(entities + level.cell_bodies.len(), world_len);
 
     let goal = named(&mut app, "goal");
@@ -149,12 +151,7 @@ fn a_new_scene_replaces_the_old_bodies() {
         .queue(LoadScene::file(common::scene_path("stack")));
     app.world_mut().flush();
     assert!(app.world().get_entity(old).is_err());
-    let world_len = app.world().resource::<PassoWorld>().len();
-    let entities = app
-        .world()
-        .resource::<passo_bevy::BodyEntities>()
-        .iter()
-        .count();
+    let (world_len, entities) = body_counts(&app);
     assert_eq!(world_len, entities);
     assert!(world_len > 1);
 }

@@ -570,23 +570,42 @@ fn component_changes_reach_the_body() {
     assert_eq!(body(&app).gravity_scale, 1.0);
 
     // A filter, and a one-way side on a static body.
-    let filter = CollisionFilter { layers: 0b10, mask: 0b01 };
+    let filter = CollisionFilter {
+        layers: 0b10,
+        mask: 0b01,
+    };
     app.world_mut().entity_mut(e).insert(Filter(filter));
     let ledge = app
         .world_mut()
-        .spawn((RigidBody::Static, Collider::rectangle(2.0, 0.2), Transform::default()))
+        .spawn((
+            RigidBody::Static,
+            Collider::rectangle(2.0, 0.2),
+            Transform::default(),
+        ))
         .id();
     run_until(&mut app, 7);
     assert_eq!(body(&app).filter, filter);
     app.world_mut().entity_mut(ledge).insert(OneWay(Vec2::Y));
     run_until(&mut app, 8);
     let ledge_id = app.world().get::<PassoBody>(ledge).unwrap().id();
-    let one_way = app.world().resource::<PassoWorld>().body(ledge_id).unwrap().one_way;
+    let one_way = app
+        .world()
+        .resource::<PassoWorld>()
+        .body(ledge_id)
+        .unwrap()
+        .one_way;
     assert_eq!(one_way, Some(glam::Vec2::Y));
     app.world_mut().entity_mut(ledge).remove::<OneWay>();
     run_until(&mut app, 9);
     let ledge_id = app.world().get::<PassoBody>(ledge).unwrap().id();
-    assert_eq!(app.world().resource::<PassoWorld>().body(ledge_id).unwrap().one_way, None);
+    assert_eq!(
+        app.world()
+            .resource::<PassoWorld>()
+            .body(ledge_id)
+            .unwrap()
+            .one_way,
+        None
+    );
 }
 
 fn spawn_in_two_steps(mut commands: Commands) {
