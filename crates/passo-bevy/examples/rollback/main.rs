@@ -4,10 +4,8 @@
 //! costs per frame.
 //!
 //! ```text
-//! cargo run -p passo-bevy --example rollback --release -- [--frames N] [--check-distance D] [--write]
+//! cargo run -p passo-bevy --example rollback --release -- [--frames N] [--check-distance D]
 //! ```
-//!
-//! `--write` puts the table in BENCHMARKS.md (section "Rollback in Bevy").
 //!
 //! It exits with an error if any frame's checksum (the world's state
 //! hash) differs after a rollback.
@@ -24,19 +22,14 @@ use passo_bevy::passo_physics::WorldSnapshot;
 fn main() -> ExitCode {
     let mut frames = 1000;
     let mut check_distance = 7;
-    let mut write = false;
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
-        if arg == "--write" {
-            write = true;
-            continue;
-        }
         let value = args.next().and_then(|v| v.parse::<usize>().ok());
         match (arg.as_str(), value) {
             ("--frames", Some(v)) => frames = v,
             ("--check-distance", Some(v)) if (1..8).contains(&v) => check_distance = v,
             _ => {
-                eprintln!("usage: rollback [--frames N] [--check-distance 1..7] [--write]");
+                eprintln!("usage: rollback [--frames N] [--check-distance 1..7]");
                 return ExitCode::FAILURE;
             }
         }
@@ -69,28 +62,10 @@ fn main() -> ExitCode {
         mismatches.len()
     );
     print!("{table}");
-    if write && let Err(error) = write_table(&table) {
-        eprintln!("cannot write BENCHMARKS.md: {error}");
-        return ExitCode::FAILURE;
-    }
     if mismatches.is_empty() {
         ExitCode::SUCCESS
     } else {
         eprintln!("desync: mismatched checksums at frames {mismatches:?}");
         ExitCode::FAILURE
     }
-}
-
-/// Replaces the `bevy_rollback` table of BENCHMARKS.md.
-fn write_table(table: &str) -> Result<(), String> {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../BENCHMARKS.md");
-    let doc = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
-    let open = "<!-- table: bevy_rollback -->\n";
-    let start = doc.find(open).ok_or("no bevy_rollback table")? + open.len();
-    let end = start
-        + doc[start..]
-            .find("<!-- /table -->")
-            .ok_or("no end of table")?;
-    let doc = format!("{}{table}{}", &doc[..start], &doc[end..]);
-    std::fs::write(path, doc).map_err(|e| e.to_string())
 }
