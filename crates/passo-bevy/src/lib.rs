@@ -248,12 +248,12 @@ impl Plugin for PassoPlugin {
             .add_observer(sync::on_remove_rigid_body)
             .add_observer(sync::on_remove_part::<Collider>)
             .add_observer(sync::on_remove_part::<Mass>)
-            .add_observer(sync::on_remove_part::<PhysicsMaterial>)
-            .add_observer(sync::on_remove_part::<Filter>)
-            .add_observer(sync::on_remove_part::<Sensor>)
-            .add_observer(sync::on_remove_part::<OneWay>)
-            .add_observer(sync::on_remove_part::<GravityScale>)
-            .add_observer(sync::on_remove_part::<Bullet>)
+            .add_observer(sync::on_remove_setting::<PhysicsMaterial>)
+            .add_observer(sync::on_remove_setting::<Filter>)
+            .add_observer(sync::on_remove_setting::<Sensor>)
+            .add_observer(sync::on_remove_setting::<OneWay>)
+            .add_observer(sync::on_remove_setting::<GravityScale>)
+            .add_observer(sync::on_remove_setting::<Bullet>)
             .configure_sets(
                 self.schedule,
                 (

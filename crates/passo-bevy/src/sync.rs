@@ -143,10 +143,84 @@ pub(crate) fn on_remove_rigid_body(
     }
 }
 
-/// Asks for a rebuild of a body that lost a component shaping it: the
-/// body is made again from what is left, before the next tick.
+/// Asks for a rebuild of a body that lost its shape or mass: the body is
+/// made again from what is left, before the next tick.
 pub(crate) fn on_remove_part<T: Component>(remove: On<Remove, T>, mut commands: Commands) {
     commands.entity(remove.entity).try_insert(Rebuild);
+}
+
+/// A component whose removal puts a body's setting back to its default.
+pub(crate) trait Setting: Component {
+    /// Only dynamic bodies have this setting.
+    const DYNAMIC_ONLY: bool = false;
+
+    /// Puts the setting back to its default.
+    fn reset(world: &mut passo::World, id: passo::BodyId) -> Result<(), passo::PhysicsError>;
+}
+
+impl Setting for Sensor {
+    fn reset(world: &mut passo::World, id: passo::BodyId) -> Result<(), passo::PhysicsError> {
+        world.set_sensor(id, false)
+    }
+}
+
+impl Setting for OneWay {
+    fn reset(world: &mut passo::World, id: passo::BodyId) -> Result<(), passo::PhysicsError> {
+        world.set_one_way(id, None)
+    }
+}
+
+impl Setting for Filter {
+    fn reset(world: &mut passo::World, id: passo::BodyId) -> Result<(), passo::PhysicsError> {
+        world.set_filter(id, passo::CollisionFilter::default())
+    }
+}
+
+impl Setting for PhysicsMaterial {
+    fn reset(world: &mut passo::World, id: passo::BodyId) -> Result<(), passo::PhysicsError> {
+        let material = PhysicsMaterial::default();
+        world.set_friction_mix(id, material.friction_mix)?;
+        world.try_set_friction(id, material.friction)?;
+        world.set_restitution(id, material.restitution)
+    }
+}
+
+impl Setting for GravityScale {
+    const DYNAMIC_ONLY: bool = true;
+
+    fn reset(world: &mut passo::World, id: passo::BodyId) -> Result<(), passo::PhysicsError> {
+        world.set_gravity_scale(id, 1.0)
+    }
+}
+
+impl Setting for Bullet {
+    const DYNAMIC_ONLY: bool = true;
+
+    fn reset(world: &mut passo::World, id: passo::BodyId) -> Result<(), passo::PhysicsError> {
+        world.set_bullet(id, false)
+    }
+}
+
+/// Puts a body's setting back to its default when the entity loses the
+/// component (the body keeps its id, contacts and joints). Dynamic-only
+/// settings on other bodies have nothing to reset.
+pub(crate) fn on_remove_setting<T: Setting>(
+    remove: On<Remove, T>,
+    mut world: ResMut<PassoWorld>,
+    bodies: Query<&PassoBody>,
+) {
+    let Ok(&PassoBody(id)) = bodies.get(remove.entity) else {
+        return;
+    };
+    let dynamic = world
+        .body(id)
+        .is_some_and(|b| b.kind == passo::BodyKind::Dynamic);
+    if world.contains(id)
+        && (dynamic || !T::DYNAMIC_ONLY)
+        && let Err(error) = T::reset(&mut world, id)
+    {
+        warn!("body {id:?}: reset refused: {error}");
+    }
 }
 
 /// A body to make again from its entity's components before the next

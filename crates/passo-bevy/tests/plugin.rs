@@ -564,10 +564,16 @@ fn component_changes_reach_the_body() {
     app.world_mut().entity_mut(e).remove::<Sensor>();
     run_until(&mut app, 5);
     assert!(!body(&app).sensor);
-    // Without its GravityScale it falls again.
-    app.world_mut().entity_mut(e).remove::<GravityScale>();
+    // Settings come and go in place: the same body, not a rebuilt one.
+    assert_eq!(app.world().get::<PassoBody>(e).unwrap().id(), new);
+    // Without its GravityScale and material it falls again, as any body.
+    app.world_mut()
+        .entity_mut(e)
+        .remove::<(GravityScale, PhysicsMaterial)>();
     run_until(&mut app, 6);
     assert_eq!(body(&app).gravity_scale, 1.0);
+    assert_eq!(body(&app).friction, PhysicsMaterial::default().friction);
+    assert_eq!(app.world().get::<PassoBody>(e).unwrap().id(), new);
 
     // A filter, and a one-way side on a static body.
     let filter = CollisionFilter {
