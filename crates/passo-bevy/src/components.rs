@@ -71,8 +71,9 @@ impl Collider {
         Self(passo::Shape::rect(width, height))
     }
 
-    /// A capsule `width` × `height` metres standing upright (round top and
-    /// bottom): the usual character shape.
+    /// A capsule filling a `width` × `height` box, metres: upright (round
+    /// top and bottom, the usual character shape) when it is taller than
+    /// wide, lying down otherwise.
     pub fn capsule(width: f32, height: f32) -> Self {
         Self(passo::Shape::capsule(width, height))
     }

@@ -148,7 +148,9 @@ impl BodyEntities {
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
 pub struct PassoTimestep(pub Option<f32>);
 
-/// The plugin's systems, in the physics schedule, in this order. Put the
+/// The plugin's systems: the first three in the physics schedule, in
+/// this order, every tick; [`Interpolate`](Self::Interpolate) in
+/// `PostUpdate`, every frame. Put the
 /// game's tick logic (inputs, movers' velocities, forces) before
 /// [`Prepare`](Self::Prepare), and what reads the results (messages,
 /// positions) after [`Writeback`](Self::Writeback).
@@ -162,6 +164,10 @@ pub enum PassoSystems {
     Step,
     /// Positions, velocities and transforms written back.
     Writeback,
+    /// In `PostUpdate`, every frame, before transforms propagate: bodies
+    /// with [`TransformInterpolation`] drawn between their last two ticks.
+    /// Order a camera that follows a body after it.
+    Interpolate,
 }
 
 /// Steps a Passo world in a schedule (by default `FixedUpdate`, at
@@ -254,6 +260,8 @@ impl Plugin for PassoPlugin {
             .add_observer(sync::on_remove_setting::<OneWay>)
             .add_observer(sync::on_remove_setting::<GravityScale>)
             .add_observer(sync::on_remove_setting::<Bullet>)
+            .add_observer(sync::on_remove_setting::<KinematicTarget>)
+            .add_observer(sync::on_remove_setting::<Mover>)
             .configure_sets(
                 self.schedule,
                 (
@@ -271,9 +279,13 @@ impl Plugin for PassoPlugin {
                     sync::write_back.in_set(PassoSystems::Writeback),
                 ),
             )
+            .configure_sets(
+                PostUpdate,
+                PassoSystems::Interpolate.before(TransformSystems::Propagate),
+            )
             .add_systems(
                 PostUpdate,
-                sync::interpolate_transforms.before(TransformSystems::Propagate),
+                sync::interpolate_transforms.in_set(PassoSystems::Interpolate),
             );
         diagnostics::register(app);
     }

@@ -17,11 +17,17 @@
 //! ```
 //!
 //! What rolls back: the whole physics world (bodies, contacts, joints,
-//! sleep, the tick count). After a rollback the plugin writes every
-//! body's [`Position`](crate::Position), [`LinearVelocity`](crate::LinearVelocity)
-//! and `Transform` from the restored world, so the game's systems see
-//! the restored state. Register the game's own components (a
-//! [`Mover`](crate::Mover)'s velocity, scores) with `bevy_ggrs` as usual.
+//! sleep, the tick count) and each mover's [`MoverOutcome`]. After a
+//! rollback the plugin writes every body's [`Position`](crate::Position),
+//! [`LinearVelocity`](crate::LinearVelocity) and `Transform` from the
+//! restored world, so the game's systems see the restored state. Register
+//! the game's own components (its players' state, scores) with
+//! `bevy_ggrs` as usual, and set each [`Mover`](crate::Mover)'s velocity
+//! every frame from the inputs.
+//!
+//! Messages are written again for every re-simulated frame: a contact
+//! that began in a frame that is rolled back and played again is reported
+//! again. Play sounds and effects from confirmed frames, or from state.
 //!
 //! Bodies are made and removed outside the rolled-back frames: spawn
 //! them before the session starts, or keep them and move them out of
@@ -31,7 +37,7 @@ use bevy::prelude::*;
 use bevy_ggrs::{LoadWorld, LoadWorldSystems, RollbackApp, Strategy};
 use passo_physics::{World, WorldSnapshot};
 
-use crate::PassoWorld;
+use crate::{MoverOutcome, PassoWorld};
 
 /// Saves the world as a [`WorldSnapshot`] (a few hundred bytes plus
 /// about 60 bytes a body) and restores it in place, reusing its buffers.
@@ -61,8 +67,9 @@ impl Strategy for SnapshotStrategy {
 pub trait PassoRollbackApp {
     /// Saves and restores the [`PassoWorld`] every GGRS frame, adds its
     /// state hash to GGRS's checksum (so a sync test or a desync report
-    /// sees physics that diverge), and writes the restored state back to
-    /// the components after a rollback.
+    /// sees physics that diverge), rolls back each mover's
+    /// [`MoverOutcome`], and writes the restored state back to the
+    /// components after a rollback.
     fn rollback_passo(&mut self) -> &mut Self;
 }
 
@@ -70,6 +77,7 @@ impl PassoRollbackApp for App {
     fn rollback_passo(&mut self) -> &mut Self {
         self.add_plugins(bevy_ggrs::ResourceSnapshotPlugin::<SnapshotStrategy>::default())
             .checksum_resource::<PassoWorld>(|world| world.state_hash())
+            .rollback_component_with_clone::<MoverOutcome>()
             .add_systems(
                 LoadWorld,
                 crate::sync::write_back.after(LoadWorldSystems::Data),

@@ -9,8 +9,9 @@ use bevy::prelude::*;
 use passo_physics as passo;
 
 use crate::components::{
-    BodyError, Bullet, Collider, Filter, GravityScale, LinearVelocity, Mass, OneWay, PassoBody,
-    PhysicsMaterial, Position, PreviousPosition, RigidBody, Sensor, TransformInterpolation,
+    BodyError, Bullet, Collider, Filter, GravityScale, KinematicTarget, LinearVelocity, Mass,
+    Mover, OneWay, PassoBody, PhysicsMaterial, Position, PreviousPosition, RigidBody, Sensor,
+    TransformInterpolation,
 };
 use crate::convert::{to_bevy, to_passo};
 use crate::{BodyEntities, PassoWorld};
@@ -104,7 +105,7 @@ fn create(
         Ok(id) => {
             entities.insert(id, entity);
             let mut e = commands.entity(entity);
-            e.try_insert((PassoBody(id), Made(made), Position(start)))
+            e.try_insert((PassoBody(id), Position(start)))
                 .try_remove::<BodyError>();
             // A body placed by its Position is drawn there from the start.
             if parts.transform.translation.truncate() != start {
@@ -116,10 +117,14 @@ fn create(
             if interpolated {
                 e.try_insert(PreviousPosition(start));
             }
+            e.try_insert(Made(made));
         }
         Err(error) => {
             warn!("entity {entity}: no Passo body: {error}");
-            commands.entity(entity).try_insert(BodyError(error));
+            commands
+                .entity(entity)
+                .try_insert(BodyError(error))
+                .try_remove::<(PassoBody, Made)>();
         }
     }
 }
@@ -201,6 +206,18 @@ impl Setting for Bullet {
     }
 }
 
+impl Setting for KinematicTarget {
+    fn reset(world: &mut passo::World, id: passo::BodyId) -> Result<(), passo::PhysicsError> {
+        world.try_set_velocity(id, passo::glam::Vec2::ZERO)
+    }
+}
+
+impl Setting for Mover {
+    fn reset(world: &mut passo::World, id: passo::BodyId) -> Result<(), passo::PhysicsError> {
+        world.try_set_velocity(id, passo::glam::Vec2::ZERO)
+    }
+}
+
 /// Puts a body's setting back to its default when the entity loses the
 /// component (the body keeps its id, contacts and joints). Dynamic-only
 /// settings on other bodies have nothing to reset.
@@ -239,6 +256,22 @@ fn changed_since<T: Component>(part: &Ref<T>, made: Made, this_run: Tick) -> boo
     part.is_changed() && part.last_changed().is_newer_than(made.0, this_run)
 }
 
+/// Any component a body is made from changed.
+type AnyPartChanged = Or<(
+    Changed<RigidBody>,
+    Changed<Collider>,
+    Changed<Mass>,
+    Changed<PhysicsMaterial>,
+    Changed<Filter>,
+    Changed<Sensor>,
+    Changed<OneWay>,
+    Changed<GravityScale>,
+    Changed<Bullet>,
+    Changed<LinearVelocity>,
+    Changed<Position>,
+    Changed<Transform>,
+)>;
+
 /// Bodies whose kind, shape or mass changed, or that lost a component,
 /// are made again; every other changed component is applied with the
 /// world's setters. Runs in [`PassoSystems::Prepare`](crate::PassoSystems).
@@ -265,6 +298,7 @@ pub(crate) fn apply_changes(
             With<BodyError>,
         )>,
     >,
+    retry: Query<(), AnyPartChanged>,
     parts: Query<(BodyParts, Has<TransformInterpolation>)>,
     edits: Query<
         (
@@ -305,12 +339,9 @@ pub(crate) fn apply_changes(
     let mut again: Vec<(Option<passo::BodyId>, Entity)> = Vec::new();
     for (entity, body, kind, shape, mass, rebuild) in &rebuilds {
         let wanted = match body {
-            // A body that could not be made is tried again when it changes.
-            None => {
-                kind.is_changed()
-                    || shape.is_some_and(|s| s.is_changed())
-                    || mass.is_some_and(|m| m.is_changed())
-            }
+            // A body that could not be made is tried again when any of
+            // its parts changes, or it lost one.
+            None => rebuild || retry.contains(entity),
             Some((_, &made)) => {
                 rebuild
                     || changed_since(&kind, made, now)
@@ -383,7 +414,11 @@ pub(crate) fn apply_changes(
         .collect();
     changed.sort_unstable_by_key(|e| *e.1);
     for (_, &PassoBody(id), &made, position, velocity, previous) in changed {
-        if changed_since(&position, made, now) {
+        // The plugin's own writes of where the body is are no teleport.
+        let body_now = world.body(id);
+        let moved = body_now.is_some_and(|b| b.position != to_passo(position.0));
+        let sped = body_now.is_some_and(|b| b.velocity != to_passo(velocity.0));
+        if changed_since(&position, made, now) && moved {
             if let Err(error) = world.try_set_position(id, to_passo(position.0)) {
                 warn!("body {id:?}: position refused: {error}");
             }
@@ -393,6 +428,7 @@ pub(crate) fn apply_changes(
             }
         }
         if changed_since(&velocity, made, now)
+            && sped
             && let Err(error) = world.try_set_velocity(id, to_passo(velocity.0))
         {
             warn!("body {id:?}: velocity refused: {error}");

@@ -283,6 +283,19 @@ fn a_kinematic_platform_carries_its_riders() {
     assert_eq!(outcome.outcome.ground, Some(platform_id));
     let rider_at = app.world().get::<Position>(rider).unwrap().0;
     assert!((rider_at.x - 4.0).abs() < 1e-3, "{rider_at}");
+
+    // Without its target the platform stops where it is.
+    app.world_mut()
+        .entity_mut(platform)
+        .remove::<KinematicTarget>();
+    run_until(&mut app, 130);
+    let stopped = app.world().get::<Position>(platform).unwrap().0;
+    assert_eq!(
+        app.world().get::<LinearVelocity>(platform).unwrap().0,
+        Vec2::ZERO
+    );
+    run_until(&mut app, 140);
+    assert_eq!(app.world().get::<Position>(platform).unwrap().0, stopped);
 }
 
 /// The mover walks along tiles and climbs a step as Passo's own mover
@@ -478,6 +491,12 @@ fn a_bad_body_gets_an_error_and_is_made_once_fixed() {
     assert!(app.world().resource::<PassoWorld>().is_empty());
 
     app.world_mut().get_mut::<Mass>(e).unwrap().0 = 2.0;
+    // Any part fixes it: here the position.
+    app.world_mut()
+        .get_mut::<Transform>(nan)
+        .unwrap()
+        .translation
+        .x = 1.0;
     run_until(&mut app, 1);
     app.update();
     assert!(app.world().get::<BodyError>(e).is_none());
@@ -486,6 +505,10 @@ fn a_bad_body_gets_an_error_and_is_made_once_fixed() {
         app.world().resource::<PassoWorld>().body(id).unwrap().mass,
         2.0
     );
+    assert!(app.world().get::<BodyError>(nan).is_none());
+    let id = app.world().get::<PassoBody>(nan).unwrap().id();
+    let body = app.world().resource::<PassoWorld>().body(id).unwrap();
+    assert_eq!(body.position.x, 1.0);
 }
 
 /// A tick length the world cannot step is refused once with a warning,

@@ -17,6 +17,7 @@
 use bevy::camera::ScalingMode;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, save_to_disk};
+use bevy::transform::TransformSystems;
 use passo_bevy::prelude::*;
 use passo_bevy::{PassoDebugDraw, PassoDebugDrawPlugin};
 
@@ -67,6 +68,18 @@ struct Player {
     jumps: u32,
 }
 
+/// A jump key pressed since the last tick. Keys are read every frame, in
+/// `Update`: a frame may run no tick, and a press read only in
+/// `FixedUpdate` would then be lost.
+#[derive(Resource, Default)]
+struct JumpPressed(bool);
+
+fn latch_jump(keys: Res<ButtonInput<KeyCode>>, mut jump: ResMut<JumpPressed>) {
+    if keys.just_pressed(KeyCode::Space) {
+        jump.0 = true;
+    }
+}
+
 fn main() -> AppExit {
     let args = match parse_args() {
         Ok(args) => args,
@@ -88,14 +101,25 @@ fn main() -> AppExit {
         .insert_resource(args)
         .insert_resource(ClearColor(Color::srgb(0.08, 0.09, 0.12)))
         .add_systems(Startup, setup)
+        .init_resource::<JumpPressed>()
         .add_systems(FixedUpdate, control.before(PassoSystems::Prepare))
         .add_systems(
             Update,
             (
                 dress_level.run_if(resource_added::<PassoLevel>),
+                latch_jump,
                 toggle_gizmos,
-                follow,
-                finish,
+            ),
+        )
+        .add_systems(
+            PostUpdate,
+            (
+                // The camera follows where the player is drawn this frame.
+                follow
+                    .after(PassoSystems::Interpolate)
+                    .before(TransformSystems::Propagate),
+                // The screenshot's check reads where this frame draws.
+                finish.after(TransformSystems::Propagate),
             ),
         )
         .run()
@@ -166,6 +190,7 @@ fn dress_level(
 /// Each tick: keys (or the autopilot) to the mover's velocity.
 fn control(
     keys: Res<ButtonInput<KeyCode>>,
+    mut jump_pressed: ResMut<JumpPressed>,
     args: Res<Args>,
     world: Res<PassoWorld>,
     mut players: Query<(&mut Player, &mut Mover, &MoverOutcome)>,
@@ -178,11 +203,9 @@ fn control(
         } else {
             let right = keys.any_pressed([KeyCode::KeyD, KeyCode::ArrowRight]);
             let left = keys.any_pressed([KeyCode::KeyA, KeyCode::ArrowLeft]);
-            (
-                f32::from(right) - f32::from(left),
-                keys.just_pressed(KeyCode::Space),
-            )
+            (f32::from(right) - f32::from(left), jump_pressed.0)
         };
+        jump_pressed.0 = false;
         let on_ground = outcome.outcome.on_ground;
         player.fall = if on_ground && jump {
             player.jumps += 1;
@@ -234,7 +257,7 @@ fn finish(
     args: Res<Args>,
     mut frame: Local<u32>,
     world: Res<PassoWorld>,
-    players: Query<(&Position, &Player, &MoverOutcome, &Transform)>,
+    players: Query<(&Position, &Player, &MoverOutcome, &GlobalTransform)>,
     camera: Query<(&Camera, &GlobalTransform), With<Camera2d>>,
     expected: Option<Res<Expected>>,
     mut exit: MessageWriter<AppExit>,
@@ -249,7 +272,7 @@ fn finish(
             .observe(save_to_disk(path.clone()));
         // Where this frame draws the player, through the camera.
         if let (Ok((camera, view)), Ok((_, _, _, transform))) = (camera.single(), players.single())
-            && let Ok(at) = camera.world_to_viewport(view, transform.translation)
+            && let Ok(at) = camera.world_to_viewport(view, transform.translation())
         {
             commands.insert_resource(Expected(at));
         }

@@ -108,7 +108,6 @@ pub fn sync_test_app(scenes: &str, check_distance: usize, cheat: bool) -> App {
     )))
     .rollback_passo()
     .rollback_component_with_copy::<Player>()
-    .rollback_component_with_clone::<MoverOutcome>()
     .init_resource::<Mismatches>()
     .add_observer(
         |mismatch: On<SyncTestMismatch>, mut seen: ResMut<Mismatches>| {
