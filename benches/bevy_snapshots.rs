@@ -18,7 +18,7 @@ use bevy_rapier2d::prelude as rapier;
 use bevy_rapier2d::prelude::{
     RapierContextColliders, RapierContextJoints, RapierContextSimulation, RapierRigidBodySet,
 };
-use passo_benches::tables::{benchmarks_md, replace};
+use passo_benches::tables::{benchmarks_md, replace, write_flag};
 use passo_bevy::passo_physics::{BodyKind, Shape, World};
 use passo_bevy::prelude::*;
 
@@ -145,14 +145,7 @@ fn rapier_sizes(world: &World) -> (usize, Vec<usize>) {
 }
 
 fn main() {
-    let write = match std::env::args().nth(1).as_deref() {
-        None => false,
-        Some("--write") => true,
-        Some(other) => {
-            eprintln!("unknown argument `{other}`; the only one is --write");
-            std::process::exit(2);
-        }
-    };
+    let write = write_flag();
     let (passo_bodies, passo_wire, passo_memory) = passo_sizes();
     let built = passo_scene::Scene::load(std::path::Path::new(&scene()))
         .and_then(|s| s.build())

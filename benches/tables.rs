@@ -174,6 +174,19 @@ pub fn replace(doc: &str, name: &str, markdown: &str) -> Result<String, String> 
     ))
 }
 
+/// Whether the command line asks to write the tables (`--write`, the
+/// only argument such a command takes); exits with a message otherwise.
+pub fn write_flag() -> bool {
+    match std::env::args().nth(1).as_deref() {
+        None => false,
+        Some("--write") => true,
+        Some(other) => {
+            eprintln!("unknown argument `{other}`; the only one is --write");
+            std::process::exit(2);
+        }
+    }
+}
+
 /// The path of BENCHMARKS.md.
 pub fn benchmarks_md() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../BENCHMARKS.md")

@@ -4,17 +4,10 @@
 //!
 //! Run: `cargo run --release -p passo-benches --bin tables [-- --write]`
 
-use passo_benches::tables::{all, benchmarks_md, replace};
+use passo_benches::tables::{all, benchmarks_md, replace, write_flag};
 
 fn main() {
-    let write = match std::env::args().nth(1).as_deref() {
-        None => false,
-        Some("--write") => true,
-        Some(other) => {
-            eprintln!("unknown argument `{other}`; the only one is --write");
-            std::process::exit(2);
-        }
-    };
+    let write = write_flag();
     let tables = all();
     if !write {
         for table in &tables {

@@ -256,17 +256,22 @@ fn changed_since<T: Component>(part: &Ref<T>, made: Made, this_run: Tick) -> boo
     part.is_changed() && part.last_changed().is_newer_than(made.0, this_run)
 }
 
-/// Any component a body is made from changed.
-type AnyPartChanged = Or<(
-    Changed<RigidBody>,
-    Changed<Collider>,
-    Changed<Mass>,
+/// A component with a setter changed.
+type SettingChanged = Or<(
     Changed<PhysicsMaterial>,
     Changed<Filter>,
     Changed<Sensor>,
     Changed<OneWay>,
     Changed<GravityScale>,
     Changed<Bullet>,
+)>;
+
+/// Any component a body is made from changed.
+type AnyPartChanged = Or<(
+    Changed<RigidBody>,
+    Changed<Collider>,
+    Changed<Mass>,
+    SettingChanged,
     Changed<LinearVelocity>,
     Changed<Position>,
     Changed<Transform>,
@@ -312,14 +317,7 @@ pub(crate) fn apply_changes(
             Option<Ref<GravityScale>>,
             Option<Ref<Bullet>>,
         ),
-        Or<(
-            Changed<PhysicsMaterial>,
-            Changed<Filter>,
-            Changed<Sensor>,
-            Changed<OneWay>,
-            Changed<GravityScale>,
-            Changed<Bullet>,
-        )>,
+        SettingChanged,
     >,
     mut moved: Query<
         (
