@@ -128,8 +128,8 @@ impl Default for PhysicsMaterial {
     }
 }
 
-/// Which bodies this one touches: collision layers and masks, and a group
-/// (see [`CollisionFilter`](passo::CollisionFilter)).
+/// Which bodies this one touches: the layers it is on and the layers it
+/// collides with (see [`CollisionFilter`](passo::CollisionFilter)).
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
 pub struct Filter(pub passo::CollisionFilter);
 
