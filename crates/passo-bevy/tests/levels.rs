@@ -77,6 +77,23 @@ fn the_platformer_scene_loads_with_its_objects_and_lift() {
     );
 }
 
+/// `LoadScene::file` knows a Tiled map by its name, in both formats:
+/// cells 1 m wide.
+#[test]
+fn a_map_given_as_a_file_loads_as_a_map() {
+    for file in ["first.tmx", "first.tmj"] {
+        let mut app = app(60.0, 1.0 / 60.0);
+        app.world_mut()
+            .commands()
+            .queue(LoadScene::file(level_path(file)));
+        app.world_mut().flush();
+        let level = app.world().get_resource::<PassoLevel>().expect(file);
+        // The player's spawn at (32, 208) px of 16 px cells: x = 2 cells.
+        let spawn = level.spawn("player").unwrap();
+        assert!((spawn.x - 2.0).abs() < 1e-5, "{file}: {spawn}");
+    }
+}
+
 /// A Tiled map on its own, in both formats, gives the same world.
 #[test]
 fn a_tiled_map_loads_on_its_own_in_both_formats() {

@@ -61,6 +61,48 @@ fn a_dropped_body_falls_as_semi_implicit_euler_at_every_rate() {
     }
 }
 
+/// The plugin's settings reach the world: a body falls under the Moon's
+/// gravity, exactly as semi-implicit Euler says; invalid settings fall
+/// back to the defaults.
+#[test]
+fn the_plugins_settings_reach_the_world() {
+    use bevy::time::TimeUpdateStrategy;
+    let moon = passo::WorldSettings {
+        forces: passo::ForceModels {
+            gravity: Some(glam::Vec2::new(0.0, -1.62)),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        PassoPlugin::default().with_rate(60.0).with_settings(moon),
+    ))
+    .insert_resource(TimeUpdateStrategy::ManualDuration(
+        std::time::Duration::from_secs_f64(1.0 / 60.0),
+    ));
+    let ball = app
+        .world_mut()
+        .spawn((RigidBody::Dynamic, Transform::from_xyz(0.0, 10.0, 0.0)))
+        .id();
+    run_until(&mut app, 60);
+    let n = ticks(&app) as f64;
+    let dt = 1.0 / 60.0f64;
+    let y = f64::from(app.world().get::<Position>(ball).unwrap().0.y);
+    let closed = 10.0 - 1.62 * dt * dt * n * (n + 1.0) / 2.0;
+    assert!((y - closed).abs() < 1e-4, "{y} vs {closed}");
+
+    let broken = passo::WorldSettings {
+        max_speed: -1.0,
+        ..Default::default()
+    };
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, PassoPlugin::default().with_settings(broken)));
+    let max_speed = app.world().resource::<PassoWorld>().settings().max_speed;
+    assert_eq!(max_speed, passo::WorldSettings::default().max_speed);
+}
+
 /// Spawning makes a body, despawning removes it, removing the
 /// RigidBody removes it too, and ids map both ways.
 #[test]
@@ -732,4 +774,39 @@ fn queries_answer_with_entities() {
     assert_eq!(cast.entity, Some(ground));
     assert!((cast.fraction - 2.5 / 5.0).abs() < 1e-5, "{cast:?}");
     assert_eq!(point, vec![ground]);
+
+    // A box resting on the ground: it stands, and the ground's box query
+    // finds both.
+    let crate_ = app
+        .world_mut()
+        .spawn((
+            RigidBody::Dynamic,
+            Collider::rectangle(0.5, 0.5),
+            Transform::from_xyz(3.0, 0.25, 0.0),
+        ))
+        .id();
+    run_until(&mut app, 30);
+    let ground_id = app.world().get::<PassoBody>(ground).unwrap().id();
+    let (standing, floating, found, body, bodies) = app
+        .world_mut()
+        .run_system_once(move |q: SpatialQuery| {
+            let filter = QueryFilter::default();
+            (
+                q.is_standing(crate_, 0.5),
+                q.is_standing(ground, 0.5),
+                q.aabb(Vec2::new(2.0, -1.0), Vec2::new(4.0, 1.0), &filter),
+                q.body(ground),
+                q.world().len(),
+            )
+        })
+        .unwrap();
+    assert!(standing);
+    assert!(!floating);
+    assert_eq!(found, vec![ground, crate_]);
+    assert_eq!(body, Some(ground_id));
+    assert_eq!(bodies, 2);
+    assert_eq!(
+        Collider::rectangle(0.5, 0.25).half_extents(),
+        Vec2::new(0.25, 0.125)
+    );
 }
