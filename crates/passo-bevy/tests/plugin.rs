@@ -569,6 +569,27 @@ fn an_impossible_rate_steps_nothing_and_does_not_panic() {
     }
 }
 
+/// A tick length set by hand that the world cannot step is refused: no
+/// step, no panic; a good one steps again.
+#[test]
+fn an_impossible_tick_length_steps_nothing() {
+    let mut app = app(60.0, 1.0 / 60.0);
+    app.world_mut()
+        .spawn((RigidBody::Dynamic, Transform::default()));
+    for dt in [0.0, -1.0 / 60.0, f32::NAN, f32::INFINITY, 7200.0] {
+        app.insert_resource(PassoTimestep(Some(dt)));
+        for _ in 0..5 {
+            app.update();
+        }
+        assert_eq!(ticks(&app), 0, "dt {dt}");
+    }
+    app.insert_resource(PassoTimestep(Some(1.0 / 60.0)));
+    for _ in 0..5 {
+        app.update();
+    }
+    assert!(ticks(&app) > 0);
+}
+
 /// Changing components changes the body: its material, its shape (the
 /// body is rebuilt where it is), its sensor flag, its velocity.
 #[test]
