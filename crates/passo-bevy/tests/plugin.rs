@@ -61,6 +61,64 @@ fn a_dropped_body_falls_as_semi_implicit_euler_at_every_rate() {
     }
 }
 
+/// Every component given at spawn is in the body the plugin makes.
+#[test]
+fn every_part_given_at_spawn_is_in_the_body() {
+    let mut app = app(60.0, 1.0 / 60.0);
+    let filter = CollisionFilter { layers: 4, mask: 6 };
+    let material = PhysicsMaterial {
+        friction: 0.7,
+        restitution: 0.4,
+        friction_mix: FrictionMix::Min,
+    };
+    let ball = app
+        .world_mut()
+        .spawn((
+            RigidBody::Dynamic,
+            Collider::circle(0.3),
+            Mass(2.5),
+            material,
+            Filter(filter),
+            Sensor,
+            GravityScale(0.5),
+            Bullet,
+            LinearVelocity(Vec2::new(1.0, 2.0)),
+            Transform::from_xyz(1.0, 2.0, 0.0),
+        ))
+        .id();
+    let ledge = app
+        .world_mut()
+        .spawn((
+            RigidBody::Kinematic,
+            Collider::rectangle(2.0, 0.2),
+            OneWay(Vec2::Y),
+            Transform::from_xyz(0.0, -3.0, 0.0),
+        ))
+        .id();
+    app.update();
+    let world = app.world().resource::<PassoWorld>();
+    let b = world
+        .body(app.world().get::<PassoBody>(ball).unwrap().id())
+        .unwrap();
+    assert_eq!(b.kind, passo::BodyKind::Dynamic);
+    assert_eq!(b.shape, Some(passo::Shape::circle(0.3)));
+    assert_eq!(b.mass, 2.5);
+    assert_eq!(
+        (b.friction, b.restitution, b.friction_mix),
+        (0.7, 0.4, FrictionMix::Min)
+    );
+    assert_eq!(b.filter, filter);
+    assert!(b.sensor && b.bullet);
+    assert_eq!(b.gravity_scale, 0.5);
+    assert_eq!(b.velocity, glam::Vec2::new(1.0, 2.0));
+    assert_eq!(b.position, glam::Vec2::new(1.0, 2.0));
+    let l = world
+        .body(app.world().get::<PassoBody>(ledge).unwrap().id())
+        .unwrap();
+    assert_eq!(l.kind, passo::BodyKind::Kinematic);
+    assert_eq!(l.one_way, Some(glam::Vec2::Y));
+}
+
 /// The plugin's settings reach the world: a body falls under the Moon's
 /// gravity, exactly as semi-implicit Euler says; invalid settings fall
 /// back to the defaults.
@@ -325,6 +383,17 @@ fn a_kinematic_platform_carries_its_riders() {
     assert_eq!(outcome.outcome.ground, Some(platform_id));
     let rider_at = app.world().get::<Position>(rider).unwrap().0;
     assert!((rider_at.x - 4.0).abs() < 1e-3, "{rider_at}");
+
+    // Without its Mover the rider stops where it is (it was riding at
+    // the platform's speed).
+    let riding = app.world().get::<LinearVelocity>(rider).unwrap().0;
+    assert!((riding.x - 1.0).abs() < 1e-3, "{riding}");
+    app.world_mut().entity_mut(rider).remove::<Mover>();
+    run_until(&mut app, 122);
+    assert_eq!(
+        app.world().get::<LinearVelocity>(rider).unwrap().0,
+        Vec2::ZERO
+    );
 
     // Without its target the platform stops where it is.
     app.world_mut()
@@ -688,16 +757,34 @@ fn component_changes_reach_the_body() {
         .one_way;
     assert_eq!(one_way, Some(glam::Vec2::Y));
     app.world_mut().entity_mut(ledge).remove::<OneWay>();
+    app.world_mut().entity_mut(e).remove::<Filter>();
     run_until(&mut app, 9);
-    let ledge_id = app.world().get::<PassoBody>(ledge).unwrap().id();
-    assert_eq!(
-        app.world()
-            .resource::<PassoWorld>()
-            .body(ledge_id)
-            .unwrap()
-            .one_way,
-        None
-    );
+    assert_eq!(app.world().get::<PassoBody>(ledge).unwrap().id(), ledge_id);
+    let ledge_body = app.world().resource::<PassoWorld>().body(ledge_id).unwrap();
+    assert_eq!(ledge_body.one_way, None);
+    assert_eq!(body(&app).filter, CollisionFilter::default());
+    assert_eq!(app.world().get::<PassoBody>(e).unwrap().id(), new);
+
+    // A bullet, and back.
+    app.world_mut().entity_mut(e).insert(Bullet);
+    run_until(&mut app, 10);
+    assert!(body(&app).bullet);
+    app.world_mut().entity_mut(e).remove::<Bullet>();
+    run_until(&mut app, 11);
+    assert!(!body(&app).bullet);
+
+    // Without its Collider the body is rebuilt as a point, where it was.
+    let at = app.world().get::<Position>(e).unwrap().0;
+    app.world_mut().entity_mut(e).remove::<Collider>();
+    run_until(&mut app, 12);
+    assert_ne!(app.world().get::<PassoBody>(e).unwrap().id(), new);
+    assert_eq!(body(&app).shape, None);
+    assert!((body(&app).position.x - at.x).abs() < 0.1);
+
+    // A new Mass rebuilds it with that mass.
+    app.world_mut().entity_mut(e).insert(Mass(4.0));
+    run_until(&mut app, 13);
+    assert_eq!(body(&app).mass, 4.0);
 }
 
 fn spawn_in_two_steps(mut commands: Commands) {
