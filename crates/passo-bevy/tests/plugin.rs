@@ -542,6 +542,8 @@ fn transforms_are_interpolated_between_ticks() {
     run_until(&mut app, next);
     let before = app.world().get::<PreviousPosition>(smooth).unwrap().0;
     assert!((before - Vec2::new(-5.0, 1.0)).length() < 1e-6, "{before}");
+    let landed = app.world().get::<Position>(smooth).unwrap().0;
+    assert!((landed - Vec2::new(-5.0, 1.0)).length() < 0.1, "{landed}");
 }
 
 /// Two apps fed the same inputs at different frame rates step the same
@@ -781,10 +783,13 @@ fn component_changes_reach_the_body() {
     assert_eq!(body(&app).shape, None);
     assert!((body(&app).position.x - at.x).abs() < 0.1);
 
-    // A new Mass rebuilds it with that mass.
+    // A new Mass rebuilds it with that mass, a new kind with that kind.
     app.world_mut().entity_mut(e).insert(Mass(4.0));
     run_until(&mut app, 13);
     assert_eq!(body(&app).mass, 4.0);
+    app.world_mut().entity_mut(e).insert(RigidBody::Kinematic);
+    run_until(&mut app, 14);
+    assert_eq!(body(&app).kind, passo::BodyKind::Kinematic);
 }
 
 fn spawn_in_two_steps(mut commands: Commands) {
