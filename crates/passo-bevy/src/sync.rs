@@ -154,6 +154,21 @@ pub(crate) fn on_remove_part<T: Component>(remove: On<Remove, T>, mut commands: 
     commands.entity(remove.entity).try_insert(Rebuild);
 }
 
+impl PhysicsMaterial {
+    /// Gives body `id` this material: every part the world accepts, and
+    /// the first refusal.
+    fn apply(
+        &self,
+        world: &mut passo::World,
+        id: passo::BodyId,
+    ) -> Result<(), passo::PhysicsError> {
+        let mix = world.set_friction_mix(id, self.friction_mix);
+        let friction = world.try_set_friction(id, self.friction);
+        let restitution = world.set_restitution(id, self.restitution);
+        mix.and(friction).and(restitution)
+    }
+}
+
 /// A component whose removal puts a body's setting back to its default.
 pub(crate) trait Setting: Component {
     /// Only dynamic bodies have this setting.
@@ -183,10 +198,7 @@ impl Setting for Filter {
 
 impl Setting for PhysicsMaterial {
     fn reset(world: &mut passo::World, id: passo::BodyId) -> Result<(), passo::PhysicsError> {
-        let material = PhysicsMaterial::default();
-        world.set_friction_mix(id, material.friction_mix)?;
-        world.try_set_friction(id, material.friction)?;
-        world.set_restitution(id, material.restitution)
+        PhysicsMaterial::default().apply(world, id)
     }
 }
 
@@ -381,9 +393,7 @@ pub(crate) fn apply_changes(
     for (_, &PassoBody(id), &made, material, filter, sensor, one_way, gravity, bullet) in changed {
         let mut results = Vec::new();
         if let Some(material) = material.filter(|m| changed_since(m, made, now)) {
-            results.push(world.set_friction_mix(id, material.friction_mix));
-            results.push(world.try_set_friction(id, material.friction));
-            results.push(world.set_restitution(id, material.restitution));
+            results.push(material.apply(&mut world, id));
         }
         if let Some(filter) = filter.filter(|f| changed_since(f, made, now)) {
             results.push(world.set_filter(id, filter.0));
