@@ -14,10 +14,13 @@ pub struct TestSwitches {
     /// Warm start every step: contacts reused in place never keep their
     /// impulses.
     pub warm_start_always: bool,
-    /// Lay the contacts out in blocks however empty, rather than solve
-    /// mostly-padding groups one by one.
+    /// Lay the contacts and the rigid rods out in blocks however empty,
+    /// rather than solve mostly-padding groups one by one.
     pub blocks_always: bool,
     /// Work out the order of shock propagation every step: never keep the
     /// last step's.
     pub order_supports_always: bool,
+    /// Solve the rigid rods one by one in the joints' order, never side by
+    /// side in blocks.
+    pub joints_one_by_one: bool,
 }

@@ -6,6 +6,8 @@
 //! This file holds what game code sees (the definitions and their checks)
 //! and the store of a world's joints; `solve` holds the maths.
 
+pub(crate) mod soft;
+pub(crate) mod rods;
 pub(crate) mod solve;
 
 use crate::PhysicsError;

@@ -17,97 +17,20 @@
 //! centre, the Jacobian of every constraint is a unit direction, and the
 //! effective mass is `1 / (1/m_a + 1/m_b)` along every direction.
 //!
-//! Joints are solved one after another in slot order (Gauss-Seidel), on
-//! one thread: the bits are the same with any number of threads.
+//! Rigid rods, the bulk of chains, bridges and nets, are coloured as the
+//! contacts are and solved side by side in blocks (see `rods`), which
+//! keeps each body's rods in slot order; the other joints are solved one
+//! after another in slot order after them (Gauss-Seidel), as the contacts
+//! no colour takes are. All on the stepping thread: the bits are the same
+//! with any number of threads.
 
 use crate::constants::{JOINT_DAMPING_RATIO, JOINT_HERTZ};
-use crate::joint::{JointDef, JointImpulses, JointKind, JointSpring, Joints};
+use crate::joint::rods::{NONE, RodBlocks, RodRow};
+use crate::joint::soft::Soft;
+use crate::joint::{JointDef, JointImpulses, JointKind, Joints};
 use crate::solver::scalar::BodyState;
+use crate::switches::TestSwitches;
 use glam::Vec2;
-
-/// A soft constraint's coefficients for a substep `h` (Box2D v3's
-/// `b2Softness`, with its bias rate and mass scale multiplied out): the
-/// impulse is `-m * (mass_scale * cdot + bias * C) - impulse_scale *
-/// accumulated`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Soft {
-    pub bias: f32,
-    pub mass_scale: f32,
-    pub impulse_scale: f32,
-}
-
-impl Soft {
-    /// Rigid, with no correction of drift.
-    pub(crate) const RIGID: Self = Self {
-        bias: 0.0,
-        mass_scale: 1.0,
-        impulse_scale: 0.0,
-    };
-
-    /// Closes a gap `C` in one substep, no more: a limit not yet reached.
-    fn speculative(h: f32) -> Self {
-        Self {
-            bias: 1.0 / h,
-            ..Self::RIGID
-        }
-    }
-
-    /// The impulse for relative speed `cdot`, error `c`, effective mass
-    /// `m` and accumulated impulse `accumulated`.
-    #[inline(always)]
-    fn impulse<T>(self, m: f32, cdot: T, c: T, accumulated: T) -> T
-    where
-        T: std::ops::Mul<f32, Output = T> + std::ops::Add<Output = T> + std::ops::Sub<Output = T>,
-    {
-        (cdot * (-m * self.mass_scale) + c * (-m * self.bias)) - accumulated * self.impulse_scale
-    }
-
-    /// A spring of `hertz` and `damping_ratio` over a substep `h`, as
-    /// Box2D v3's `b2MakeSoft`: the spring force taken at the end of the
-    /// substep (implicit Euler), stable at any stiffness; rigid when
-    /// `hertz` is 0.
-    pub(crate) fn new(hertz: f32, damping_ratio: f32, h: f32) -> Self {
-        Self::weighted(hertz, damping_ratio, h, 1.0)
-    }
-
-    /// A spring whose force is taken a fraction `beta` of the way from
-    /// the start of the substep to its end (the damping always at the
-    /// end): 1 is [`new`](Self::new). With the positions then moved by
-    /// the new velocity, a linear spring's step has determinant
-    /// `1 / (1 + beta (h w)^2)`: its amplitude shrinks by that much a
-    /// substep with no damping asked for. The step is stable when
-    /// `(h w)^2 (1 - 2 beta) <= 4`.
-    pub(crate) fn weighted(hertz: f32, damping_ratio: f32, h: f32, beta: f32) -> Self {
-        if hertz == 0.0 {
-            return Self::RIGID;
-        }
-        let omega = std::f32::consts::TAU * hertz;
-        let hw = h * omega;
-        let a2 = hw * (2.0 * damping_ratio + beta * hw);
-        let a3 = 1.0 / (1.0 + a2);
-        Self {
-            bias: hw * omega * a3,
-            mass_scale: a2 * a3,
-            impulse_scale: a3,
-        }
-    }
-
-    /// A joint's own spring, solved once a substep (the solve passes):
-    /// explicit (`beta` 0, no numerical damping: the amplitude of an
-    /// undamped spring neither grows nor shrinks) while the spring is soft
-    /// for the substep, moving toward the midpoint (`beta` 1/2, stable at
-    /// any stiffness) as it stiffens: `beta = max(0, 1/2 - 1/(h w)^2)`,
-    /// which keeps the step stable with a margin of two.
-    fn of(spring: JointSpring, h: f32) -> Self {
-        let hw = h * std::f32::consts::TAU * spring.hertz;
-        let beta = if hw * hw > 2.0 {
-            0.5 - 1.0 / (hw * hw)
-        } else {
-            0.0
-        };
-        Self::weighted(spring.hertz, spring.damping_ratio, h, beta)
-    }
-}
 
 /// Where a joint's end is during a step.
 #[derive(Clone, Copy, Debug)]
@@ -144,33 +67,14 @@ pub(crate) struct JointRow {
     h: f32,
 }
 
-/// Marks a rod's end that no state moves (a static body, the world).
-const NONE: u32 = u32::MAX;
-
-/// A rigid rod (a distance joint of one length and no spring), the most
-/// common joint (chains, bridges, nets), in a row of its own: 40 bytes
-/// against a general row's 120, so a pass over thousands streams a third
-/// of the memory.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct RodRow {
-    /// Body A's and B's dynamic index, or [`NONE`].
-    a: u32,
-    b: u32,
-    ma: f32,
-    mb: f32,
-    mass: f32,
-    base: Vec2,
-    length: f32,
-    impulse: f32,
-    slot: u32,
-}
-
 /// The rows of a step, and the links between dynamic bodies that make
 /// them one island.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct JointRows {
     pub rows: Vec<JointRow>,
     pub rods: Vec<RodRow>,
+    /// The rods in colours of blocks (see `wide`).
+    blocks: RodBlocks,
     /// The rods' drift correction this step.
     rigid: Option<Soft>,
     /// The substep, seconds.
@@ -189,12 +93,13 @@ impl JointRows {
     /// The rows of `joints` for a step of substep `h`; `locate` tells where
     /// a body is, `None` for a body no longer in the world (its joints were
     /// removed with it, so never). Without `warm`, each joint starts from
-    /// zero impulses.
+    /// zero impulses. `switches`: see `RodBlocks::build`.
     pub(crate) fn prepare(
         &mut self,
         joints: &Joints,
         h: f32,
         warm: bool,
+        switches: TestSwitches,
         locate: impl Fn(crate::BodyId) -> Option<End>,
     ) {
         self.rows.clear();
@@ -274,15 +179,22 @@ impl JointRows {
                 h,
             });
         }
+        let TestSwitches {
+            blocks_always,
+            joints_one_by_one,
+            ..
+        } = switches;
+        (self.blocks).build(&self.rods, blocks_always, joints_one_by_one);
+    }
+
+    /// Rods the passes solve in blocks.
+    pub(crate) fn rods_in_blocks(&self) -> usize {
+        self.blocks.in_blocks()
     }
 
     /// Applies each joint's impulses of the last substep again.
     pub(crate) fn warm_start(&mut self, state: &mut [BodyState], delta: &[Vec2]) {
-        for rod in &self.rods {
-            let (va, vb) = rod.velocities(state);
-            let p = rod.impulse * rod.separation(delta).normalize_or_zero();
-            rod.write(state, va - rod.ma * p, vb + rod.mb * p);
-        }
+        self.blocks.warm_start(&self.rods, state, delta);
         for row in &mut self.rows {
             let (mut va, mut vb) = row.velocities(state);
             let d = row.separation(delta);
@@ -309,17 +221,7 @@ impl JointRows {
             (true, Some(rigid)) => rigid,
             _ => Soft::RIGID,
         };
-        for rod in &mut self.rods {
-            let (va, vb) = rod.velocities(state);
-            let d = rod.separation(delta);
-            let len = d.length();
-            let axis = if len > 0.0 { d / len } else { Vec2::ZERO };
-            let cdot = axis.dot(vb - va);
-            let impulse = rigid.impulse(rod.mass, cdot, len - rod.length, rod.impulse);
-            rod.impulse += impulse;
-            let p = impulse * axis;
-            rod.write(state, va - rod.ma * p, vb + rod.mb * p);
-        }
+        self.blocks.solve(&mut self.rods, state, delta, rigid);
         for row in &mut self.rows {
             let (va, vb) = row.velocities(state);
             let d = row.separation(delta);
@@ -330,7 +232,8 @@ impl JointRows {
 
     /// Writes each joint's impulses and force back; calls `broken` with the
     /// slot of each joint whose force went over its break force.
-    pub(crate) fn store(&self, joints: &mut Joints, mut broken: impl FnMut(u32)) {
+    pub(crate) fn store(&mut self, joints: &mut Joints, mut broken: impl FnMut(u32)) {
+        self.blocks.store(&mut self.rods);
         for rod in &self.rods {
             let Some(joint) = joints.slots[rod.slot as usize].joint.as_mut() else {
                 continue;
@@ -351,44 +254,6 @@ impl JointRows {
             if joint.def.break_force.is_some_and(|f| joint.force > f) {
                 broken(row.slot);
             }
-        }
-    }
-}
-
-impl RodRow {
-    #[inline(always)]
-    fn velocities(&self, state: &[BodyState]) -> (Vec2, Vec2) {
-        let v = |i: u32| {
-            if i == NONE {
-                Vec2::ZERO
-            } else {
-                state[i as usize].vel
-            }
-        };
-        (v(self.a), v(self.b))
-    }
-
-    /// Anchor B minus anchor A now.
-    #[inline(always)]
-    fn separation(&self, delta: &[Vec2]) -> Vec2 {
-        let d = |i: u32| {
-            if i == NONE {
-                Vec2::ZERO
-            } else {
-                delta[i as usize]
-            }
-        };
-        self.base + (d(self.b) - d(self.a))
-    }
-
-    /// Writes the velocities of the bodies the rod moves.
-    #[inline(always)]
-    fn write(&self, state: &mut [BodyState], va: Vec2, vb: Vec2) {
-        if self.a != NONE && self.ma > 0.0 {
-            state[self.a as usize].vel = va;
-        }
-        if self.b != NONE && self.mb > 0.0 {
-            state[self.b as usize].vel = vb;
         }
     }
 }

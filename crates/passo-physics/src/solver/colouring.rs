@@ -72,7 +72,7 @@ pub(crate) struct Colouring {
 /// instead: 2, blocks (counted eight lanes wide whatever [`LANES`] is)
 /// less than half full: a stack of boxes (one contact a colour) steps
 /// faster one by one than in blocks of padding.
-const MAX_PADDING: usize = 2;
+pub(crate) const MAX_PADDING: usize = 2;
 
 /// Clears the masks of the bodies contact `c` moves (each build leaves
 /// every mask zero).
@@ -90,6 +90,22 @@ fn moved_key(c: &Constraint) -> u64 {
     let (a, b) = c.moved();
     let index = |i: Option<usize>| i.map_or(u64::from(u32::MAX), |i| i as u64);
     index(a) << 32 | index(b)
+}
+
+/// The colour of a constraint whose bodies' earlier constraints have the
+/// colours `used` (a mask): the one after the last of them, as the
+/// sequential order would solve it; wrapping round to the first free
+/// colour past the last; none when every colour is taken.
+pub(crate) fn colour_after(used: u128) -> Option<usize> {
+    if used == u128::MAX {
+        return None;
+    }
+    let after = (u128::BITS - used.leading_zeros()) as usize;
+    Some(if after < COLOURS {
+        after
+    } else {
+        (!used).trailing_zeros() as usize
+    })
 }
 
 /// The colour of a row left over, solved one by one.
@@ -227,21 +243,12 @@ impl Colouring {
             self.last_moved.push(moved_key(c));
             let (a, b) = c.moved();
             let used = a.map_or(0, |a| self.masks[a]) | b.map_or(0, |b| self.masks[b]);
-            if used == u128::MAX {
+            let Some(colour) = colour_after(used) else {
                 self.left_over += 1;
                 self.colour_of.push(OVERFLOW);
                 self.overflow.push(*c);
                 self.overflow_rows.push(i as u32);
                 continue;
-            }
-            // After every colour of the earlier contacts of its bodies, as
-            // the sequential order would solve it; wrapping round to the
-            // first free colour past the last.
-            let after = (u128::BITS - used.leading_zeros()) as usize;
-            let colour = if after < COLOURS {
-                after
-            } else {
-                (!used).trailing_zeros() as usize
             };
             for body in [a, b].into_iter().flatten() {
                 self.masks[body] |= 1 << colour;

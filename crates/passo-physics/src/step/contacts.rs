@@ -699,7 +699,9 @@ impl World {
     fn prepare_joints(&mut self, h: f32, warm: bool) {
         let mut rows = std::mem::take(&mut self.joint_rows);
         if self.joints.count > 0 {
-            rows.prepare(&self.joints, h, warm, |id| self.joint_end(id));
+            rows.prepare(&self.joints, h, warm, self.switches, |id| {
+                self.joint_end(id)
+            });
         } else {
             rows.rows.clear();
             rows.links.clear();

@@ -417,6 +417,7 @@ impl World {
         if let Some(cw) = &self.contacts {
             cw.count(&mut counters);
         }
+        counters.rods_in_blocks = self.joint_rows.rods_in_blocks() as u64;
         counters
     }
 
