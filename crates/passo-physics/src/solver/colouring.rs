@@ -89,6 +89,7 @@ fn unmask(masks: &mut [u128], c: &Constraint) {
 fn moved_key(c: &Constraint) -> u64 {
     let (a, b) = c.moved();
     let index = |i: Option<usize>| i.map_or(u64::from(u32::MAX), |i| i as u64);
+    // (The halves share no bit: `^` would give the same key as `|`.)
     index(a) << 32 | index(b)
 }
 
@@ -125,7 +126,8 @@ impl Colouring {
         deep: &[bool],
     ) {
         // The masks are all zero between builds: grown here, and the
-        // entries a build sets are cleared at its end.
+        // entries a build sets are cleared at its end. (`<=` would resize
+        // to the same length: no change.)
         if self.masks.len() < bodies {
             self.masks.resize(bodies, 0);
         }
@@ -138,7 +140,8 @@ impl Colouring {
             self.colour(rows, picked.clone());
         } else {
             self.reused += 1;
-            // (A pile coloured whole has none to look for.)
+            // (A pile coloured whole has none to look for: a shortcut, the
+            // loop would find none.)
             if self.left_over > 0 {
                 for (i, &colour) in picked.clone().zip(&self.colour_of) {
                     if colour == OVERFLOW {
@@ -169,7 +172,8 @@ impl Colouring {
         // are kept, not filled with padding again and then written. Their
         // padding lanes name no body and have zero masses, so the passes
         // left their numbers zero (up to sign), and every lane a row
-        // takes is written whole below.
+        // takes is written whole below. (A shortcut: taken colours give
+        // as many blocks, and blocks laid out anew get the same lanes.)
         let same_layout = !coloured_now && self.blocks.len() == start;
         if !same_layout {
             self.blocks.clear();

@@ -636,3 +636,88 @@ fn blocks_at_rest_leave_the_push_out_with_the_scalar_solvers_bits() {
     );
     assert!(push[..12].iter().all(|p| *p == Vec2::ZERO));
 }
+
+#[test]
+fn blocks_are_chosen_while_at_most_half_their_lanes_are_padding() {
+    // Three chains of `links` contacts (colours 0 to links - 1) and a body
+    // touching 128 + `over` others (one contact in each colour, the rest
+    // left over), judged at eight lanes: `links` 128 gives four contacts
+    // a colour, half the lanes, blocks; a chain one link shorter leaves
+    // one colour three, past half padding: one by one. The contacts left
+    // over count for neither.
+    let rows = |links: [u32; 3], over: u32| {
+        let mut rows: Vec<_> = (0..COLOURS as u32 + over)
+            .map(|i| row(0, Some(1 + i), 1.0))
+            .collect();
+        for (j, &n) in links.iter().enumerate() {
+            let first = 1000 * (j as u32 + 1);
+            rows.extend((0..n).map(|i| row(first + i, Some(first + i + 1), 1.0)));
+        }
+        rows
+    };
+    for over in [0, 2, 40] {
+        let mut c = Colouring::default();
+        let even = rows([128, 128, 128], over);
+        c.build(&even, 0..even.len(), 4000, &[]);
+        assert_eq!(c.overflow.len(), over as usize);
+        assert_eq!(c.blocks.len(), COLOURS * 4usize.div_ceil(LANES), "blocks");
+        let short = rows([128, 128, 127], over);
+        c.build(&short, 0..short.len(), 4000, &[]);
+        assert!(c.blocks.is_empty(), "one by one ({over} left over)");
+        assert_eq!(c.overflow.len(), short.len());
+    }
+}
+
+#[test]
+fn rows_that_move_other_bodies_a_are_coloured_anew() {
+    // The same bodies B in the same order, another body A: the second
+    // row now shares body 1 with the first, so it takes the next colour.
+    let mut c = Colouring {
+        switches: TestSwitches {
+            blocks_always: true,
+            ..TestSwitches::default()
+        },
+        ..Colouring::default()
+    };
+    let apart = [row(0, Some(1), 1.0), row(2, Some(3), 1.0)];
+    c.build(&apart, 0..2, 4, &[]);
+    assert_eq!(c.colour_of, [0, 0]);
+    let shared = [row(0, Some(1), 1.0), row(1, Some(3), 1.0)];
+    c.build(&shared, 0..2, 4, &[]);
+    assert_eq!(c.reused, 0);
+    assert_eq!(c.colour_of, [0, 1]);
+    assert_colours_share_no_moved_body(&c, 4);
+}
+
+#[test]
+fn impulses_are_stored_into_rows_that_start_past_the_first() {
+    // A colouring of rows 4 to 9 of a chain of ten, stored into those six
+    // rows alone (as a region's rows are), from blocks or one by one: each
+    // row gets its own impulse back.
+    let mut rows: Vec<_> = (0..10).map(|i| row(i, Some(i + 1), 1.0)).collect();
+    for blocks_always in [true, false] {
+        let mut c = Colouring {
+            switches: TestSwitches {
+                blocks_always,
+                ..TestSwitches::default()
+            },
+            ..Colouring::default()
+        };
+        c.build(&rows, 4..10, 11, &[]);
+        assert_eq!(c.blocks.is_empty(), !blocks_always);
+        for k in &mut c.blocks {
+            for l in 0..LANES {
+                k.normal_impulse[l] = k.row[l] as f32;
+            }
+        }
+        for (o, &r) in c.overflow.iter_mut().zip(&c.overflow_rows) {
+            o.normal_impulse = r as f32;
+        }
+        c.store_from(&mut rows[4..], 4);
+        let stored: Vec<_> = rows.iter().map(|r| r.normal_impulse).collect();
+        let expected: Vec<_> = (0..10)
+            .map(|i| if i < 4 { 1.0 } else { i as f32 })
+            .collect();
+        assert_eq!(stored, expected, "blocks always: {blocks_always}");
+    }
+}
