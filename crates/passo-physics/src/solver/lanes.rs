@@ -154,7 +154,9 @@ impl<'a> Bodies<'a> {
         }
     }
 
-    /// Body `i`'s state, if `i` names a body (never the rest state).
+    /// Body `i`'s state, if `i` names a body (never the rest state: no
+    /// lane names it, so `len` here instead of `len - 1` would change
+    /// nothing but the guard).
     #[inline(always)]
     fn body(&mut self, i: u32) -> Option<&mut BodyState> {
         let bodies = self.state.len() - 1;
@@ -315,6 +317,7 @@ pub(crate) fn warm_start(k: &mut Block, bodies: &mut Bodies<'_>, warm: bool, car
     if carries {
         for l in 0..LANES {
             let q = k.push_impulse[l];
+            // (A push is never negative: `>=` would apply a zero one.)
             if k.carry[l] && q > 0.0 {
                 p.apply(k, l, k.nx[l] * q, k.ny[l] * q);
             } else {

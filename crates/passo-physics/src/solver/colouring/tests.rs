@@ -721,3 +721,43 @@ fn impulses_are_stored_into_rows_that_start_past_the_first() {
         assert_eq!(stored, expected, "blocks always: {blocks_always}");
     }
 }
+
+#[test]
+fn a_block_of_bodies_of_many_masses_some_in_a_deep_pile_solves_as_the_scalar_solver() {
+    // Eight bodies of other masses than 1 kg on the ground, one colour:
+    // every lane of a block, each with a push left from the last substep,
+    // every other body in a deep pile. With the push carried, only the
+    // deep bodies' lanes carry it; without, none does.
+    let rows: Vec<_> = (0..8)
+        .map(|i| {
+            let inv_mass_a = 0.4 + 0.3 * i as f32;
+            Constraint {
+                normal: Vec2::new(0.1 * i as f32, 1.0).normalize(),
+                base_separation: -0.01 * i as f32,
+                inv_mass_a,
+                mass: 1.0 / inv_mass_a,
+                normal_impulse: 0.5 + 0.1 * i as f32,
+                tangent_impulse: 0.05 * i as f32 - 0.2,
+                push_impulse: 0.1 * (i + 1) as f32,
+                ..row(i, None, 0.0)
+            }
+        })
+        .collect();
+    let vel0: Vec<_> = (0..8).map(|i| Vec2::new(0.1 * i as f32, -1.0)).collect();
+    let delta: Vec<_> = (0..8).map(|i| Vec2::new(0.0, -0.001 * i as f32)).collect();
+    let deep: Vec<_> = (0..8).map(|i| i % 2 == 0).collect();
+    let steps = [
+        Step::Begin,
+        Step::Solve(true),
+        Step::Relax,
+        Step::Solve(false),
+    ];
+    for carry_push in [true, false] {
+        let params = SolverParams {
+            carry_push,
+            ..SolverParams::for_tests()
+        };
+        let (_, push, _) = wide_and_scalar(&rows, (&vel0, &delta, &deep), &params, &steps);
+        assert!(push.iter().any(|p| *p != Vec2::ZERO));
+    }
+}
