@@ -26,8 +26,10 @@ use glam::Vec2;
 
 /// What the contact steps' shortcuts saved, counted since the world's
 /// contact state was made: its first contact step, or a restored snapshot
-/// (Box2D publishes the like as `b2Counters`). Each is a count of
-/// steps; the difference of two readings covers the steps between them.
+/// (Box2D publishes the like as `b2Counters`). Each is a count of steps
+/// or of builds, but for [`rods_in_blocks`](Self::rods_in_blocks), which
+/// is of the last step; the difference of two readings covers the steps
+/// between them.
 /// Read them with [`World::counters`](crate::World::counters). They are
 /// diagnostics, not state: a snapshot does not carry them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -53,6 +55,11 @@ pub struct StepCounters {
     /// contacts that hold bodies up (the same contacts, each holding the
     /// same body up).
     pub supports_reused: u64,
+    /// Builds of the tree that finds the sleeping bodies an awake body
+    /// reaches: one when an island has fallen asleep, when half the tree's
+    /// bodies have woken, or when the margins its boxes are grown by
+    /// changed (with gravity or the step). Steps in between reuse it.
+    pub sleep_tree_builds: u64,
     /// Rigid rods (distance joints of one length, no spring) the last step
     /// solved side by side in blocks; the other joints it solved one by
     /// one.
@@ -605,6 +612,7 @@ impl ContactWorld {
         counters.contacts_reused_in_place = n.contacts_reused_in_place;
         counters.colourings_reused = self.regions.colourings_reused();
         counters.supports_reused = self.supports.reused;
+        counters.sleep_tree_builds = self.sleeping.tree_builds;
     }
 
     /// The proxies and their pairs, to change (for tests).

@@ -57,6 +57,8 @@ pub(crate) struct SleepingContacts {
     hits: Vec<u32>,
     /// Entries of the tree whose bodies woke (and left) since it was built.
     left: usize,
+    /// Builds of the tree (see `StepCounters::sleep_tree_builds`).
+    pub(crate) tree_builds: u64,
     /// The margins the tree's boxes were grown by (they follow gravity, the
     /// step and continuous collision: a change rebuilds the tree).
     built_margin: ProxyMargin,
@@ -102,14 +104,20 @@ impl SleepingContacts {
         self.all_pending = false;
     }
 
-    /// Whether any body sleeps or any contact is stored (and not on its
-    /// way out: every body woken).
+    /// Whether any body sleeps, leaving out the islands game code woke
+    /// since the last step (their bodies are awake at once, and wake for
+    /// good when the next step begins): what the next step will find, so
+    /// that `World::contact_stages` lists what it runs. Stored contacts
+    /// are those of sleeping bodies.
     pub(crate) fn any(&self, dynamic: &DynamicBodies) -> bool {
-        (!self.all_pending && !self.list.is_empty()) || dynamic.sleep.iter().any(|s| s.is_asleep())
+        let sleeps = |island: u32| !self.is_pending(island);
+        dynamic.sleep.iter().any(|s| s.island().is_some_and(sleeps))
     }
 
     /// Whether dynamic body `i` sleeps in the tree (it then needs no proxy
-    /// unless an awake one reaches it).
+    /// unless an awake one reaches it). Once the step's `begin` has run,
+    /// every sleeping shaped body is in it: asked of those alone, `true`
+    /// would answer the same.
     pub(crate) fn in_tree(&self, i: usize) -> bool {
         self.tree_member[i]
     }
@@ -164,6 +172,7 @@ impl SleepingContacts {
             return;
         }
         self.built_margin = *margin;
+        self.tree_builds += 1;
         self.tree_member.fill(false);
         self.tree_bodies.clear();
         self.left = 0;

@@ -485,3 +485,138 @@ fn a_world_woken_whole_keeps_no_mark_that_wakes_an_island_later() {
         assert_eq!(world.state_hash(), restored.state_hash(), "step {k}");
     }
 }
+
+#[test]
+fn the_sleep_tree_is_built_when_an_island_sleeps_half_of_it_wakes_or_the_step_changes() {
+    // Three stacks of four asleep: the tree of sleeping bodies is built
+    // once they sleep, then kept while nothing changes.
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    let stacks: Vec<_> = [-6.0, 0.0, 6.0].map(|x| stack(&mut w, x, 4)).into();
+    run(&mut w, 3.0);
+    assert_eq!(w.sleeping_len(), 12);
+    let builds = |w: &World| w.counters().sleep_tree_builds;
+    let first = builds(&w);
+    assert!(
+        (1..=3).contains(&first),
+        "{first} builds: one a stack at most"
+    );
+    run(&mut w, 1.0);
+    assert_eq!(builds(&w), first, "nothing changed: kept");
+    // One stack woken: a third of the tree leaves it, which keeps the
+    // rest; one build when that stack sleeps again.
+    w.wake(stacks[0][0]).unwrap();
+    w.step(DT);
+    assert_eq!(builds(&w), first, "a third woke: kept");
+    run(&mut w, 3.0);
+    assert_eq!(w.sleeping_len(), 12);
+    assert_eq!(builds(&w), first + 1, "the stack slept again");
+    // Two stacks woken: more than half the tree leaves, built at once.
+    w.wake(stacks[0][0]).unwrap();
+    w.wake(stacks[2][0]).unwrap();
+    w.step(DT);
+    assert_eq!(builds(&w), first + 2, "two thirds woke: built");
+    run(&mut w, 3.0);
+    assert_eq!(w.sleeping_len(), 12);
+    let slept = builds(&w);
+    assert!(slept > first + 2, "the stacks slept again");
+    // Another step length grows the boxes by another margin (continuous
+    // collision reaches as far as a body falls in a step): built again.
+    w.step(2.0 * DT);
+    assert_eq!(builds(&w), slept + 1, "a longer step");
+    w.step(DT);
+    assert_eq!(builds(&w), slept + 2, "back to the usual step");
+    w.step(DT);
+    assert_eq!(builds(&w), slept + 2, "the same step: kept");
+    assert_eq!(w.sleeping_len(), 12, "none of it woke a body");
+}
+
+#[test]
+fn restoring_a_sleeping_world_in_place_steps_as_one_made_from_the_snapshot() {
+    // A world asleep, saved; then a ball wakes a stack, a new stack is
+    // built, and the world moves on until all of it sleeps. Restored in place, it steps as a world made from the snapshot
+    // when another ball wakes that stack: the stored contacts, islands and
+    // sleep tree are the snapshot's, none of the world that moved on.
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    stack(&mut w, 0.0, 4);
+    stack(&mut w, 3.0, 2);
+    run(&mut w, 2.0);
+    assert_eq!(w.sleeping_len(), 6);
+    let saved = w.snapshot();
+    let ball = BodyDef {
+        position: Vec2::new(0.2, 7.0),
+        shape: Some(Shape::circle(0.3)),
+        mass: 4.0,
+        ..Default::default()
+    };
+    w.add_body(ball).unwrap();
+    stack(&mut w, 10.0, 5);
+    run(&mut w, 3.0);
+    assert_eq!(w.sleeping_len(), 12, "the new stack and the ball slept too");
+    w.restore_from(&saved).unwrap();
+    let mut made = World::from_snapshot(saved).unwrap();
+    for world in [&mut w, &mut made] {
+        world
+            .add_body(BodyDef {
+                position: Vec2::new(-0.1, 6.0),
+                ..ball
+            })
+            .unwrap();
+    }
+    for tick in 0..180 {
+        w.step(DT);
+        made.step(DT);
+        assert_eq!(w.state_hash(), made.state_hash(), "tick {tick}");
+        assert_eq!(w.sleeping_len(), made.sleeping_len(), "tick {tick}");
+    }
+}
+
+#[test]
+fn waking_the_only_sleeping_island_hands_its_contacts_back_once() {
+    // One stack asleep, woken by game code: after the next step its
+    // contacts are listed once each, as before it slept, none twice.
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    let ids = stack(&mut w, 0.0, 3);
+    run(&mut w, 2.0);
+    assert_eq!(w.sleeping_len(), 3);
+    let pairs = |w: &World| {
+        let mut pairs: Vec<_> = w.contacts().map(|c| (c.a, c.b)).collect();
+        pairs.sort();
+        pairs
+    };
+    let asleep = pairs(&w);
+    assert!(!asleep.is_empty());
+    w.wake(ids[0]).unwrap();
+    for _ in 0..3 {
+        w.step(DT);
+        assert_eq!(w.sleeping_len(), 0);
+        assert_eq!(pairs(&w), asleep);
+    }
+}
+
+#[test]
+fn the_stages_listed_after_a_wake_hold_no_sleeper() {
+    // The only sleeping island woken by game code (a ball falls far
+    // away): its bodies are awake at once, so the next step holds no
+    // sleeping body, and the stages listed before it say so.
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    let ids = stack(&mut w, 0.0, 3);
+    run(&mut w, 2.0);
+    // A ball falling far away: the contact step runs.
+    let ball = BodyDef {
+        position: Vec2::new(15.0, 30.0),
+        shape: Some(Shape::circle(0.3)),
+        ..Default::default()
+    };
+    w.add_body(ball).unwrap();
+    w.step(DT);
+    let hold = passo_physics::ContactStage::HoldSleepers;
+    assert!(w.contact_stages().contains(&hold));
+    w.wake(ids[2]).unwrap();
+    assert!(!w.contact_stages().contains(&hold));
+    w.step(DT);
+    assert!(!w.contact_stages().contains(&hold));
+}
