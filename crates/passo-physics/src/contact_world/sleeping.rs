@@ -323,7 +323,8 @@ impl SleepingContacts {
         self.all_pending || self.pending.contains(&island)
     }
 
-    /// Whether any island waits to wake.
+    /// Whether any island waits to wake. (A shortcut: flushing with none
+    /// waiting changes nothing but the contacts' revision.)
     pub(crate) fn has_pending(&self) -> bool {
         self.all_pending || !self.pending.is_empty()
     }

@@ -620,3 +620,30 @@ fn the_stages_listed_after_a_wake_hold_no_sleeper() {
     w.step(DT);
     assert!(!w.contact_stages().contains(&hold));
 }
+
+#[test]
+fn an_awake_body_close_to_a_sleeping_one_but_not_touching_leaves_it_asleep() {
+    // A box kept awake by a sensor rests a centimetre from a sleeping
+    // one: close enough for a speculative contact between them, not
+    // touching. Only a touching contact wakes a sleeper.
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    w.add_body(BodyDef {
+        sensor: true,
+        ..BodyDef::new_static(Vec2::new(1.51, 1.0), Shape::rect(0.5, 2.0))
+    })
+    .unwrap();
+    let sleeper = add_box(&mut w, Vec2::new(0.0, 0.5), Vec2::ONE, 1.0);
+    run(&mut w, 2.0);
+    assert!(w.is_asleep(sleeper).unwrap());
+    let awake = add_box(&mut w, Vec2::new(1.01, 0.5), Vec2::ONE, 1.0);
+    for _ in 0..120 {
+        w.step(DT);
+        assert!(w.is_asleep(sleeper).unwrap());
+        assert!(!w.is_asleep(awake).unwrap());
+    }
+    let near = w
+        .contacts_of(awake)
+        .any(|c| c.b == sleeper || c.a == sleeper);
+    assert!(near, "a speculative contact between them");
+}
