@@ -345,7 +345,9 @@ impl SleepingContacts {
 
     /// Wakes every body now. Nothing happens when every body is already
     /// awake with no rest time and nothing is stored: the step calls this
-    /// while sleeping is off and while the stage is idle.
+    /// while sleeping is off and while the stage is idle. (A safety net:
+    /// the settings change that turns sleeping off, and the removals that
+    /// leave no collider, have woken every body already.)
     pub(crate) fn wake_all(&mut self, dynamic: &mut DynamicBodies) {
         if self.wake_every_body(dynamic) {
             self.all_pending = false;

@@ -4,7 +4,7 @@
 use crate::support::{add_box, add_ground, add_static_box, assert_finite};
 use passo_physics::constants::{SLEEP_SPEED, TIME_TO_SLEEP};
 use passo_physics::glam::Vec2;
-use passo_physics::{BodyDef, BodyId, ContactSettings, Shape, World, WorldSettings};
+use passo_physics::{BodyDef, BodyId, ContactSettings, JointDef, Shape, World, WorldSettings};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -646,4 +646,36 @@ fn an_awake_body_close_to_a_sleeping_one_but_not_touching_leaves_it_asleep() {
         .contacts_of(awake)
         .any(|c| c.b == sleeper || c.a == sleeper);
     assert!(near, "a speculative contact between them");
+}
+
+#[test]
+fn waking_every_body_wakes_a_chain_asleep_with_no_contact_stored() {
+    // Three bodies without shapes hanging still from a rod chain: an
+    // island with no contact to store. Game code waking every body wakes
+    // them too.
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    ground(&mut w);
+    let mut ids: Vec<BodyId> = Vec::new();
+    for k in 1..=3 {
+        let position = Vec2::new(0.0, 10.0 - k as f32);
+        let id = w
+            .add_body(BodyDef {
+                position,
+                ..Default::default()
+            })
+            .unwrap();
+        let rod = match ids.last() {
+            None => JointDef::distance(id, None, 1.0).anchors(Vec2::ZERO, Vec2::new(0.0, 10.0)),
+            Some(&above) => JointDef::distance(above, Some(id), 1.0),
+        };
+        w.add_joint(rod).unwrap();
+        ids.push(id);
+    }
+    run(&mut w, 2.0);
+    assert_eq!(asleep(&w, &ids), [true; 3]);
+    assert!(w.contacts().next().is_none());
+    w.wake_all();
+    assert_eq!(asleep(&w, &ids), [false; 3]);
+    w.step(DT);
+    assert_eq!(asleep(&w, &ids), [false; 3]);
 }
