@@ -405,7 +405,8 @@ impl Colouring {
     }
 
     /// The dynamic bodies the blocks write (`written`) or read (for
-    /// checks).
+    /// checks: a debug assertion that no step can fail, so no test sees
+    /// it emptied).
     #[cfg(debug_assertions)]
     pub(crate) fn bodies_in_blocks(&self, written: bool) -> impl Iterator<Item = u32> + '_ {
         self.blocks

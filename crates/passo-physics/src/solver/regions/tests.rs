@@ -429,6 +429,14 @@ fn every_contact_comes_back_from_its_one_place_whether_split_or_not() {
             for g in &mut regions.groups {
                 g.mark_rows();
             }
+            // Each row's slot names the group, block and lane (or place
+            // left over) that hold it, as shock propagation reads them.
+            let mut slot_of = vec![Slot::None; rows.len()];
+            regions.note_slots(&mut slot_of);
+            for (i, &slot) in slot_of.iter().enumerate() {
+                let [normal, _, _] = regions.groups[slot.group()].impulses_mut(slot);
+                assert_eq!(*normal, i as f32, "slot of row {i} of scene {k}");
+            }
             for r in &mut rows {
                 r.normal_impulse = -1.0;
             }
