@@ -406,6 +406,7 @@ pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool, const MEASURE: bo
         let mass = k.mass[l];
 
         // Non-penetration: v_n >= 0, or >= -s / h while still apart.
+        // (At `s` zero, `>=` would give a bias of zero too.)
         let s = k.separation[l];
         let bias = if s > 0.0 { s * r.inv_h } else { 0.0 };
         let (dvx, dvy) = (v.bx[l] - v.ax[l], v.by[l] - v.ay[l]);
@@ -445,6 +446,8 @@ pub(crate) fn solve_block<const PUSH: bool, const FRESH: bool, const MEASURE: bo
         }
         scatter(k, bodies, &v, &p);
     } else {
+        // (No pass runs with `FRESH` and without `PUSH`, and a block at
+        // rest has no push impulse left: `||` would clear zeros.)
         if PUSH && FRESH {
             k.push_impulse = [0.0; LANES];
         }

@@ -724,8 +724,9 @@ fn impulses_are_stored_into_rows_that_start_past_the_first() {
 
 #[test]
 fn a_block_of_bodies_of_many_masses_some_in_a_deep_pile_solves_as_the_scalar_solver() {
-    // Eight bodies of other masses than 1 kg on the ground, one colour:
-    // every lane of a block, each with a push left from the last substep,
+    // Eight bodies of other masses than 1 kg on the ground (a conveyor:
+    // each contact has a belt speed), one colour: every lane of a block,
+    // each with a push left from the last substep,
     // every other body in a deep pile. With the push carried, only the
     // deep bodies' lanes carry it; without, none does.
     let rows: Vec<_> = (0..8)
@@ -739,11 +740,15 @@ fn a_block_of_bodies_of_many_masses_some_in_a_deep_pile_solves_as_the_scalar_sol
                 normal_impulse: 0.5 + 0.1 * i as f32,
                 tangent_impulse: 0.05 * i as f32 - 0.2,
                 push_impulse: 0.1 * (i + 1) as f32,
+                tangent_speed: 0.3 * i as f32 - 1.0,
                 ..row(i, None, 0.0)
             }
         })
         .collect();
-    let vel0: Vec<_> = (0..8).map(|i| Vec2::new(0.1 * i as f32, -1.0)).collect();
+    // Some bodies closing on the ground, some leaving it.
+    let vel0: Vec<_> = (0..8)
+        .map(|i| Vec2::new(0.1 * i as f32, 1.0 - 0.3 * i as f32))
+        .collect();
     let delta: Vec<_> = (0..8).map(|i| Vec2::new(0.0, -0.001 * i as f32)).collect();
     let deep: Vec<_> = (0..8).map(|i| i % 2 == 0).collect();
     let steps = [
@@ -757,7 +762,9 @@ fn a_block_of_bodies_of_many_masses_some_in_a_deep_pile_solves_as_the_scalar_sol
             carry_push,
             ..SolverParams::for_tests()
         };
-        let (_, push, _) = wide_and_scalar(&rows, (&vel0, &delta, &deep), &params, &steps);
+        let (_, push, rows) = wide_and_scalar(&rows, (&vel0, &delta, &deep), &params, &steps);
         assert!(push.iter().any(|p| *p != Vec2::ZERO));
+        let held = rows.iter().filter(|c| c.normal_impulse > 0.0).count();
+        assert!((2..8).contains(&held), "{held} contacts hold");
     }
 }
