@@ -486,3 +486,37 @@ thread_local! {
     /// tests).
     pub(crate) static RESTING: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_block_is_at_rest_only_when_every_push_number_is_plus_zero() {
+        let (k, still, zero) = (Block::PADDING, Lanes::default(), [0.0; LANES]);
+        assert!(at_rest::<false>(&k, &still, &zero));
+        // A target push speed equal to the push impulse left: not at rest
+        // (their bits must not cancel), unless the pass starts afresh.
+        let (mut pushed, mut target) = (k, zero);
+        pushed.push_impulse[1] = 0.25;
+        target[1] = 0.25;
+        assert!(!at_rest::<false>(&pushed, &still, &target));
+        assert!(!at_rest::<true>(&k, &still, &target));
+        assert!(at_rest::<true>(&pushed, &still, &zero));
+        assert!(!at_rest::<false>(&pushed, &still, &zero));
+        // Two of a lane's push velocities equal (or one -0): not at rest.
+        for (i, j) in [(0, 1), (1, 2), (2, 3), (0, 3)] {
+            let mut p = Lanes::default();
+            let parts = [&mut p.ax, &mut p.ay, &mut p.bx, &mut p.by];
+            for (n, part) in parts.into_iter().enumerate() {
+                if n == i || n == j {
+                    part[2] = 0.5;
+                }
+            }
+            assert!(!at_rest::<false>(&k, &p, &zero), "parts {i} and {j}");
+        }
+        let mut minus = Lanes::default();
+        minus.by[0] = -0.0;
+        assert!(!at_rest::<false>(&k, &minus, &zero));
+    }
+}

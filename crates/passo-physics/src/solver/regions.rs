@@ -90,7 +90,8 @@ pub(crate) struct ContactRegions {
 }
 
 impl ContactRegions {
-    /// Turns the colourings' shortcuts off, or on again.
+    /// Turns the colourings' shortcuts off, or on again. (They change the
+    /// work, never the bits: left undone, no result shows it.)
     pub(crate) fn set_switches(&mut self, switches: TestSwitches) {
         for group in &mut self.groups {
             group.switches = switches;

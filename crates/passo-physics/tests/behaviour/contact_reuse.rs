@@ -194,3 +194,30 @@ fn a_snapshot_steps_on_with_the_contacts_it_reuses() {
         }
     }
 }
+
+#[test]
+fn a_pyramid_at_rest_takes_the_last_steps_colours_and_a_new_box_colours_anew() {
+    // At rest the pyramid keeps its contacts, so each step takes the last
+    // step's colours; a box dropped on it brings new contacts.
+    let mut world = pyramid(10);
+    for _ in 0..120 {
+        world.step(DT);
+    }
+    let reused = |w: &World| w.counters().colourings_reused;
+    let before = reused(&world);
+    for _ in 0..30 {
+        world.step(DT);
+    }
+    assert_eq!(reused(&world) - before, 30, "every step at rest");
+    let def = BodyDef::new_dynamic(Vec2::new(0.0, 10.6), Shape::rect(1.0, 1.0));
+    world.add_body(def).unwrap();
+    let before = reused(&world);
+    for _ in 0..30 {
+        world.step(DT);
+    }
+    let landing = reused(&world) - before;
+    assert!(
+        (1..30).contains(&landing),
+        "{landing} of 30 while the box lands"
+    );
+}
