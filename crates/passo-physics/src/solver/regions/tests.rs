@@ -493,3 +493,49 @@ fn the_regions_give_the_same_bits_on_any_number_of_threads() {
         }
     }
 }
+
+#[test]
+fn bodies_in_no_order_of_their_places_split_at_the_middle_of_the_wider_side() {
+    // The scrambled lattice (every other contact crosses the storage
+    // halves) laid out wide, then tall: region 1 is the bodies from the
+    // middle of the wider side on, the middle taken between the extremes.
+    for (scale, wide) in [(Vec2::new(3.0, 1.0), true), (Vec2::new(1.0, 2.5), false)] {
+        let (mut pos, _, rows, _, _) = scrambled(plain(80));
+        for p in &mut pos {
+            *p = *p * scale + Vec2::new(-7.0, 4.0);
+        }
+        let mut regions = ContactRegions::default();
+        regions.build(&rows, &pos, &[], false, false);
+        assert!(regions.is_split());
+        let (axis, middle) = if wide {
+            (0, -7.0 + 0.5 * 79.0 * 3.0)
+        } else {
+            (1, 4.0 + 0.5 * 79.0 * 2.5)
+        };
+        for (i, p) in pos.iter().enumerate() {
+            let expected = u8::from(p[axis] >= middle);
+            assert_eq!(
+                regions.region[i], expected,
+                "body {i} at {p} (wide: {wide})"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_row_holding_a_body_unannounced_in_either_half_is_noticed() {
+    // Rows sorted in two halves side by side: a row that holds a body
+    // (inverse mass zero) though the step did not say so, in the first
+    // half of the rows or the second, gives the regions the build with
+    // `holds` set gives.
+    let (pos, _, rows) = lattice(80);
+    for held in [0, rows.len() - 1] {
+        let mut rows = rows.clone();
+        rows[held].inv_mass_a = 0.0;
+        let mut noticed = ContactRegions::default();
+        noticed.build(&rows, &pos, &[], false, true);
+        let mut told = ContactRegions::default();
+        told.build(&rows, &pos, &[], true, true);
+        assert_eq!(noticed.picked, told.picked, "row {held}");
+    }
+}
