@@ -147,6 +147,7 @@ impl ContactRegions {
         }
         let (region, use_of) = (&self.region[..], &self.use_of[..]);
         let held = if goes_parallel(parallel, rows.len()) {
+            // (Any cut gives the same picks: only the halves' sizes.)
             let (head, tail) = rows.split_at(rows.len() / 2);
             let (picked, picked_tail) = (&mut self.picked, &mut self.picked_tail);
             let held = join(
@@ -284,6 +285,8 @@ impl ContactRegions {
         // The rows are in the order of their lower body: after a split in
         // storage order every row of the second region follows the
         // others', and the two parts are written side by side.
+        // (No cut is the last row of group 0 or 2: `r` would do as well
+        // as `r + 1`.)
         let end = |g: usize| self.picked[g].last().map_or(0, |&r| r as usize + 1);
         let cut = self.picked[1].first().map(|&r| r as usize);
         if let Some(cut) = cut.filter(|&cut| self.split && cut >= end(0).max(end(2))) {
@@ -399,6 +402,8 @@ fn assign_regions(
     let mut held = false;
     for (i, c) in rows.iter().enumerate() {
         let moved = c.moved();
+        // (Set wrongly, it only makes the build start again with `holds`,
+        // which picks the same.)
         held |= moved != (Some(c.a as usize), c.b.dynamic_index());
         let g = match moved {
             _ if shared(c.a as usize) || c.b.dynamic_index().is_some_and(shared) => 2,
