@@ -498,19 +498,20 @@ fn the_regions_give_the_same_bits_on_any_number_of_threads() {
 fn bodies_in_no_order_of_their_places_split_at_the_middle_of_the_wider_side() {
     // The scrambled lattice (every other contact crosses the storage
     // halves) laid out wide, then tall: region 1 is the bodies from the
-    // middle of the wider side on, the middle taken between the extremes.
+    // middle of the wider side on, the middle taken between the extremes
+    // (far from the origin: the sides are differences, not sums).
     for (scale, wide) in [(Vec2::new(3.0, 1.0), true), (Vec2::new(1.0, 2.5), false)] {
         let (mut pos, _, rows, _, _) = scrambled(plain(80));
         for p in &mut pos {
-            *p = *p * scale + Vec2::new(-7.0, 4.0);
+            *p = *p * scale + Vec2::new(-300.0, -200.0);
         }
         let mut regions = ContactRegions::default();
         regions.build(&rows, &pos, &[], false, false);
         assert!(regions.is_split());
         let (axis, middle) = if wide {
-            (0, -7.0 + 0.5 * 79.0 * 3.0)
+            (0, -300.0 + 0.5 * 79.0 * 3.0)
         } else {
-            (1, 4.0 + 0.5 * 79.0 * 2.5)
+            (1, -200.0 + 0.5 * 79.0 * 2.5)
         };
         for (i, p) in pos.iter().enumerate() {
             let expected = u8::from(p[axis] >= middle);
