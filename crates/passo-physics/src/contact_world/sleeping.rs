@@ -371,6 +371,9 @@ impl SleepingContacts {
     fn wake_every_body(&mut self, dynamic: &mut DynamicBodies) -> bool {
         self.pending.clear();
         self.islands.forget_marks();
+        // (With every body awake and fresh, entries left in the tree are
+        // of bodies that woke, which every search skips: `!=` here would
+        // keep them a while, finding nothing more.)
         if self.list.is_empty() && self.tree.len() == 0 && dynamic.all_fresh() {
             return false;
         }
