@@ -1,6 +1,7 @@
-//! The rods solved side by side: coloured as the contacts are (see
-//! `solver::colouring`) and laid out [`LANES`] to a block, each block's
-//! lanes solved with the one-by-one arithmetic of `RodRow`.
+//! Rigid rods: their rows, solved one by one or side by side. Side by
+//! side, they are coloured as the contacts are (see `solver::colouring`)
+//! and laid out [`LANES`] to a block, each block's lanes solved with the
+//! one-by-one arithmetic of [`RodRow`].
 //!
 //! Each rod takes the colour right after the last colour its bodies
 //! already have, so every body's rods are solved in slot order, as one by
