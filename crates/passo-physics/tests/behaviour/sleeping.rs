@@ -307,21 +307,33 @@ fn a_slow_drift_below_the_sleep_speed_counts_as_rest() {
     assert_eq!(w.body(id).unwrap().velocity, Vec2::ZERO);
 }
 
-#[test]
-fn rollback_through_a_sleeping_world_gives_the_same_bits() {
+/// A ground with a stack of four boxes at x = 0 and one of two at x = 3,
+/// after `seconds`.
+fn two_stacks(seconds: f32) -> World {
     let mut w = World::new(WorldSettings::default()).unwrap();
     ground(&mut w);
     stack(&mut w, 0.0, 4);
     stack(&mut w, 3.0, 2);
-    run(&mut w, 1.5);
-    assert!(w.sleeping_len() > 0);
-    let snapshot = w.snapshot();
-    let ball = BodyDef {
-        position: Vec2::new(0.2, 7.0),
+    run(&mut w, seconds);
+    w
+}
+
+/// A 4 kg ball of radius 0.3 m at `position`.
+fn heavy_ball(position: Vec2) -> BodyDef {
+    BodyDef {
+        position,
         shape: Some(Shape::circle(0.3)),
         mass: 4.0,
         ..Default::default()
-    };
+    }
+}
+
+#[test]
+fn rollback_through_a_sleeping_world_gives_the_same_bits() {
+    let w = two_stacks(1.5);
+    assert!(w.sleeping_len() > 0);
+    let snapshot = w.snapshot();
+    let ball = heavy_ball(Vec2::new(0.2, 7.0));
     let mut straight = w.clone();
     straight.add_body(ball).unwrap();
     run(&mut straight, 2.0);
@@ -534,35 +546,21 @@ fn the_sleep_tree_is_built_when_an_island_sleeps_half_of_it_wakes_or_the_step_ch
 #[test]
 fn restoring_a_sleeping_world_in_place_steps_as_one_made_from_the_snapshot() {
     // A world asleep, saved; then a ball wakes a stack, a new stack is
-    // built, and the world moves on until all of it sleeps. Restored in place, it steps as a world made from the snapshot
-    // when another ball wakes that stack: the stored contacts, islands and
-    // sleep tree are the snapshot's, none of the world that moved on.
-    let mut w = World::new(WorldSettings::default()).unwrap();
-    ground(&mut w);
-    stack(&mut w, 0.0, 4);
-    stack(&mut w, 3.0, 2);
-    run(&mut w, 2.0);
+    // built, and the world moves on until all of it sleeps. Restored in
+    // place, it steps as a world made from the snapshot when another ball
+    // wakes that stack: the stored contacts, islands and sleep tree are
+    // the snapshot's, none of the world that moved on.
+    let mut w = two_stacks(2.0);
     assert_eq!(w.sleeping_len(), 6);
     let saved = w.snapshot();
-    let ball = BodyDef {
-        position: Vec2::new(0.2, 7.0),
-        shape: Some(Shape::circle(0.3)),
-        mass: 4.0,
-        ..Default::default()
-    };
-    w.add_body(ball).unwrap();
+    w.add_body(heavy_ball(Vec2::new(0.2, 7.0))).unwrap();
     stack(&mut w, 10.0, 5);
     run(&mut w, 3.0);
     assert_eq!(w.sleeping_len(), 12, "the new stack and the ball slept too");
     w.restore_from(&saved).unwrap();
     let mut made = World::from_snapshot(saved).unwrap();
     for world in [&mut w, &mut made] {
-        world
-            .add_body(BodyDef {
-                position: Vec2::new(-0.1, 6.0),
-                ..ball
-            })
-            .unwrap();
+        world.add_body(heavy_ball(Vec2::new(-0.1, 6.0))).unwrap();
     }
     for tick in 0..180 {
         w.step(DT);
