@@ -219,6 +219,8 @@ impl Crushes {
         budget: &mut usize,
     ) -> bool {
         self.mark = self.mark.wrapping_add(1);
+        // (Clearing `seen` before every search would find the same: the
+        // marks only save that pass.)
         if self.mark == 0 {
             self.seen.fill(0);
             self.mark = 1;
@@ -280,3 +282,6 @@ fn moved_b(c: &Constraint) -> Option<usize> {
 fn pushing_contacts<'a>(starts: &[u32], rows: &'a [u32], b: u32) -> &'a [u32] {
     &rows[starts[b as usize] as usize..starts[b as usize + 1] as usize]
 }
+
+#[cfg(test)]
+mod tests;
