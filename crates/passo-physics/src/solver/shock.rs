@@ -434,6 +434,8 @@ impl Supports {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+    use crate::body::collider::ColliderRef;
     use crate::testing::pile;
     use crate::{TestSwitches, World};
     use glam::Vec2;
@@ -461,5 +463,63 @@ mod tests {
         assert_eq!(kept(&mut anew), 0);
         assert!(kept(&mut world) > 60, "kept {} times", kept(&mut world));
         assert!(kept(&mut world) < 89, "the drop was ordered anew");
+    }
+
+    /// Two bodies each on a body on the ground; `on[k]` is the body
+    /// resting on body `2 k` (a static ground under bodies 0 and 2).
+    fn two_stacks(on: [u32; 2]) -> Vec<Constraint> {
+        let row = |a: u32, b: Option<u32>| Constraint {
+            a,
+            b: b.map_or(ColliderRef::fixed(0), ColliderRef::dynamic),
+            // From A down to B.
+            normal: -Vec2::Y,
+            base_separation: 0.0,
+            inv_mass_a: 1.0,
+            inv_mass_b: if b.is_some() { 1.0 } else { 0.0 },
+            mass: 0.5,
+            friction: 0.6,
+            normal_impulse: 1.0,
+            tangent_impulse: 0.0,
+            push_impulse: 0.0,
+            max_normal_impulse: 1.0,
+            tangent_speed: 0.0,
+        };
+        vec![
+            row(0, None),
+            row(on[0], Some(0)),
+            row(2, None),
+            row(on[1], Some(2)),
+        ]
+    }
+
+    /// The bodies held up, in the pass's order, each with its rows.
+    fn order(supports: &Supports) -> Vec<(u32, Vec<u32>)> {
+        let rows = |h: &Held| supports.order[h.first as usize..h.end as usize].iter();
+        let held = supports.held.iter();
+        held.map(|h| (h.body, rows(h).map(|s| s.row).collect()))
+            .collect()
+    }
+
+    #[test]
+    fn contacts_that_name_other_bodies_are_ordered_anew() {
+        // Bodies 1 and 3 trade stacks: as many contacts, each holding a
+        // body up the same way, but naming other bodies (coloured anew).
+        // The order kept would hold body 1 up by the contact that now
+        // holds body 3.
+        let pos = [Vec2::ZERO, Vec2::Y, Vec2::X, Vec2::ONE];
+        let gravity = Vec2::new(0.0, -9.81);
+        let mut regions = ContactRegions::default();
+        let mut kept = Supports::default();
+        for on in [[1, 3], [1, 3], [3, 1]] {
+            let rows = two_stacks(on);
+            regions.build(&rows, &pos, &[], false, false);
+            kept.build(&rows, gravity, 4, &regions);
+            let mut anew = Supports::default();
+            anew.build(&rows, gravity, 4, &regions);
+            assert_eq!(order(&kept), order(&anew), "{on:?}");
+        }
+        // The second build kept the first's order; the third did not.
+        assert_eq!(kept.reused, 1);
+        assert_eq!(order(&kept)[2..], [(3, vec![1]), (1, vec![3])]);
     }
 }

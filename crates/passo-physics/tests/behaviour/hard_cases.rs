@@ -655,10 +655,11 @@ fn a_box_thrown_into_a_frictionless_row_keeps_the_momentum_it_brings() {
 
 #[test]
 fn a_world_large_enough_to_split_its_contacts_holds_every_body_up() {
-    // 2 080 stacks of two boxes on the ground: enough bodies for the
-    // contacts to be solved in two regions, each region's bodies moved
-    // from its own states, and shock propagation reading each body where
-    // it lives. Every box stays where it rests.
+    // 2 080 stacks of a 1 000 kg box on a 1 kg box on the ground: enough
+    // bodies for the contacts to be solved in two regions, each region's
+    // bodies moved from its own states, and shock propagation (which
+    // alone holds such a stack up) reading each body where it lives.
+    // Every box stays where it rests.
     let mut world = World::default();
     let mut settings = *world.settings();
     settings.contacts.as_mut().unwrap().sleeping = false;
@@ -672,8 +673,9 @@ fn a_world_large_enough_to_split_its_contacts_holds_every_body_up() {
         for level in 0..2 {
             let x = 1.2 * (i as f32 - 0.5 * columns as f32);
             let centre = Vec2::new(x, 0.5 + level as f32);
-            let def = BodyDef::new_dynamic(centre, Shape::rect(1.0, 1.0));
-            boxes.push((world.add_body(def).unwrap(), centre.y));
+            let mass = [1.0, 1000.0][level];
+            let id = add_box(&mut world, centre, Vec2::ONE, mass);
+            boxes.push((id, centre.y));
         }
     }
     for _ in 0..60 {

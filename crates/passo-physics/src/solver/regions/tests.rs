@@ -420,12 +420,22 @@ fn a_large_pile_splits_in_halves_with_few_contacts_between() {
 #[test]
 fn every_contact_comes_back_from_its_one_place_whether_split_or_not() {
     // Not split, split in storage order (the second region's rows
-    // written side by side with the others'), split by place.
-    let scenes = [plain(20), plain(80), scrambled(plain(80))];
+    // written side by side with the others'), split by place, and split
+    // in storage order with the second region's first row just before
+    // the last row between the regions (written in one part).
+    let mut swapped = plain(80);
+    let first = swapped.2.iter().position(|c| c.a >= 3200).unwrap();
+    swapped.2.swap(first - 1, first);
+    let scenes = [plain(20), plain(80), scrambled(plain(80)), swapped];
     for (k, (pos, _, mut rows, _, _)) in scenes.into_iter().enumerate() {
         for parallel in [false, true] {
             let mut regions = ContactRegions::default();
             regions.build(&rows, &pos, &[], false, parallel);
+            if k == 3 {
+                // The case it is about.
+                let first = regions.picked[1][0];
+                assert!(regions.picked[2].contains(&(first + 1)));
+            }
             for g in &mut regions.groups {
                 g.mark_rows();
             }
@@ -519,6 +529,48 @@ fn bodies_in_no_order_of_their_places_split_at_the_middle_of_the_wider_side() {
                 regions.region[i], expected,
                 "body {i} at {p} (wide: {wide})"
             );
+        }
+    }
+}
+
+/// A contact between dynamic bodies `a` and `b`.
+fn pair(a: u32, b: u32) -> Constraint {
+    let (_, _, rows) = lattice(2);
+    Constraint {
+        a,
+        b: ColliderRef::dynamic(b),
+        ..rows[1]
+    }
+}
+
+#[test]
+fn at_most_one_contact_in_max_crossing_across_the_storage_halves_splits_them() {
+    // 4 096 bodies, stored in the reverse order of their places along x:
+    // a split by place and one in storage order differ everywhere. 320
+    // contacts: 10 across the halves (one in `MAX_CROSSING`) split in
+    // storage order, 11 by place. Two more join the body at halfway and
+    // the next, on the same side of the cut (no other names them).
+    let bodies = SPLIT_BODIES;
+    let half = halfway(bodies) as u32;
+    let pos: Vec<Vec2> = (0..bodies)
+        .map(|i| Vec2::new((bodies - i) as f32, 0.0))
+        .collect();
+    for crossing in [10, 11] {
+        let mut rows: Vec<Constraint> = (0..crossing).map(|i| pair(i, half + 2 + i)).collect();
+        rows.push(pair(half, half + 1));
+        rows.push(pair(half + 1, half));
+        let inside = (10 * MAX_CROSSING - rows.len()) as u32;
+        rows.extend((0..inside).map(|i| pair(100 + i, 101 + i)));
+        let mut regions = ContactRegions::default();
+        regions.build(&rows, &pos, &[], false, false);
+        assert!(regions.is_split());
+        let middle = 0.5 + 0.5 * bodies as f32;
+        for (i, p) in pos.iter().enumerate() {
+            let expected = match crossing {
+                10 => u8::from(i as u32 >= half),
+                _ => u8::from(p.x >= middle),
+            };
+            assert_eq!(regions.region[i], expected, "body {i}, {crossing} across");
         }
     }
 }
