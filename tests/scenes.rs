@@ -1,9 +1,11 @@
 //! Every shipped scene loads, runs only the stages it declares, and
 //! survives a round trip through a file; no text makes the loader panic.
 
-use passo_physics::{Integrator, Stage};
+use passo_physics::constants::DEEP_OVERLAP;
+use passo_physics::glam::Vec2;
+use passo_physics::{BodyDef, CollisionFilter, Integrator, Shape, Stage};
 use passo_scene::{Scene, scene_from_world};
-use passo_tests::assert_finite;
+use passo_tests::{assert_finite, max_penetration};
 use proptest::prelude::*;
 use std::path::PathBuf;
 
@@ -657,5 +659,56 @@ fn a_bridge_of_40_planks_sags_no_more_than_box2d_s() {
         let (a, b) = joint.anchors;
         let length = (a - b).length();
         assert!(length < 0.05 + 0.06, "a rod stretched to {length} m");
+    }
+}
+
+#[test]
+fn a_deep_pile_carries_its_push_without_stirring_a_pile_elsewhere() {
+    // The rain scene's heavy pile (its lowest contacts sit a little deeper
+    // than the slop, so they push every substep), and far from it, on
+    // another layer, a deep pile: the rain moves exactly as it does alone.
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
+    let rain = || Scene::load(&path).unwrap().build().unwrap().world;
+    let (mut alone, mut beside) = (rain(), rain());
+    let ids: Vec<_> = alone.bodies().map(|b| b.id).collect();
+    // Fifty circles crammed into a closed box a tenth of their area: the
+    // pile stays deep for good.
+    let layer = CollisionFilter { layers: 2, mask: 2 };
+    for (centre, size) in [
+        (Vec2::new(500.0, -0.5), Vec2::new(2.0, 1.0)),
+        (Vec2::new(500.0, 1.5), Vec2::new(2.0, 1.0)),
+        (Vec2::new(499.25, 0.5), Vec2::new(0.5, 1.0)),
+        (Vec2::new(500.75, 0.5), Vec2::new(0.5, 1.0)),
+    ] {
+        let def = BodyDef::new_static(centre, Shape::rect(size.x, size.y));
+        beside
+            .add_body(BodyDef {
+                filter: layer,
+                ..def
+            })
+            .unwrap();
+    }
+    for _ in 0..50 {
+        let def = BodyDef::new_dynamic(Vec2::new(500.0, 0.5), Shape::circle(0.1));
+        beside
+            .add_body(BodyDef {
+                filter: layer,
+                ..def
+            })
+            .unwrap();
+    }
+    for _ in 0..240 {
+        alone.step(1.0 / 60.0);
+        beside.step(1.0 / 60.0);
+    }
+    assert!(
+        max_penetration(&beside) > DEEP_OVERLAP,
+        "the pile is still deep"
+    );
+    for id in ids {
+        assert_eq!(
+            alone.body(id).unwrap().position,
+            beside.body(id).unwrap().position
+        );
     }
 }

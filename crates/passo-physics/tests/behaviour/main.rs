@@ -25,6 +25,7 @@ mod mover;
 mod one_way;
 mod queries;
 mod regression_contacts_of_after_a_wake;
+mod regression_fast_bodies;
 mod regression_parallel_sensors;
 mod regression_sleeping_somewhere_else;
 mod regression_spawned_on_one_spot;

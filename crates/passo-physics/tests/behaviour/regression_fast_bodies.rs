@@ -7,10 +7,10 @@
 //! against static and kinematic bodies, and as a bullet against every body.
 //! Nothing tunnels, and pairs stay bounded.
 
-use passo_physics::constants::{DEEP_OVERLAP, LINEAR_SLOP, SPECULATIVE_REACH};
+use crate::support::{Rng, max_penetration, weightless_world};
+use passo_physics::constants::{LINEAR_SLOP, SPECULATIVE_REACH};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyDef, BodyKind, Shape, World};
-use passo_tests::{Rng, max_penetration, weightless_world};
 
 fn wall(world: &mut World, centre: Vec2, size: Vec2) {
     world
@@ -359,62 +359,4 @@ fn a_fast_body_that_ends_inside_a_sensor_beyond_its_reach_is_reported() {
     let inside: Vec<_> = world.sensor_overlaps().to_vec();
     assert_eq!(inside.len(), 1, "{inside:?}");
     assert_eq!((inside[0].sensor, inside[0].visitor), (zone, ball));
-}
-
-#[test]
-fn a_deep_pile_carries_its_push_without_stirring_a_pile_elsewhere() {
-    // The rain scene's heavy pile (its lowest contacts sit a little deeper
-    // than the slop, so they push every substep), and far from it, on
-    // another layer, a deep pile: the rain moves exactly as it does alone.
-    let path =
-        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/rain.ron");
-    let rain = || {
-        passo_scene::Scene::load(&path)
-            .unwrap()
-            .build()
-            .unwrap()
-            .world
-    };
-    let (mut alone, mut beside) = (rain(), rain());
-    let ids: Vec<_> = alone.bodies().map(|b| b.id).collect();
-    // Fifty circles crammed into a closed box a tenth of their area: the
-    // pile stays deep for good.
-    let layer = passo_physics::CollisionFilter { layers: 2, mask: 2 };
-    for (centre, size) in [
-        (Vec2::new(500.0, -0.5), Vec2::new(2.0, 1.0)),
-        (Vec2::new(500.0, 1.5), Vec2::new(2.0, 1.0)),
-        (Vec2::new(499.25, 0.5), Vec2::new(0.5, 1.0)),
-        (Vec2::new(500.75, 0.5), Vec2::new(0.5, 1.0)),
-    ] {
-        let def = BodyDef::new_static(centre, Shape::rect(size.x, size.y));
-        beside
-            .add_body(BodyDef {
-                filter: layer,
-                ..def
-            })
-            .unwrap();
-    }
-    for _ in 0..50 {
-        let def = BodyDef::new_dynamic(Vec2::new(500.0, 0.5), Shape::circle(0.1));
-        beside
-            .add_body(BodyDef {
-                filter: layer,
-                ..def
-            })
-            .unwrap();
-    }
-    for _ in 0..240 {
-        alone.step(1.0 / 60.0);
-        beside.step(1.0 / 60.0);
-    }
-    assert!(
-        max_penetration(&beside) > DEEP_OVERLAP,
-        "the pile is still deep"
-    );
-    for id in ids {
-        assert_eq!(
-            alone.body(id).unwrap().position,
-            beside.body(id).unwrap().position
-        );
-    }
 }
