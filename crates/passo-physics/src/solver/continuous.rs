@@ -136,10 +136,8 @@ impl Sweeps {
         let bodies = &*dynamic;
         for &i in &self.bullets {
             let i = i as usize;
-            let mover = Mover {
-                travel: motion.delta[i],
-                ..mover_of(bodies, i, motion)
-            };
+            // Along the path the first pass left it.
+            let mover = mover_of(bodies, i, motion);
             if let Some(hit) = bullet_impact(&mover, i, bodies, motion) {
                 self.stops.push((i as u32, hit.displacement(&mover)));
             }
@@ -172,6 +170,9 @@ impl Sweeps {
             return None;
         }
         self.far.push(i as u32);
+        // (A body moving exactly its half extent passes nothing either;
+        // sweeping it too would only change where it stops, short of
+        // what it meets.)
         (distance > shape.half_extents().min_element()).then(|| mover_of(bodies, i, motion))
     }
 
@@ -293,6 +294,9 @@ struct Earliest(Option<Impact>);
 
 impl Earliest {
     fn meet(&mut self, fraction: Option<f32>, carried: Vec2) {
+        // (Of two impacts at the same fraction the first met is kept; `<=`
+        // would keep the last, which differs only if the two targets met
+        // at the same instant move differently.)
         if let Some(fraction) = fraction
             && self.0.is_none_or(|f| fraction < f.fraction)
         {

@@ -36,5 +36,6 @@ mod seamless_ground;
 mod sleeping;
 mod slopes;
 mod speculative;
+mod sweeps;
 mod tile_maps;
 mod zones;
