@@ -106,3 +106,31 @@ fn the_stage_list_holds_what_the_settings_ask_for_in_order() {
     // some case (ClampSpeeds by the default minimum-speed snap).
     assert_eq!(seen.len(), order.len() - 1);
 }
+
+#[test]
+fn a_world_all_asleep_lists_no_substep_stage() {
+    // Two boxes at rest fall asleep: the step runs no substep, and the
+    // list says so, whatever the settings ask for.
+    for warm in [false, true] {
+        let mut w = world(
+            |c| {
+                c.warm_starting = warm;
+                c.relax_iterations = 2;
+                c.continuous = true;
+                c.shock_propagation = true;
+            },
+            false,
+            false,
+        );
+        let boxes: Vec<_> = w.bodies().filter(|b| b.kind == BodyKind::Dynamic).collect();
+        let awake = w.contact_stages();
+        assert!(awake.iter().any(|s| s.in_substep()), "{awake:?}");
+        for _ in 0..300 {
+            w.step(1.0 / 60.0);
+        }
+        assert!(boxes.iter().all(|b| w.is_asleep(b.id) == Some(true)));
+        let stages = w.contact_stages();
+        assert!(!stages.iter().any(|s| s.in_substep()), "{stages:?}");
+        assert!(stages.contains(&ContactStage::StoreSeparations));
+    }
+}
