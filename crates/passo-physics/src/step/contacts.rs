@@ -268,7 +268,8 @@ impl World {
         // A large world steps on a worker of the thread pool: the stages hand
         // work to the other workers dozens of times a step (the regions'
         // passes, the chunks), which costs a few microseconds from a worker
-        // and ten times that from a thread outside the pool.
+        // and ten times that from a thread outside the pool. (On the pool
+        // or not, the bits are the same: only the cost differs.)
         #[cfg(feature = "parallel")]
         if self.parallel && self.dynamic.len() >= crate::constants::PARALLEL_MIN_ITEMS {
             crate::parallel::on_pool(|| self.step_with_contacts_here(dt, settings));
@@ -297,6 +298,8 @@ impl World {
             dt,
             h: dt / settings.substeps as f32,
             parallel: self.parallel,
+            // (A wrong count costs time, never a proxy: `Proxies::add_all`
+            // finds a shapeless body itself and gives up.)
             all_shaped: self.census.shaped_dynamic == self.dynamic.len(),
         };
         cw.relocate_last_contacts(&self.dynamic, &self.statics, |id| self.collider_of(id));
@@ -332,7 +335,8 @@ impl World {
         self.prepare_joints(params.h, settings.warm_starting);
         let plan = SubstepPlan::new(self, settings, dt, any_asleep, carry_push);
         // Joints read and write any body's state: the contacts stay in one
-        // region, whose states all live in the solver's array.
+        // region, whose states all live in the solver's array. (Split or
+        // not, the passes give the same bits: see `regions`.)
         cw.regions.no_split = self.joints.count > 0;
         cw.regions.build(
             &cw.solved.rows,
@@ -385,7 +389,8 @@ impl World {
             let pass = SubstepPass {
                 // The bodies moved since the separations were last measured
                 // unless this is the first substep or the relax stage
-                // measured.
+                // measured. (Measuring again where nothing moved gives the
+                // same gaps.)
                 moved: substep > 0 && plan.solver.relax_iterations == 0,
                 replayed: start == Start::Replay,
             };

@@ -3,7 +3,7 @@
 //! the promises: a rope never stretches, a weld holds, a joint breaks once,
 //! joints sleep, wake, save and go with their bodies.
 
-use crate::support::weightless_world;
+use crate::support::{add_ground, weightless_world};
 use passo_physics::glam::Vec2;
 use passo_physics::{
     BodyDef, BodyId, JointDef, JointKind, JointMotor, PhysicsError, Shape, World, WorldSettings,
@@ -664,5 +664,45 @@ fn joined_bodies_pass_through_each_other_unless_the_joint_says_they_collide() {
                 "through its frame to the limit: {y}"
             );
         }
+    }
+}
+
+#[test]
+fn a_body_put_back_from_overflow_leaves_its_joint_finite() {
+    // Two balls on the ground joined by a rod; a force so large on one
+    // that its velocity overflows. The step puts the ball back (each
+    // substep counts a reset), the rod's force reads finite, and the pair
+    // settles as before.
+    for force in [1e30, 1e34, 1e36, f32::MAX] {
+        let mut world = World::default();
+        add_ground(&mut world, 20.0);
+        let ball = |world: &mut World, x: f32| {
+            let def = BodyDef::new_dynamic(Vec2::new(x, 0.25), Shape::circle(0.25));
+            world.add_body(def).unwrap()
+        };
+        let (a, b) = (ball(&mut world, 0.0), ball(&mut world, 1.0));
+        let rod = world
+            .add_joint(JointDef::distance(a, Some(b), 1.0))
+            .unwrap();
+        for _ in 0..10 {
+            world.step(DT);
+        }
+        world.apply_force(a, Vec2::new(force, 0.0));
+        world.step(DT);
+        assert!(world.stats().non_finite_resets > 0, "{force} N");
+        let f = world.joint(rod).unwrap().force;
+        assert!(f.is_finite(), "{force} N: the rod's force {f}");
+        for _ in 0..60 {
+            world.step(DT);
+        }
+        let (pa, pb) = (
+            world.body(a).unwrap().position,
+            world.body(b).unwrap().position,
+        );
+        assert!(
+            ((pb - pa).length() - 1.0).abs() < 0.01,
+            "{force} N: {pa} {pb}"
+        );
+        assert!(world.joint(rod).unwrap().force.is_finite());
     }
 }

@@ -53,6 +53,12 @@ fn a_pile_spawned_on_one_spot_spreads_out_calmly_with_bounded_contacts() {
         ys = ys.max(b.position.y.abs());
     }
     assert!(xs > 1.0 && ys > 1.0, "spread {xs} by {ys} m");
+    // Spread out, no step is crowded any more.
+    let crowded = world.stats().crowded_steps;
+    for _ in 0..10 {
+        world.step(1.0 / 60.0);
+    }
+    assert_eq!(world.stats().crowded_steps, crowded);
 }
 
 #[test]
