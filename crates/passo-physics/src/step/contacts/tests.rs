@@ -134,3 +134,56 @@ fn a_world_all_asleep_lists_no_substep_stage() {
         assert!(stages.contains(&ContactStage::StoreSeparations));
     }
 }
+
+#[test]
+fn a_body_left_non_finite_is_put_back_where_the_step_began() {
+    // Valid inputs keep every number finite (positions within
+    // `MAX_COORDINATE`, speeds whose square is finite), so the guard is
+    // tested on a world whose state is spoiled by hand after a step: body
+    // 0's position, then body 1's velocity, non-finite, and one contact's
+    // impulse NaN.
+    for spoiled in [0, 1] {
+        // Three boxes on the ground (an even number of them finite once
+        // one is spoiled, which an exclusive or would count as none).
+        let mut w = world(|_| {}, false, false);
+        let third = BodyDef::new_dynamic(Vec2::new(-2.0, 1.0), Shape::rect(1.0, 1.0));
+        w.add_body(third).unwrap();
+        w.step(1.0 / 60.0);
+        let mut cw = w.contacts.take().unwrap();
+        let rows = cw.solved.rows.clone();
+        assert!(rows.len() >= 2 && rows.iter().all(|r| r.normal_impulse > 0.0));
+        let before: Vec<Vec2> = (0..3).map(|i| w.dynamic.pos.at(i)).collect();
+        let moved: Vec<Vec2> = (0..3).map(|i| w.dynamic.vel.at(i)).collect();
+        if spoiled == 0 {
+            w.dynamic.pos.set(0, Vec2::new(f32::INFINITY, 1.0));
+        } else {
+            w.dynamic.vel.set(1, Vec2::new(0.0, f32::NAN));
+        }
+        cw.solved.rows[1].tangent_impulse = f32::NAN;
+        assert_eq!(put_back_non_finite(&mut w.dynamic, &mut cw), 1);
+        for i in 0..3 {
+            let (p, v) = (w.dynamic.pos.at(i), w.dynamic.vel.at(i));
+            if i == spoiled {
+                assert_eq!((p, v), (cw.motion.start[i], Vec2::ZERO), "body {i}");
+            } else {
+                assert_eq!((p, v), (before[i], moved[i]), "body {i}");
+            }
+        }
+        // The spoiled row starts again from nothing; the others keep theirs.
+        let r = &cw.solved.rows[1];
+        let zeroed = [
+            r.normal_impulse,
+            r.tangent_impulse,
+            r.push_impulse,
+            r.max_normal_impulse,
+        ];
+        assert_eq!(zeroed, [0.0; 4]);
+        for (k, (now, was)) in cw.solved.rows.iter().zip(&rows).enumerate() {
+            if k != 1 {
+                assert_eq!(now, was, "row {k}");
+            }
+        }
+        // Nothing left to put back.
+        assert_eq!(put_back_non_finite(&mut w.dynamic, &mut cw), 0);
+    }
+}
