@@ -406,6 +406,9 @@ impl World {
             self.run_after_substeps(stage, &mut cw, &plan);
         }
         resets += put_back_non_finite(&mut self.dynamic, &mut cw);
+        // Only a body gone non-finite can spoil a joint's impulses. (No
+        // valid scene spoils them before its body is reset at the next
+        // substep's integration: no test reaches this.)
         if resets > 0 {
             self.joints.drop_non_finite();
         }
