@@ -1328,3 +1328,201 @@ fn it_walks_over_slope_tiles_as_over_a_chain() {
         world.remove_body(id).unwrap();
     }
 }
+
+/// A world with a static box from `min` to `max`, and a character (the
+/// box of `HALF`) with its centre at `centre`.
+fn beside_a_box(min: Vec2, max: Vec2, centre: Vec2) -> (World, BodyId) {
+    let mut world = World::default();
+    let size = max - min;
+    let def = BodyDef::new_static((min + max) / 2.0, Shape::rect(size.x, size.y));
+    world.add_body(def).unwrap();
+    let def = BodyDef::new_kinematic(centre, Shape::rect(2.0 * HALF.x, 2.0 * HALF.y), Vec2::ZERO);
+    let id = world.add_body(def).unwrap();
+    (world, id)
+}
+
+/// One move of `by`, where the character ends.
+fn move_once(world: &mut World, id: BodyId, by: Vec2) -> Vec2 {
+    let out = world
+        .move_character(id, by, &CharacterMover::default(), DT)
+        .unwrap();
+    out.position
+}
+
+#[test]
+fn a_wall_it_touches_holds_it_and_walls_it_is_caught_between_let_it_out() {
+    // A wall whose face is at x = 1. Touching it (no skin), a move into
+    // it goes nowhere, and one away goes all the way.
+    let touching = Vec2::new(1.0 - HALF.x, 5.0);
+    let (mut world, id) = beside_a_box(Vec2::new(1.0, 0.0), Vec2::new(2.0, 10.0), touching);
+    assert_eq!(move_once(&mut world, id, Vec2::new(0.1, 0.0)), touching);
+    assert_eq!(move_once(&mut world, id, Vec2::ZERO), touching);
+    let away = move_once(&mut world, id, Vec2::new(-0.1, 0.0));
+    assert!(
+        (away - (touching - Vec2::new(0.1, 0.0))).length() < 1e-6,
+        "{away}"
+    );
+    // Caught between two walls closer than it is wide (the push out cannot
+    // free it, and moves it a little to one side): it still moves out
+    // along the slot.
+    let mut world = World::default();
+    for x in [-0.68, 0.68] {
+        let def = BodyDef::new_static(Vec2::new(x, 0.0), Shape::rect(1.0, 4.0));
+        world.add_body(def).unwrap();
+    }
+    let def = BodyDef::new_kinematic(
+        Vec2::ZERO,
+        Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
+        Vec2::ZERO,
+    );
+    let id = world.add_body(def).unwrap();
+    let up = move_once(&mut world, id, Vec2::new(0.0, 3.0));
+    assert!((up.y - 3.0).abs() < 1e-4 && up.x.abs() < 0.05, "{up}");
+}
+
+#[test]
+fn at_a_slant_it_stops_a_skin_from_a_wall_measured_along_its_normal() {
+    // In the air, moving up and right at 45 degrees, or at a shallower
+    // angle, into a wall whose face is at x = 1, 0.3 m away: the side ends
+    // exactly a skin from the face, and the rest of the move slides it up.
+    let skin = CharacterMover::default().skin;
+    for by in [
+        Vec2::new(0.5, 0.5),
+        Vec2::new(0.5, 0.1),
+        Vec2::new(0.5, 1.0),
+    ] {
+        let start = Vec2::new(1.0 - HALF.x - 0.3, 5.0);
+        let (mut world, id) = beside_a_box(Vec2::new(1.0, 0.0), Vec2::new(2.0, 10.0), start);
+        let end = move_once(&mut world, id, by);
+        let gap = 1.0 - (end.x + HALF.x);
+        assert!((gap - skin).abs() < 1e-5, "{by}: {gap} m from the wall");
+        assert!(
+            (end.y - (start.y + by.y)).abs() < 1e-4,
+            "{by}: slid up to {end}"
+        );
+    }
+}
+
+#[test]
+fn a_one_way_platform_lets_it_through_from_below_and_from_the_side_wherever_it_is() {
+    // A one-way platform (solid side up), 0.2 m thick, near the origin or
+    // far from it: a character whose head is 0.15 m into it from below
+    // stays there (it is not pushed up on top), one whose feet are deeper
+    // in it than a landing falls on through, and one walking into its end
+    // at the platform's height walks through.
+    for (x, y) in [(0.0, 0.0), (0.0, 80.0), (-300.0, 150.0)] {
+        let mut world = World::default();
+        let platform =
+            BodyDef::new_static(Vec2::new(x, y), Shape::rect(2.0, 0.2)).with_one_way(Vec2::Y);
+        world.add_body(platform).unwrap();
+        let under = Vec2::new(x, y - 0.1 - HALF.y + 0.15);
+        let def =
+            BodyDef::new_kinematic(under, Shape::rect(2.0 * HALF.x, 2.0 * HALF.y), Vec2::ZERO);
+        let id = world.add_body(def).unwrap();
+        assert_eq!(move_once(&mut world, id, Vec2::ZERO), under, "at {x}, {y}");
+        // Its feet 0.1 m into it from above (deeper than a landing goes):
+        // falling on, it goes on through.
+        let sunk = Vec2::new(x, y + 0.1 + HALF.y - 0.1);
+        world.set_position(id, sunk);
+        let fell = move_once(&mut world, id, Vec2::new(0.0, -0.05));
+        assert!(
+            (fell - (sunk - Vec2::new(0.0, 0.05))).length() < 1e-4,
+            "at {x}, {y}: {fell}"
+        );
+        // Walking through its end, 4 cm a tick.
+        let mut at = Vec2::new(x - 1.0 - HALF.x - 0.05, y);
+        world.set_position(id, at);
+        for _ in 0..80 {
+            at = move_once(&mut world, id, Vec2::new(0.04, 0.0));
+            world.set_position(id, at);
+        }
+        assert!(
+            (at.x - (x - 1.0 - HALF.x - 0.05 + 3.2)).abs() < 1e-3,
+            "at {x}, {y}: {at}"
+        );
+    }
+}
+
+#[test]
+fn a_moving_crate_is_met_where_it_is_and_a_kinematic_body_where_it_will_be() {
+    // A crate sliding at the character at 3 m/s (weightless, so nothing
+    // slows it), 1 m ahead: the move stops a skin short of where the crate
+    // is now. A kinematic block moving the same way is met where it will
+    // be after the step.
+    let skin = CharacterMover::default().skin;
+    for kinematic in [false, true] {
+        let mut world = World::default();
+        let mut settings = *world.settings();
+        settings.forces.gravity = None;
+        world.set_settings(settings).unwrap();
+        let (kind, v) = (
+            if kinematic {
+                BodyKind::Kinematic
+            } else {
+                BodyKind::Dynamic
+            },
+            -3.0,
+        );
+        let def = BodyDef {
+            kind,
+            position: Vec2::new(1.5, 0.0),
+            shape: Some(Shape::rect(1.0, 1.0)),
+            velocity: Vec2::new(v, 0.0),
+            ..Default::default()
+        };
+        world.add_body(def).unwrap();
+        let def = BodyDef::new_kinematic(
+            Vec2::ZERO,
+            Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
+            Vec2::ZERO,
+        );
+        let id = world.add_body(def).unwrap();
+        let end = move_once(&mut world, id, Vec2::new(0.9, 0.0));
+        let face = 1.0 + if kinematic { v * DT } else { 0.0 };
+        let expected = face - HALF.x - skin;
+        assert!(
+            (end.x - expected).abs() < 1e-5,
+            "kinematic {kinematic}: at {end}, not {expected}"
+        );
+    }
+}
+
+#[test]
+fn a_one_way_platform_coming_down_passes_through_the_character() {
+    // A one-way platform (solid side up) moving down at 2 m/s through a
+    // character standing on the floor, or held in the air (on a ladder,
+    // say): it is neither pushed down nor crushed, and stays put.
+    for standing in [true, false] {
+        let mut world = level("##########################");
+        let ground = if standing { 0.5 } else { 1.5 };
+        let player = character(&mut world, 6.0, ground);
+        let start = at(&world, player);
+        let def = BodyDef::new_kinematic(
+            Vec2::new(6.0, ground + 1.5),
+            Shape::rect(2.0, 0.2),
+            Vec2::new(0.0, -2.0),
+        )
+        .with_one_way(Vec2::Y);
+        let platform = world.add_body(def).unwrap();
+        let mover = CharacterMover::default();
+        // 40 ticks: the platform ends inside it (before it could stand on it).
+        for tick in 0..40 {
+            let out = world
+                .move_character(player, Vec2::ZERO, &mover, DT)
+                .unwrap();
+            assert_eq!(out.crushed, None, "tick {tick}");
+            world.step(DT);
+            let now = at(&world, player);
+            assert!(
+                (now - start).length() < 1e-4,
+                "standing {standing}, tick {tick}: {now}"
+            );
+        }
+        let top = at(&world, platform).y + 0.1;
+        let inside = start.y - HALF.y..start.y + HALF.y;
+        assert!(
+            inside.contains(&top),
+            "the platform went in: its top at {top}"
+        );
+    }
+}
