@@ -450,6 +450,7 @@ impl Walker<'_> {
                 return;
             }
             let place = self.place(&found);
+            // (At exactly the skin, in or out: rounding decides either way.)
             if let Some(m) = collide(&self.shape, at, &found.shape, place, 0.0)
                 && m.separation < -self.mover.skin
             {

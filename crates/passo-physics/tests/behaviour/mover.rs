@@ -1526,3 +1526,36 @@ fn a_one_way_platform_coming_down_passes_through_the_character() {
         );
     }
 }
+
+#[test]
+fn only_a_kinematic_body_pressing_in_deeper_than_the_skin_crushes_it() {
+    // A character standing on the floor. A still kinematic block touching
+    // its head, or in it by half the skin, does not crush it; one in it by
+    // twice the skin does. A static ceiling or a crate in its head never
+    // crushes it (the push out deals with those).
+    let skin = CharacterMover::default().skin;
+    let mover = CharacterMover::default();
+    for (kind, depth, crushes) in [
+        (BodyKind::Kinematic, 0.0, false),
+        (BodyKind::Kinematic, 0.5 * skin, false),
+        (BodyKind::Kinematic, 2.0 * skin, true),
+        (BodyKind::Static, 0.05, false),
+        (BodyKind::Dynamic, 0.05, false),
+    ] {
+        let mut world = level("##########################");
+        let player = character(&mut world, 6.0, 0.5);
+        let head = at(&world, player).y + HALF.y;
+        let def = BodyDef {
+            kind,
+            position: Vec2::new(6.0, head + 0.25 - depth),
+            shape: Some(Shape::rect(1.0, 0.5)),
+            ..Default::default()
+        };
+        let block = world.add_body(def).unwrap();
+        let out = world
+            .move_character(player, Vec2::ZERO, &mover, DT)
+            .unwrap();
+        let expected = crushes.then_some(block);
+        assert_eq!(out.crushed, expected, "{kind:?} {depth} m in");
+    }
+}
