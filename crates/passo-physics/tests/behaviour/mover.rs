@@ -1559,3 +1559,56 @@ fn only_a_kinematic_body_pressing_in_deeper_than_the_skin_crushes_it() {
         assert_eq!(out.crushed, expected, "{kind:?} {depth} m in");
     }
 }
+
+#[test]
+fn a_kinematic_bar_in_its_legs_crushes_it_on_the_ground_but_not_in_the_air() {
+    // A still kinematic bar 0.1 m thick across the character's legs, its
+    // underside 0.1 m above the feet: on the floor the character has no
+    // way out (the bar is not low enough to step onto), so it is crushed;
+    // held 0.5 m above the floor, or 3 cm above it, it is not (it is
+    // pushed out instead).
+    let mover = CharacterMover::default();
+    for (lift, crushes) in [(0.0, true), (0.03, false), (0.5, false)] {
+        let mut world = level("##########################");
+        let player = character(&mut world, 6.0, 0.5 + lift);
+        let feet = at(&world, player).y - HALF.y;
+        let def = BodyDef::new_kinematic(
+            Vec2::new(6.0, feet + 0.15),
+            Shape::rect(1.0, 0.1),
+            Vec2::ZERO,
+        );
+        let bar = world.add_body(def).unwrap();
+        let out = world
+            .move_character(player, Vec2::ZERO, &mover, DT)
+            .unwrap();
+        assert_eq!(out.crushed, crushes.then_some(bar), "{lift} m up");
+    }
+}
+
+#[test]
+fn a_kinematic_wall_pressing_in_with_room_behind_pushes_rather_than_crushes() {
+    // In the air, a still kinematic wall 5 cm into the character's side,
+    // a static wall 1 m behind it: there is room, so it is pushed out (by
+    // the overlap and a skin), not crushed.
+    let mover = CharacterMover::default();
+    let mut world = World::default();
+    let def = BodyDef::new_static(Vec2::new(-1.7, 0.0), Shape::rect(1.0, 4.0));
+    world.add_body(def).unwrap();
+    let def = BodyDef::new_kinematic(
+        Vec2::ZERO,
+        Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
+        Vec2::ZERO,
+    );
+    let player = world.add_body(def).unwrap();
+    let def = BodyDef::new_kinematic(
+        Vec2::new(HALF.x + 0.5 - 0.05, 0.0),
+        Shape::rect(1.0, 4.0),
+        Vec2::ZERO,
+    );
+    world.add_body(def).unwrap();
+    let out = world
+        .move_character(player, Vec2::ZERO, &mover, DT)
+        .unwrap();
+    assert_eq!(out.crushed, None);
+    assert!((out.position.x + 0.05 + mover.skin).abs() < 1e-5, "{out:?}");
+}
