@@ -431,6 +431,8 @@ impl Walker<'_> {
                 return;
             }
             let push = away * ((1.0 - hit.fraction) * travel.dot(away) + self.mover.skin);
+            // (Each body is found once, and no two share an id: `<=` would
+            // choose the same.)
             if first.is_none_or(|(t, id, _)| (hit.fraction, f.id) < (t, id)) {
                 first = Some((hit.fraction, f.id, push));
             }
@@ -474,6 +476,7 @@ impl Walker<'_> {
             // come down to the floor) is climbed on top instead.
             let feet = at.y - self.shape.half_extents().y;
             let (h, skin) = (f.shape.half_extents().y, self.mover.skin);
+            // (Exactly at either height, either answer will do.)
             let above =
                 place.y - h > feet + skin || place.y + h > feet + self.mover.max_step + skin;
             if above && crusher.is_none_or(|c| f.id < c) {

@@ -1566,22 +1566,29 @@ fn a_kinematic_bar_in_its_legs_crushes_it_on_the_ground_but_not_in_the_air() {
     // underside 0.1 m above the feet: on the floor the character has no
     // way out (the bar is not low enough to step onto), so it is crushed;
     // held 0.5 m above the floor, or 3 cm above it, it is not (it is
-    // pushed out instead).
+    // pushed out instead). A bar 3 cm thick whose underside is 5 mm under
+    // the feet is stepped onto, not crushing.
     let mover = CharacterMover::default();
-    for (lift, crushes) in [(0.0, true), (0.03, false), (0.5, false)] {
+    for (lift, underside, thick, crushes) in [
+        (0.0, 0.1, 0.1, true),
+        (0.03, 0.1, 0.1, false),
+        (0.5, 0.1, 0.1, false),
+        (0.0, -0.005, 0.03, false),
+    ] {
         let mut world = level("##########################");
         let player = character(&mut world, 6.0, 0.5 + lift);
         let feet = at(&world, player).y - HALF.y;
         let def = BodyDef::new_kinematic(
-            Vec2::new(6.0, feet + 0.15),
-            Shape::rect(1.0, 0.1),
+            Vec2::new(6.0, feet + underside + thick / 2.0),
+            Shape::rect(1.0, thick),
             Vec2::ZERO,
         );
         let bar = world.add_body(def).unwrap();
         let out = world
             .move_character(player, Vec2::ZERO, &mover, DT)
             .unwrap();
-        assert_eq!(out.crushed, crushes.then_some(bar), "{lift} m up");
+        let case = format!("{lift} m up, underside {underside} m above the feet");
+        assert_eq!(out.crushed, crushes.then_some(bar), "{case}");
     }
 }
 
