@@ -1566,14 +1566,16 @@ fn a_kinematic_bar_in_its_legs_crushes_it_on_the_ground_but_not_in_the_air() {
     // underside 0.1 m above the feet: on the floor the character has no
     // way out (the bar is not low enough to step onto), so it is crushed;
     // held 0.5 m above the floor, or 3 cm above it, it is not (it is
-    // pushed out instead). A bar 3 cm thick whose underside is 5 mm under
-    // the feet is stepped onto, not crushing.
+    // pushed out instead). A bar 3 cm or 0.3 m thick (as high as a step)
+    // whose underside is 5 mm under the feet is stepped onto, not
+    // crushing.
     let mover = CharacterMover::default();
     for (lift, underside, thick, crushes) in [
         (0.0, 0.1, 0.1, true),
         (0.03, 0.1, 0.1, false),
         (0.5, 0.1, 0.1, false),
         (0.0, -0.005, 0.03, false),
+        (0.0, -0.005, 0.3, false),
     ] {
         let mut world = level("##########################");
         let player = character(&mut world, 6.0, 0.5 + lift);
