@@ -424,6 +424,8 @@ impl Walker<'_> {
             // push out lifts it on top, scoops it up as a step climbed;
             // every other is swept.
             let place = self.place(&f);
+            // (A body that ends exactly touching is met by rounding either
+            // way.)
             let lifts = collide(&self.shape, at, &f.shape, place, 0.0)
                 .is_some_and(|m| m.separation < 0.0 && -m.normal.y >= self.ground_cos);
             let rise = place.y + f.shape.half_extents().y - (at.y - self.shape.half_extents().y);

@@ -1621,3 +1621,54 @@ fn a_kinematic_wall_pressing_in_with_room_behind_pushes_rather_than_crushes() {
     assert_eq!(out.crushed, None);
     assert!((out.position.x + 0.05 + mover.skin).abs() < 1e-5, "{out:?}");
 }
+
+#[test]
+fn a_thin_low_post_sweeping_fast_pushes_the_character_ahead_of_it() {
+    // A kinematic post 5 cm wide and lower than a step (0.29 m) slides
+    // along the floor into a standing character at 24 to 36 m/s, ending
+    // past its middle or beyond it: the push out alone would put the
+    // character behind the post (the shortest way out, backwards), or
+    // leave it there. It is swept ahead of the post instead, a skin in
+    // front of it.
+    let skin = CharacterMover::default().skin;
+    for speed in [24.0, 30.0, 36.0] {
+        let mut world = level("##########################");
+        let player = character(&mut world, 6.0, 0.5);
+        let start = Vec2::new(6.0 - HALF.x - 0.025 - 0.05, 0.5 + 0.145);
+        let def = BodyDef::new_kinematic(start, Shape::rect(0.05, 0.29), Vec2::new(speed, 0.0));
+        let post = world.add_body(def).unwrap();
+        stand(&mut world, player);
+        let (p, q) = (at(&world, player), at(&world, post));
+        let gap = (p.x - HALF.x) - (q.x + 0.025);
+        assert!(
+            (gap - skin).abs() < 1e-3,
+            "{speed} m/s: {gap} m in front of the post"
+        );
+    }
+}
+
+#[test]
+fn a_block_higher_than_a_step_sliding_under_it_pushes_it_rather_than_lifting_it() {
+    // A kinematic block 2 m wide and 0.35 m high (above `max_step`) slides
+    // along the floor at 30 m/s and ends under most of a standing
+    // character: the push out's shortest way is up, on top, but the block
+    // is too high to be climbed, so it sweeps the character ahead of it,
+    // a skin in front, still on the floor.
+    let skin = CharacterMover::default().skin;
+    for height in [0.35, 0.38] {
+        let mut world = level("##########################");
+        let player = character(&mut world, 6.0, 0.5);
+        let y = at(&world, player).y;
+        let start = Vec2::new(6.0 - HALF.x - 0.05 - 1.0, 0.5 + height / 2.0);
+        let def = BodyDef::new_kinematic(start, Shape::rect(2.0, height), Vec2::new(30.0, 0.0));
+        let block = world.add_body(def).unwrap();
+        stand(&mut world, player);
+        let (p, q) = (at(&world, player), at(&world, block));
+        let gap = (p.x - HALF.x) - (q.x + 1.0);
+        assert!(
+            (gap - skin).abs() < 1e-3,
+            "{height} m: {gap} m in front of it"
+        );
+        assert!((p.y - y).abs() < 1e-4, "{height} m: lifted to {p}");
+    }
+}
