@@ -481,6 +481,7 @@ impl Walker<'_> {
             // (Exactly at either height, either answer will do.)
             let above =
                 place.y - h > feet + skin || place.y + h > feet + self.mover.max_step + skin;
+            // (Each body is found once: `<=` would choose the same.)
             if above && crusher.is_none_or(|c| f.id < c) {
                 crusher = Some(f.id);
             }
@@ -505,6 +506,8 @@ impl Walker<'_> {
             self.ignored = Some(id);
             let blocked = self
                 .cast(at, way_out)
+                // (A way out that ends exactly touching is taken by rounding
+                // either way.)
                 .is_some_and(|hit| hit.fraction < 1.0 && hit.pushable.is_none());
             if blocked {
                 squeezer = Some(id);

@@ -1597,29 +1597,71 @@ fn a_kinematic_bar_in_its_legs_crushes_it_on_the_ground_but_not_in_the_air() {
 #[test]
 fn a_kinematic_wall_pressing_in_with_room_behind_pushes_rather_than_crushes() {
     // In the air, a still kinematic wall 5 cm into the character's side,
-    // a static wall 1 m behind it: there is room, so it is pushed out (by
-    // the overlap and a skin), not crushed.
+    // and behind the character a static wall 1 m away, or a crate 2 cm
+    // away (it gives way): there is room, so the character is not
+    // crushed. With the wall behind, it is pushed out by the overlap and a
+    // skin.
     let mover = CharacterMover::default();
-    let mut world = World::default();
-    let def = BodyDef::new_static(Vec2::new(-1.7, 0.0), Shape::rect(1.0, 4.0));
-    world.add_body(def).unwrap();
-    let def = BodyDef::new_kinematic(
-        Vec2::ZERO,
-        Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
-        Vec2::ZERO,
-    );
-    let player = world.add_body(def).unwrap();
-    let def = BodyDef::new_kinematic(
-        Vec2::new(HALF.x + 0.5 - 0.05, 0.0),
-        Shape::rect(1.0, 4.0),
-        Vec2::ZERO,
-    );
-    world.add_body(def).unwrap();
-    let out = world
-        .move_character(player, Vec2::ZERO, &mover, DT)
-        .unwrap();
-    assert_eq!(out.crushed, None);
-    assert!((out.position.x + 0.05 + mover.skin).abs() < 1e-5, "{out:?}");
+    for (behind, kind) in [(1.0, BodyKind::Static), (0.02, BodyKind::Dynamic)] {
+        let mut world = World::default();
+        let mut settings = *world.settings();
+        settings.forces.gravity = None;
+        world.set_settings(settings).unwrap();
+        let def = BodyDef {
+            kind,
+            position: Vec2::new(-HALF.x - behind - 0.5, 0.0),
+            shape: Some(Shape::rect(1.0, 1.0)),
+            ..Default::default()
+        };
+        world.add_body(def).unwrap();
+        let def = BodyDef::new_kinematic(
+            Vec2::ZERO,
+            Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
+            Vec2::ZERO,
+        );
+        let player = world.add_body(def).unwrap();
+        let def = BodyDef::new_kinematic(
+            Vec2::new(HALF.x + 0.5 - 0.05, 0.0),
+            Shape::rect(1.0, 4.0),
+            Vec2::ZERO,
+        );
+        world.add_body(def).unwrap();
+        let out = world
+            .move_character(player, Vec2::ZERO, &mover, DT)
+            .unwrap();
+        assert_eq!(out.crushed, None, "{kind:?} {behind} m behind");
+        if kind == BodyKind::Static {
+            assert!((out.position.x + 0.05 + mover.skin).abs() < 1e-5, "{out:?}");
+        }
+    }
+}
+
+#[test]
+fn of_two_bodies_crushing_it_the_first_added_is_named() {
+    // Two still kinematic lids side by side, each 5 cm into the head of a
+    // character standing on the floor, added left first or right first:
+    // the one added first (the lower id) is named.
+    let mover = CharacterMover::default();
+    for left_first in [true, false] {
+        let mut world = level("##########################");
+        let player = character(&mut world, 6.0, 0.5);
+        let head = at(&world, player).y + HALF.y;
+        let lid = |world: &mut World, x: f32| {
+            let def = BodyDef::new_kinematic(
+                Vec2::new(x, head + 0.25 - 0.05),
+                Shape::rect(0.5, 0.5),
+                Vec2::ZERO,
+            );
+            world.add_body(def).unwrap()
+        };
+        let xs = if left_first { [5.8, 6.2] } else { [6.2, 5.8] };
+        let first = lid(&mut world, xs[0]);
+        lid(&mut world, xs[1]);
+        let out = world
+            .move_character(player, Vec2::ZERO, &mover, DT)
+            .unwrap();
+        assert_eq!(out.crushed, Some(first), "left first: {left_first}");
+    }
 }
 
 #[test]
