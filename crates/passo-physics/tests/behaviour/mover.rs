@@ -1714,3 +1714,32 @@ fn a_block_higher_than_a_step_sliding_under_it_pushes_it_rather_than_lifting_it(
         assert!((p.y - y).abs() < 1e-4, "{height} m: lifted to {p}");
     }
 }
+
+#[test]
+fn without_stop_on_slope_a_fall_on_a_slope_slides_along_it() {
+    // Standing on a 30° slope with `stop_on_slope` off, a move straight
+    // down by 0.1 m becomes its part along the slope: 0.05 m down it.
+    let mover = CharacterMover {
+        stop_on_slope: false,
+        ..CharacterMover::default()
+    };
+    for (name, shape) in walkers() {
+        let (points, height) = hill(30.0);
+        let (mut world, id) = on_chain(points, shape, 1.5, height(1.7));
+        let mut velocity = Vec2::ZERO;
+        for _ in 0..10 {
+            play(&mut world, id, &mut velocity, |_| {});
+        }
+        let out = world
+            .move_character(id, Vec2::new(0.0, -0.1), &mover, DT)
+            .unwrap();
+        let (s, c) = 30f32.to_radians().sin_cos();
+        let expected = Vec2::new(-c, -s) * 0.1 * s;
+        let moved = out.translation;
+        assert!(
+            (moved - expected).length() < 1e-3,
+            "{name}: moved {moved}, not {expected}"
+        );
+        assert!(out.on_ground, "{name}");
+    }
+}
