@@ -543,6 +543,8 @@ fn along_ground(by: Vec2, normal: Vec2, mover: &CharacterMover) -> Vec2 {
         return walk;
     }
     let fall = Vec2::new(0.0, by.y);
+    // (Only the part across the slope decides where it ends: the snap to
+    // the ground sets the height.)
     walk + fall - normal * fall.dot(normal)
 }
 
@@ -621,7 +623,7 @@ impl World {
             .dynamic_index(id)?
             .expect("a kinematic body is in the dynamic arrays");
         // How far any kinematic body goes this step: the queries reach that
-        // much farther.
+        // much farther. (Farther would find the same, only slower.)
         let b = &self.dynamic;
         let reach = b
             .kinematic
