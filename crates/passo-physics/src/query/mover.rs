@@ -370,6 +370,8 @@ impl Walker<'_> {
                 }
                 if let Some(m) = collide(&self.shape, at, &f.shape, self.place(&f), 0.0)
                     && m.separation < 0.0
+                    // (Of two exactly as deep, the first found goes first;
+                    // the next round takes the other.)
                     && deepest.is_none_or(|(s, _)| m.separation < s)
                 {
                     // `m.normal` points from the character to the body.

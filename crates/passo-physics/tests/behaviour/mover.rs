@@ -1743,3 +1743,36 @@ fn without_stop_on_slope_a_fall_on_a_slope_slides_along_it() {
         assert!(out.on_ground, "{name}");
     }
 }
+
+#[test]
+fn the_push_out_takes_the_deepest_overlap_first() {
+    // A character sunk 0.3 m into the floor, its side also 5 cm into a
+    // block buried in the floor (top 0.1 m under the surface). Out of the
+    // floor first, straight up, it clears the block too and stays where
+    // it is across; out of the block first it would be shoved sideways.
+    // Both orders of adding the two bodies.
+    let skin = CharacterMover::default().skin;
+    for floor_first in [true, false] {
+        let mut world = World::default();
+        let floor = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(20.0, 1.0));
+        let block = BodyDef::new_static(Vec2::new(1.5, -0.3), Shape::rect(1.0, 0.4));
+        let defs = if floor_first {
+            [floor, block]
+        } else {
+            [block, floor]
+        };
+        for def in defs {
+            world.add_body(def).unwrap();
+        }
+        let start = Vec2::new(1.0 - HALF.x + 0.05, -0.3 + HALF.y);
+        let def =
+            BodyDef::new_kinematic(start, Shape::rect(2.0 * HALF.x, 2.0 * HALF.y), Vec2::ZERO);
+        let id = world.add_body(def).unwrap();
+        let end = move_once(&mut world, id, Vec2::ZERO);
+        let expected = Vec2::new(start.x, HALF.y + skin);
+        assert!(
+            (end - expected).length() < 1e-4,
+            "floor first: {floor_first}: at {end}"
+        );
+    }
+}
