@@ -1776,3 +1776,44 @@ fn the_push_out_takes_the_deepest_overlap_first() {
         );
     }
 }
+
+#[test]
+fn of_two_bodies_sweeping_in_the_first_met_pushes() {
+    // Two kinematic posts (5 cm wide, as tall as the character) sweep in
+    // from the left in one step: one 5 cm away at 12 m/s (0.2 m a step),
+    // one 0.3 m away at 24 m/s (0.4 m a step). The near one meets the
+    // character first (a quarter of its way, against three quarters of
+    // the far one's) and pushes it to a skin in front of where it ends,
+    // clear of both. Both orders of adding them.
+    let skin = CharacterMover::default().skin;
+    for near_first in [true, false] {
+        let mut world = level("##########################");
+        let player = character(&mut world, 6.0, 0.5);
+        let y = at(&world, player).y;
+        let post = |world: &mut World, gap: f32, speed: f32| {
+            let x = 6.0 - HALF.x - gap - 0.025;
+            let def = BodyDef::new_kinematic(
+                Vec2::new(x, y),
+                Shape::rect(0.05, 0.8),
+                Vec2::new(speed, 0.0),
+            );
+            world.add_body(def).unwrap();
+        };
+        let posts = [(0.05, 12.0), (0.3, 24.0)];
+        let order = if near_first { [0, 1] } else { [1, 0] };
+        for k in order {
+            post(&mut world, posts[k].0, posts[k].1);
+        }
+        let mover = CharacterMover::default();
+        let out = world
+            .move_character(player, Vec2::ZERO, &mover, DT)
+            .unwrap();
+        // The near post's right face ends at 6 - 0.2 - 0.05 + 0.2.
+        let expected = 5.95 + skin + HALF.x;
+        assert_eq!(out.crushed, None, "near first: {near_first}");
+        assert!(
+            (out.position.x - expected).abs() < 1e-4,
+            "near first: {near_first}: {out:?}"
+        );
+    }
+}
