@@ -296,6 +296,8 @@ impl Walker<'_> {
                 body: f.id,
                 pushable,
             };
+            // (A tie is one body met twice at once: a chain's two segments
+            // at their shared vertex. Either segment's normal will do.)
             if best.is_none_or(|b| (hit.fraction, f.id) < (b.fraction, b.body)) {
                 best = Some(candidate);
             }
@@ -312,6 +314,9 @@ impl Walker<'_> {
             if f.dynamic.is_some() && !f.meta.kinematic && !cuts {
                 cuts =
                     crate::geometry::cast::cast_shape(&self.shape, from, by, &f.shape, f.position)
+                        // (Not tested at their edges: a body touched exactly
+                        // at the line's end, grazed exactly along its side,
+                        // or one the character starts inside.)
                         .is_some_and(|hit| hit.fraction < 1.0 && hit.normal.dot(by) < 0.0);
             }
         });
