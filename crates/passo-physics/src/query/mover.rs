@@ -686,6 +686,7 @@ impl World {
             _ => translation,
         };
         for _ in 0..4 {
+            // (What is left below a micrometre changes nothing seen.)
             if remaining.length_squared() < 1e-12 {
                 break;
             }
@@ -696,12 +697,16 @@ impl World {
             };
             let moved = next - at;
             let left = remaining - moved;
+            // (A slope at exactly `max_slope` is ground or wall by
+            // rounding.)
             let is_wall = hit.normal.y.abs() < walker.ground_cos;
             // A step is static or kinematic: a dynamic body in the way is
             // pushed, not climbed.
             if is_wall
                 && hit.pushable.is_none()
                 && under.is_some()
+                // (With none, a step up could rise the skin at most, and
+                // the feet, a skin up, clear anything that low.)
                 && mover.max_step > 0.0
                 && let Some((stepped_to, height)) = self.step_up(&walker, next, left)
             {
@@ -742,6 +747,7 @@ impl World {
         if ground.is_none()
             && under.is_some()
             && translation.y <= 0.0
+            // (With none, the snap would reach no farther than the probe.)
             && mover.snap_down > 0.0
             && let Some(hit) = walker.ground(at, mover.snap_down + mover.skin)
         {

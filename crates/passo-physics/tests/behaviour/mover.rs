@@ -114,7 +114,9 @@ fn it_climbs_a_step_up_to_max_step_and_no_higher() {
 
 #[test]
 fn it_follows_a_small_drop_and_leaves_the_ground_over_a_big_one() {
-    for (drop, follows) in [(0.25, true), (0.75, false)] {
+    // (0.295 m: just inside `snap_down`, 0.3 m, with the skin the feet
+    // keep above the ground on top of it.)
+    for (drop, follows) in [(0.25, true), (0.295, true), (0.75, false)] {
         let mut world = World::default();
         let high = BodyDef::new_static(Vec2::new(2.0, -0.5), Shape::rect(4.0, 1.0));
         let low = BodyDef::new_static(Vec2::new(8.0, -0.5 - drop), Shape::rect(8.0, 1.0));
@@ -1815,5 +1817,68 @@ fn of_two_bodies_sweeping_in_the_first_met_pushes() {
             (out.position.x - expected).abs() < 1e-4,
             "near first: {near_first}: {out:?}"
         );
+    }
+}
+
+#[test]
+fn each_crate_met_in_a_move_is_pushed_once_and_none_with_push_mass_zero() {
+    // Weightless, moving up and right into a corner between a crate on
+    // the right and a crate above: the move slides up along the first and
+    // meets the second, and pushes each once. With `push_mass` 0 it pushes
+    // neither.
+    for push_mass in [20.0, 0.0] {
+        let mut world = World::default();
+        let mut settings = *world.settings();
+        settings.forces.gravity = None;
+        world.set_settings(settings).unwrap();
+        let crate_at = |world: &mut World, at: Vec2| {
+            let def = BodyDef::new_dynamic(at, Shape::rect(0.5, 0.5));
+            world.add_body(def).unwrap()
+        };
+        let right = crate_at(&mut world, Vec2::new(HALF.x + 0.05 + 0.25, 0.0));
+        let above = crate_at(&mut world, Vec2::new(-0.3, HALF.y + 0.1 + 0.25));
+        let def = BodyDef::new_kinematic(
+            Vec2::ZERO,
+            Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
+            Vec2::ZERO,
+        );
+        let id = world.add_body(def).unwrap();
+        let mover = CharacterMover {
+            push_mass,
+            ..CharacterMover::default()
+        };
+        let out = world
+            .move_character(id, Vec2::new(0.2, 0.3), &mover, DT)
+            .unwrap();
+        assert_eq!(out.wall, Some(right));
+        assert_eq!(out.ceiling, Some(above));
+        let expected = if push_mass > 0.0 { 2 } else { 0 };
+        assert_eq!(out.pushed, expected, "push_mass {push_mass}");
+    }
+}
+
+#[test]
+fn with_max_step_zero_it_climbs_no_step_at_all() {
+    // A ledge 2 cm high: with `max_step` 0 a walk stops at it; with the
+    // default it steps up.
+    for (max_step, climbs) in [(0.0, false), (0.3, true)] {
+        let mut world = World::default();
+        let floor = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(20.0, 1.0));
+        let ledge = BodyDef::new_static(Vec2::new(5.0, 0.01), Shape::rect(4.0, 0.02));
+        world.add_body(floor).unwrap();
+        world.add_body(ledge).unwrap();
+        let id = character(&mut world, 2.0, 0.0);
+        let mover = CharacterMover {
+            max_step,
+            ..CharacterMover::default()
+        };
+        for _ in 0..60 {
+            world
+                .move_character(id, Vec2::new(3.0, -1.0) * DT, &mover, DT)
+                .unwrap();
+            world.step(DT);
+        }
+        let x = at(&world, id).x;
+        assert_eq!(x > 3.5, climbs, "max_step {max_step}: at {x}");
     }
 }
