@@ -766,6 +766,9 @@ impl World {
         if translation.y > 0.0 {
             ground = None;
         } else if let Some((_, gap)) = ground {
+            // (Either way the feet end a skin above the ground; the cast
+            // up differs only under a ceiling nearer than the skin, which
+            // no test has.)
             at = if gap >= mover.skin {
                 at - Vec2::new(0.0, gap - mover.skin)
             } else {
