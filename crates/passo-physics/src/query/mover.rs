@@ -75,8 +75,8 @@ pub struct CharacterMover {
     /// Gap kept between the character and what it touches, metres, > 0.
     /// Default 0.01 (2 × the slop).
     pub skin: f32,
-    /// Highest step climbed while walking on the ground, metres, >= 0.
-    /// Default 0.3.
+    /// Highest step climbed while walking on the ground, metres, >= 0 (a
+    /// step up to `skin` higher is climbed too). Default 0.3.
     pub max_step: f32,
     /// Farthest drop followed while walking instead of leaving the ground,
     /// metres, >= 0. Default 0.3.

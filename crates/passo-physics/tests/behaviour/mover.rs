@@ -89,9 +89,16 @@ fn a_wall_stops_it_a_skin_short_and_is_reported() {
 
 #[test]
 fn it_climbs_a_step_up_to_max_step_and_no_higher() {
-    // A step of 0.25 m (half a cell, drawn with a 0.25 m map over the
-    // ground) and one of 0.5 m.
-    for (height, climbs) in [(0.25, true), (0.5, false)] {
+    // Steps of 0.25 m, of 0.295 m (just under `max_step`, 0.3 m), of
+    // 0.305 m (within a skin over it, climbed too) and of 0.32 m (more than
+    // a skin over it), and one of 0.5 m.
+    for (height, climbs) in [
+        (0.25, true),
+        (0.295, true),
+        (0.305, true),
+        (0.32, false),
+        (0.5, false),
+    ] {
         let mut world = level("################");
         let step =
             BodyDef::new_static(Vec2::new(5.0, 0.5 + height / 2.0), Shape::rect(4.0, height));
