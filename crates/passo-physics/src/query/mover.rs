@@ -818,6 +818,7 @@ impl World {
     /// how high it climbed, or `None` if there is no step to climb there.
     fn step_up(&self, walker: &Walker<'_>, at: Vec2, left: Vec2) -> Option<(Vec2, f32)> {
         let mover = walker.mover;
+        // (Below a micrometre across, no walk is blocked by a step.)
         if left.x.abs() < 1e-6 {
             return None;
         }
@@ -831,6 +832,9 @@ impl World {
         let forward = Vec2::new(left.x.signum() * left.x.abs().max(least), 0.0);
         let (up, _) = walker.advance(at, Vec2::new(0.0, mover.max_step + mover.skin));
         let (ahead, blocked) = walker.advance(up, forward);
+        // (An early out: were it left out, a wall blocking the forward
+        // move at once leaves the landing on the ground it left, and the
+        // height check below refuses the climb.)
         if blocked.is_some() && (ahead.x - up.x).abs() < mover.skin {
             return None; // still blocked: a wall, not a step
         }

@@ -1889,3 +1889,30 @@ fn with_max_step_zero_it_climbs_no_step_at_all() {
         assert_eq!(x > 3.5, climbs, "max_step {max_step}: at {x}");
     }
 }
+
+#[test]
+fn it_climbs_onto_a_ledge_too_narrow_to_step_forward_on() {
+    // A step 0.2 m high and 15 mm deep in front of a tall wall: a climb
+    // moves forward at least two skins (2 cm), so the wall stops the
+    // forward part of every climb; it still ends on the step's top,
+    // against the wall.
+    let mut world = level("################");
+    let step = BodyDef::new_static(Vec2::new(3.0075, 0.6), Shape::rect(0.015, 0.2));
+    let wall = BodyDef::new_static(Vec2::new(3.515, 2.0), Shape::rect(1.0, 4.0));
+    world.add_body(step).unwrap();
+    world.add_body(wall).unwrap();
+    let id = character(&mut world, 1.0, 0.5);
+    walk(&mut world, id, Vec2::new(3.0, -5.0), 60);
+    let p = at(&world, id);
+    let skin = CharacterMover::default().skin;
+    assert!(
+        (p.y - (0.7 + HALF.y + skin)).abs() < 2e-3,
+        "on the ledge: {p}"
+    );
+    // Its side clear of the wall, and no more than two skins from it.
+    let gap = 3.015 - (p.x + HALF.x);
+    assert!(
+        (0.0..2.0 * skin).contains(&gap),
+        "against the wall: {gap} m from it"
+    );
+}
