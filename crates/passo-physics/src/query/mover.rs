@@ -838,11 +838,14 @@ impl World {
         if blocked.is_some() && (ahead.x - up.x).abs() < mover.skin {
             return None; // still blocked: a wall, not a step
         }
+        // (A skin more or less finds the same landing: the step's top
+        // lies well inside.)
         let fall = up.y - at.y + mover.skin;
         let landing = walker.ground(ahead, fall)?;
         let drop = landing.fraction * fall - mover.skin;
         let end = Vec2::new(ahead.x, ahead.y - drop.max(0.0));
         let height = end.y - at.y;
+        // (A climb of no height is refused by the early out above first.)
         (height > 0.0 && height <= mover.max_step + mover.skin).then_some((end, height))
     }
 }
