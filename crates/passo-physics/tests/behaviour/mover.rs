@@ -24,12 +24,7 @@ fn level(text: &str) -> World {
 /// on ground whose top is at `ground`.
 fn character(world: &mut World, x: f32, ground: f32) -> BodyId {
     let skin = CharacterMover::default().skin;
-    let def = BodyDef::new_kinematic(
-        Vec2::new(x, ground + HALF.y + skin),
-        Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
-        Vec2::ZERO,
-    );
-    world.add_body(def).unwrap()
+    character_at(world, Vec2::new(x, ground + HALF.y + skin))
 }
 
 /// Moves at `velocity` (m/s) for `ticks` ticks; returns the last outcome.
@@ -1345,9 +1340,14 @@ fn beside_a_box(min: Vec2, max: Vec2, centre: Vec2) -> (World, BodyId) {
     let size = max - min;
     let def = BodyDef::new_static((min + max) / 2.0, Shape::rect(size.x, size.y));
     world.add_body(def).unwrap();
-    let def = BodyDef::new_kinematic(centre, Shape::rect(2.0 * HALF.x, 2.0 * HALF.y), Vec2::ZERO);
-    let id = world.add_body(def).unwrap();
+    let id = character_at(&mut world, centre);
     (world, id)
+}
+
+/// A character (the box of `HALF`) with its centre at `centre`.
+fn character_at(world: &mut World, centre: Vec2) -> BodyId {
+    let def = BodyDef::new_kinematic(centre, Shape::rect(2.0 * HALF.x, 2.0 * HALF.y), Vec2::ZERO);
+    world.add_body(def).unwrap()
 }
 
 /// One move of `by`, where the character ends.
@@ -1379,12 +1379,7 @@ fn a_wall_it_touches_holds_it_and_walls_it_is_caught_between_let_it_out() {
         let def = BodyDef::new_static(Vec2::new(x, 0.0), Shape::rect(1.0, 4.0));
         world.add_body(def).unwrap();
     }
-    let def = BodyDef::new_kinematic(
-        Vec2::ZERO,
-        Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
-        Vec2::ZERO,
-    );
-    let id = world.add_body(def).unwrap();
+    let id = character_at(&mut world, Vec2::ZERO);
     let up = move_once(&mut world, id, Vec2::new(0.0, 3.0));
     assert!((up.y - 3.0).abs() < 1e-4 && up.x.abs() < 0.05, "{up}");
 }
@@ -1425,9 +1420,7 @@ fn a_one_way_platform_lets_it_through_from_below_and_from_the_side_wherever_it_i
             BodyDef::new_static(Vec2::new(x, y), Shape::rect(2.0, 0.2)).with_one_way(Vec2::Y);
         world.add_body(platform).unwrap();
         let under = Vec2::new(x, y - 0.1 - HALF.y + 0.15);
-        let def =
-            BodyDef::new_kinematic(under, Shape::rect(2.0 * HALF.x, 2.0 * HALF.y), Vec2::ZERO);
-        let id = world.add_body(def).unwrap();
+        let id = character_at(&mut world, under);
         assert_eq!(move_once(&mut world, id, Vec2::ZERO), under, "at {x}, {y}");
         // Its feet 0.1 m into it from above (deeper than a landing goes):
         // falling on, it goes on through.
@@ -1480,12 +1473,7 @@ fn a_moving_crate_is_met_where_it_is_and_a_kinematic_body_where_it_will_be() {
             ..Default::default()
         };
         world.add_body(def).unwrap();
-        let def = BodyDef::new_kinematic(
-            Vec2::ZERO,
-            Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
-            Vec2::ZERO,
-        );
-        let id = world.add_body(def).unwrap();
+        let id = character_at(&mut world, Vec2::ZERO);
         let end = move_once(&mut world, id, Vec2::new(0.9, 0.0));
         let face = 1.0 + if kinematic { v * DT } else { 0.0 };
         let expected = face - HALF.x - skin;
@@ -1623,12 +1611,7 @@ fn a_kinematic_wall_pressing_in_with_room_behind_pushes_rather_than_crushes() {
             ..Default::default()
         };
         world.add_body(def).unwrap();
-        let def = BodyDef::new_kinematic(
-            Vec2::ZERO,
-            Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
-            Vec2::ZERO,
-        );
-        let player = world.add_body(def).unwrap();
+        let player = character_at(&mut world, Vec2::ZERO);
         let def = BodyDef::new_kinematic(
             Vec2::new(HALF.x + 0.5 - 0.05, 0.0),
             Shape::rect(1.0, 4.0),
@@ -1774,9 +1757,7 @@ fn the_push_out_takes_the_deepest_overlap_first() {
             world.add_body(def).unwrap();
         }
         let start = Vec2::new(1.0 - HALF.x + 0.05, -0.3 + HALF.y);
-        let def =
-            BodyDef::new_kinematic(start, Shape::rect(2.0 * HALF.x, 2.0 * HALF.y), Vec2::ZERO);
-        let id = world.add_body(def).unwrap();
+        let id = character_at(&mut world, start);
         let end = move_once(&mut world, id, Vec2::ZERO);
         let expected = Vec2::new(start.x, HALF.y + skin);
         assert!(
@@ -1844,12 +1825,7 @@ fn each_crate_met_in_a_move_is_pushed_once_and_none_with_push_mass_zero() {
         };
         let right = crate_at(&mut world, Vec2::new(HALF.x + 0.05 + 0.25, 0.0));
         let above = crate_at(&mut world, Vec2::new(-0.3, HALF.y + 0.1 + 0.25));
-        let def = BodyDef::new_kinematic(
-            Vec2::ZERO,
-            Shape::rect(2.0 * HALF.x, 2.0 * HALF.y),
-            Vec2::ZERO,
-        );
-        let id = world.add_body(def).unwrap();
+        let id = character_at(&mut world, Vec2::ZERO);
         let mover = CharacterMover {
             push_mass,
             ..CharacterMover::default()
