@@ -345,6 +345,9 @@ fn bullet_impact(
     for j in 0..bodies.len() {
         let meta = &bodies.meta[j];
         let Some(shape) = meta.shape else { continue };
+        // (A kinematic body was met in the first pass: the path that pass
+        // left stops short of it, so meeting it again finds nothing. The
+        // bullet's own body, met at the start, is no impact either.)
         if j == i || meta.kinematic {
             continue;
         }
