@@ -107,7 +107,9 @@ impl Crushes {
     ) -> &[u32] {
         let press = |c: &Constraint| (c.b == ColliderRef::dynamic(k)).then_some(Vec2::ZERO);
         self.released.clear();
-        // Most removed bodies pressed nothing: no copy for them.
+        // Most removed bodies pressed nothing: no copy for them. (A looser
+        // test here costs a copy, never a release: the search below
+        // applies the same test again.)
         if !rows
             .iter()
             .any(|c| c.normal_impulse > 0.0 && press(c).is_some())
@@ -243,6 +245,9 @@ impl Crushes {
             *budget -= 1;
             for &r in pushing_contacts(&self.starts, &self.rows, x) {
                 let c = &rows[r as usize];
+                // (The press's own contact points back at it, so the test of
+                // direction below would pass it over too: this only saves
+                // the work.)
                 if c.a == x && c.b == press {
                     continue;
                 }

@@ -377,3 +377,25 @@ fn a_removed_press_lets_go_of_what_it_pressed_against_something_immovable() {
     scene.touch(high, Other::Body(lid), Vec2::Y);
     assert_eq!(scene.released_by_removal(lift), all(0..3));
 }
+
+#[test]
+fn presses_from_opposite_sides_are_followed_each_its_own_way() {
+    // Two presses moving off: one on the left pushing a row of two crates
+    // right against a wall, one on the right pushing another row left
+    // against a wall. Their normals differ only in sign along x: each is
+    // followed its own way, and every contact of both rows is let go of.
+    let mut scene = Scene::default();
+    let left = scene.kinematic(Vec2::Y);
+    let right = scene.kinematic(Vec2::Y);
+    let [a1, a2, b1, b2] = [(); 4].map(|_| scene.crate_());
+    // The left press pushes a1 right, a1 pushes a2, a2 meets the wall.
+    // (Built as (-1, +0): `-Vec2::X` has a y of -0, other bits.)
+    scene.touch(a1, Other::Body(left), Vec2::new(-1.0, 0.0));
+    scene.touch(a1, Other::Body(a2), Vec2::X);
+    scene.touch(a2, Other::Ground, Vec2::X);
+    // The right press pushes b1 left, b1 pushes b2, b2 meets the wall.
+    scene.touch(b1, Other::Body(right), Vec2::X);
+    scene.touch(b1, Other::Body(b2), -Vec2::X);
+    scene.touch(b2, Other::Ground, -Vec2::X);
+    assert_eq!(scene.released(), all(0..6));
+}
