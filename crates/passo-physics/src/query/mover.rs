@@ -828,6 +828,8 @@ impl World {
         // bottom (a capsule's, a circle's) goes on until its lowest point
         // is over the step's top: resting on the edge it would roll back.
         let (_, radius) = walker.shape.rounded();
+        // (A skin less would do as well: a corner a skin from the lowest
+        // point is ground to a round bottom.)
         let least = (2.0 * mover.skin).max(radius + mover.skin);
         let forward = Vec2::new(left.x.signum() * left.x.abs().max(least), 0.0);
         let (up, _) = walker.advance(at, Vec2::new(0.0, mover.max_step + mover.skin));

@@ -1041,6 +1041,27 @@ fn a_capsule_character_walks_over_tile_seams_without_a_bump_and_climbs_a_step() 
         p.x > 9.0 && (p.y - (0.75 + 0.4 + skin)).abs() < 1e-3,
         "on the step: {p}"
     );
+    // At a crawl (0.3 m/s, 5 mm a tick), the climb still carries its round
+    // bottom's lowest point over the step's edge: it stays up, going on.
+    let mut world = level("################################");
+    let step = BodyDef::new_static(Vec2::new(12.0, 0.625), Shape::rect(8.0, 0.25));
+    world.add_body(step).unwrap();
+    let start = Vec2::new(7.5, 0.9 + skin);
+    let def = BodyDef::new_kinematic(start, Shape::capsule(0.4, 0.8), Vec2::ZERO);
+    let player = world.add_body(def).unwrap();
+    let mut velocity = Vec2::new(0.3, 0.0);
+    let mut up = None;
+    for tick in 0..120 {
+        let out = play(&mut world, player, &mut velocity, |_| {});
+        if out.stepped > 0.0 {
+            up.get_or_insert(tick);
+        }
+        if up.is_some() {
+            let p = at(&world, player);
+            assert!((p.y - (0.75 + 0.4 + skin)).abs() < 1e-3, "tick {tick}: {p}");
+        }
+    }
+    assert!(up.is_some(), "it climbed");
 }
 
 /// A level of sloped ground (a chain, solid below), with a character of
