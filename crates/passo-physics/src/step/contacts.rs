@@ -304,6 +304,8 @@ impl World {
         };
         cw.relocate_last_contacts(&self.dynamic, &self.statics, |id| self.collider_of(id));
         cw.begin_step(&mut self.dynamic, &self.statics, settings, &params);
+        // (These two tests only skip work: with no joint, or no conveyor,
+        // the calls change nothing.)
         if self.joints.count > 0 {
             let rows = &mut self.joint_rows;
             if std::mem::take(&mut rows.apart_stale) {
@@ -342,6 +344,7 @@ impl World {
             &cw.solved.rows,
             &cw.motion.start,
             &cw.motion.piles.deep,
+            // (Wrong, it costs a second build: see `ContactRegions::build`.)
             plan.hold_sleepers || plan.hold_kinematic,
             self.parallel,
         );
@@ -405,6 +408,8 @@ impl World {
         for &stage in after {
             self.run_after_substeps(stage, &mut cw, &plan);
         }
+        // (Valid inputs leave nothing to put back here, so through the step
+        // no test sees this count; `put_back_non_finite`'s own test does.)
         resets += put_back_non_finite(&mut self.dynamic, &mut cw);
         // Only a body gone non-finite can spoil a joint's impulses. (No
         // valid scene spoils them before its body is reset at the next
