@@ -1653,12 +1653,20 @@ fn a_kinematic_wall_pressing_in_with_room_behind_pushes_rather_than_crushes() {
 fn of_two_bodies_crushing_it_the_first_added_is_named() {
     // Two still kinematic lids side by side, each 5 cm into the head of a
     // character standing on the floor, added left first or right first:
-    // the one added first (the lower id) is named.
+    // the one added first (the lower id) is named. Also when a body added
+    // before them is removed, which moves the second lid's storage ahead
+    // of the first's.
     let mover = CharacterMover::default();
-    for left_first in [true, false] {
+    for (left_first, shuffled) in [(true, false), (false, false), (true, true), (false, true)] {
         let mut world = level("##########################");
         let player = character(&mut world, 6.0, 0.5);
         let head = at(&world, player).y + HALF.y;
+        let spacer = world
+            .add_body(BodyDef::new_dynamic(
+                Vec2::new(20.0, 3.0),
+                Shape::circle(0.1),
+            ))
+            .unwrap();
         let lid = |world: &mut World, x: f32| {
             let def = BodyDef::new_kinematic(
                 Vec2::new(x, head + 0.25 - 0.05),
@@ -1670,10 +1678,14 @@ fn of_two_bodies_crushing_it_the_first_added_is_named() {
         let xs = if left_first { [5.8, 6.2] } else { [6.2, 5.8] };
         let first = lid(&mut world, xs[0]);
         lid(&mut world, xs[1]);
+        if shuffled {
+            world.remove_body(spacer).unwrap();
+        }
         let out = world
             .move_character(player, Vec2::ZERO, &mover, DT)
             .unwrap();
-        assert_eq!(out.crushed, Some(first), "left first: {left_first}");
+        let case = format!("left first: {left_first}, shuffled: {shuffled}");
+        assert_eq!(out.crushed, Some(first), "{case}");
     }
 }
 
