@@ -722,6 +722,7 @@ impl World {
             }
             // Walking into a dynamic body pushes it, once per move, up to
             // the speed this leg of the move wanted towards it.
+            // (A cast hits only what the move closes on: never exactly 0.)
             let wanted = -remaining.dot(hit.normal) / dt;
             if let (Some(j), true) = (hit.pushable, wanted > 0.0 && mover.push_mass > 0.0)
                 && !pushes.iter().any(|p| p.0 == j)
