@@ -841,8 +841,8 @@ impl World {
         if blocked.is_some() && (ahead.x - up.x).abs() < mover.skin {
             return None; // still blocked: a wall, not a step
         }
-        // (A skin more or less finds the same landing: the step's top
-        // lies well inside.)
+        // (A longer probe, or one a skin shorter, finds the same landing:
+        // the step's top lies well inside.)
         let fall = up.y - at.y + mover.skin;
         let landing = walker.ground(ahead, fall)?;
         let drop = landing.fraction * fall - mover.skin;
