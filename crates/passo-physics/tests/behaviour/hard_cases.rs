@@ -82,24 +82,37 @@ fn stack_ten_kilometres_from_the_origin_meets_its_documented_limit() {
     assert!(pen <= 4.0 * LINEAR_SLOP, "penetration {pen}");
 }
 
+/// A pyramid of unit boxes `base` wide on ground whose top is at y = 0:
+/// each box and where it starts.
+fn pyramid(world: &mut World, base: usize) -> Vec<(BodyId, Vec2)> {
+    let mut boxes = Vec::new();
+    for row in 0..base {
+        for col in 0..(base - row) {
+            let half_row = (base - 1 - row) as f32 * 0.5;
+            let p = Vec2::new(col as f32 - half_row, 0.5 + row as f32);
+            boxes.push((add_box(world, p, Vec2::ONE, 1.0), p));
+        }
+    }
+    boxes
+}
+
+/// How far the farthest of `boxes` is from where it started.
+fn drift(world: &World, boxes: &[(BodyId, Vec2)]) -> f32 {
+    boxes
+        .iter()
+        .map(|(id, p)| (world.body(*id).unwrap().position - *p).length())
+        .fold(0.0f32, f32::max)
+}
+
 #[test]
 fn pyramid_of_base_20_stands() {
     let mut w = world();
     add_static_box(&mut w, Vec2::new(-40.0, -1.0), Vec2::new(40.0, 0.0));
-    let mut boxes = Vec::new();
-    for row in 0..20 {
-        for col in 0..(20 - row) {
-            let p = Vec2::new(col as f32 - (19 - row) as f32 * 0.5, 0.5 + row as f32);
-            boxes.push((add_box(&mut w, p, Vec2::ONE, 1.0), p));
-        }
-    }
+    let boxes = pyramid(&mut w, 20);
     assert_eq!(boxes.len(), 210);
     let mut pen = 0.0f32;
     run(&mut w, 10.0, |w| pen = pen.max(max_penetration(w)));
-    let drift = boxes
-        .iter()
-        .map(|(id, p)| (w.body(*id).unwrap().position - *p).length())
-        .fold(0.0f32, f32::max);
+    let drift = drift(&w, &boxes);
     println!("pyramid: max penetration {pen} m, max drift {drift} m");
     assert!(pen <= 2.0 * LINEAR_SLOP, "penetration {pen}");
     assert!(drift <= 0.02, "drift {drift}");
@@ -740,19 +753,10 @@ fn a_pyramid_stands_under_every_integrator() {
         })
         .unwrap();
         add_static_box(&mut w, Vec2::new(-10.0, -1.0), Vec2::new(10.0, 0.0));
-        let mut boxes = Vec::new();
-        for row in 0..5 {
-            for col in 0..(5 - row) {
-                let p = Vec2::new(col as f32 - (4 - row) as f32 * 0.5, 0.5 + row as f32);
-                boxes.push((add_box(&mut w, p, Vec2::ONE, 1.0), p));
-            }
-        }
+        let boxes = pyramid(&mut w, 5);
         let mut pen = 0.0f32;
         run(&mut w, 3.0, |w| pen = pen.max(max_penetration(w)));
-        let drift = boxes
-            .iter()
-            .map(|(id, p)| (w.body(*id).unwrap().position - *p).length())
-            .fold(0.0f32, f32::max);
+        let drift = drift(&w, &boxes);
         assert!(
             pen <= 2.0 * LINEAR_SLOP,
             "{integrator:?}: penetration {pen}"
