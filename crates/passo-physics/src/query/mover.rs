@@ -767,9 +767,8 @@ impl World {
         if translation.y > 0.0 {
             ground = None;
         } else if let Some((_, gap)) = ground {
-            // (Either way the feet end a skin above the ground; the cast
-            // up differs only under a ceiling nearer than the skin, which
-            // no test has.)
+            // Up by a cast: under a ceiling nearer than the skin, only as
+            // far as the ceiling lets it.
             at = if gap >= mover.skin {
                 at - Vec2::new(0.0, gap - mover.skin)
             } else {
@@ -841,8 +840,8 @@ impl World {
         if blocked.is_some() && (ahead.x - up.x).abs() < mover.skin {
             return None; // still blocked: a wall, not a step
         }
-        // (A longer probe, or one a skin shorter, finds the same landing:
-        // the step's top lies well inside.)
+        // (A skin more or less finds the same landing: the step's top
+        // lies well inside.)
         let fall = up.y - at.y + mover.skin;
         let landing = walker.ground(ahead, fall)?;
         let drop = landing.fraction * fall - mover.skin;

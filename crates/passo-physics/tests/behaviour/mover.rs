@@ -1925,3 +1925,28 @@ fn it_climbs_onto_a_ledge_too_narrow_to_step_forward_on() {
         "against the wall: {gap} m from it"
     );
 }
+
+#[test]
+fn in_a_tunnel_barely_taller_than_it_its_feet_are_lifted_only_as_far_as_the_ceiling_lets() {
+    // A tunnel 4 mm taller than the character, which stands in it with
+    // 2 mm above and below (less than the skin it keeps from the ground):
+    // lifting its feet a skin above the floor would put its head in the
+    // ceiling, so it goes no higher than the ceiling lets it.
+    let mut world = World::default();
+    let floor = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(20.0, 1.0));
+    let ceiling = BodyDef::new_static(
+        Vec2::new(0.0, 2.0 * HALF.y + 0.004 + 0.5),
+        Shape::rect(20.0, 1.0),
+    );
+    world.add_body(floor).unwrap();
+    world.add_body(ceiling).unwrap();
+    let start = Vec2::new(0.0, HALF.y + 0.002);
+    let id = character_at(&mut world, start);
+    let end = move_once(&mut world, id, Vec2::ZERO);
+    let head = end.y + HALF.y;
+    assert!(
+        head <= 2.0 * HALF.y + 0.004,
+        "its head at {head}, in the ceiling"
+    );
+    assert!(end.y >= start.y, "it sank to {end}");
+}
