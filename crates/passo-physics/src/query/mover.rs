@@ -315,8 +315,8 @@ impl Walker<'_> {
                 cuts =
                     crate::geometry::cast::cast_shape(&self.shape, from, by, &f.shape, f.position)
                         // (Not tested at their edges: a body touched exactly
-                        // at the line's end, grazed exactly along its side,
-                        // or one the character starts inside.)
+                        // at the line's end, or grazed exactly along its
+                        // side.)
                         .is_some_and(|hit| hit.fraction < 1.0 && hit.normal.dot(by) < 0.0);
             }
         });

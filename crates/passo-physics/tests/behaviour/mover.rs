@@ -1950,3 +1950,32 @@ fn in_a_tunnel_barely_taller_than_it_its_feet_are_lifted_only_as_far_as_the_ceil
     );
     assert!(end.y >= start.y, "it sank to {end}");
 }
+
+#[test]
+fn walking_off_a_drop_away_from_a_crate_leaning_on_it_follows_the_drop() {
+    // A crate resting against the character's back, 3 mm into it (as the
+    // contacts leave a crate pushed against it), and a drop of 0.2 m ahead:
+    // the move off the edge, away from the crate, follows the drop down.
+    // The straight line it snaps along starts inside the crate but leaves
+    // it; it cuts through no crate.
+    let skin = CharacterMover::default().skin;
+    let mut world = World::default();
+    let high = BodyDef::new_static(Vec2::new(-5.0, -0.5), Shape::rect(10.0, 1.0));
+    let low = BodyDef::new_static(Vec2::new(5.0, -0.7), Shape::rect(10.0, 1.0));
+    world.add_body(high).unwrap();
+    world.add_body(low).unwrap();
+    let start = Vec2::new(-0.25, HALF.y + skin);
+    let id = character_at(&mut world, start);
+    let crate_at = Vec2::new(start.x - HALF.x - 0.25 + 0.003, 0.25);
+    let def = BodyDef::new_dynamic(crate_at, Shape::rect(0.5, 0.5));
+    world.add_body(def).unwrap();
+    let mover = CharacterMover::default();
+    let out = world
+        .move_character(id, Vec2::new(0.5, 0.0), &mover, DT)
+        .unwrap();
+    assert!(out.on_ground, "{out:?}");
+    assert!(
+        (out.position.y - (-0.2 + HALF.y + skin)).abs() < 1e-4,
+        "{out:?}"
+    );
+}
