@@ -15,6 +15,15 @@ fn world() -> World {
     World::new(WorldSettings::default()).unwrap()
 }
 
+/// A world of default settings but its integrator.
+fn integrating_with(integrator: Integrator) -> World {
+    World::new(WorldSettings {
+        integrator,
+        ..Default::default()
+    })
+    .unwrap()
+}
+
 fn run(world: &mut World, seconds: f32, mut each: impl FnMut(&World)) {
     for _ in 0..(seconds / DT).round() as usize {
         world.step(DT);
@@ -747,11 +756,7 @@ fn a_pyramid_stands_under_every_integrator() {
     // The contact step with each integrator (the multi-stage ones keep a
     // position correction per body): a pyramid of base 5 stands 3 s.
     for integrator in Integrator::ALL {
-        let mut w = World::new(WorldSettings {
-            integrator,
-            ..Default::default()
-        })
-        .unwrap();
+        let mut w = integrating_with(integrator);
         add_static_box(&mut w, Vec2::new(-10.0, -1.0), Vec2::new(10.0, 0.0));
         let boxes = pyramid(&mut w, 5);
         let mut pen = 0.0f32;
@@ -772,11 +777,7 @@ fn with_contacts_on_each_body_falls_by_its_own_gravity_under_every_integrator() 
     // touch): each falls its own closed-form distance, 1/2 s g t^2, to
     // within what a step of 1/60 s leaves.
     for integrator in Integrator::ALL {
-        let mut w = World::new(WorldSettings {
-            integrator,
-            ..Default::default()
-        })
-        .unwrap();
+        let mut w = integrating_with(integrator);
         add_static_box(&mut w, Vec2::new(-10.0, -101.0), Vec2::new(10.0, -100.0));
         let scales = [1.0, 0.5, 0.25];
         let balls: Vec<BodyId> = scales
