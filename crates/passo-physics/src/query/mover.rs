@@ -314,9 +314,10 @@ impl Walker<'_> {
             if f.dynamic.is_some() && !f.meta.kinematic && !cuts {
                 cuts =
                     crate::geometry::cast::cast_shape(&self.shape, from, by, &f.shape, f.position)
-                        // (Not tested at their edges: a body touched exactly
-                        // at the line's end, or grazed exactly along its
-                        // side.)
+                        // (`<= 0.0` is untested: it differs only for a line
+                        // starting inside the body and moving exactly along
+                        // its side, and the push out has moved the
+                        // character out of it sideways by then.)
                         .is_some_and(|hit| hit.fraction < 1.0 && hit.normal.dot(by) < 0.0);
             }
         });

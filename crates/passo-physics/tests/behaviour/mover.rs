@@ -1979,3 +1979,63 @@ fn walking_off_a_drop_away_from_a_crate_leaning_on_it_follows_the_drop() {
         "{out:?}"
     );
 }
+
+#[test]
+fn walking_off_a_drop_to_land_touching_a_crate_follows_the_drop() {
+    // A character 0.5 m wide walks 0.5 m off a ledge and drops 0.25 m:
+    // where the drop ends, its side exactly touches a crate standing on
+    // the ground below. The straight line it snaps along ends touching the
+    // crate and never goes into it, so it follows the drop. (Exact
+    // numbers: the touch is exact, at the line's very end.)
+    let skin = CharacterMover::default().skin;
+    let mut world = World::default();
+    let ledge = BodyDef::new_static(Vec2::new(-5.0, -0.5), Shape::rect(10.0, 1.0));
+    let floor = BodyDef::new_static(Vec2::new(5.0, -0.75), Shape::rect(10.0, 1.0));
+    world.add_body(ledge).unwrap();
+    world.add_body(floor).unwrap();
+    // Its top below the feet on the ledge: the walk does not meet it.
+    let crate_ = BodyDef::new_dynamic(Vec2::new(0.875, -0.15), Shape::rect(0.5, 0.2));
+    world.add_body(crate_).unwrap();
+    let start = Vec2::new(-0.125, 0.5 + skin);
+    let def = BodyDef::new_kinematic(start, Shape::rect(0.5, 1.0), Vec2::ZERO);
+    let id = world.add_body(def).unwrap();
+    let mover = CharacterMover::default();
+    let out = world
+        .move_character(id, Vec2::new(0.5, 0.0), &mover, DT)
+        .unwrap();
+    assert_eq!(out.position.x, 0.375, "{out:?}");
+    assert!(out.on_ground, "{out:?}");
+    assert!(
+        (out.position.y - (-0.25 + skin + 0.5)).abs() < 1e-5,
+        "{out:?}"
+    );
+}
+
+#[test]
+fn a_fast_walk_climbs_a_step_with_a_wall_behind_it_when_the_top_is_a_skin_deep() {
+    // A step 0.2 m high with a tall wall `depth` behind its face; the
+    // character stands a skin short of the face and walks 0.1 m in one
+    // move, farther than the step's top is deep. The climb's forward move
+    // runs into the wall, yet it climbs if the top is deeper than the
+    // skin, and ends on it a skin short of the wall. A top shallower than
+    // the skin is no step: the wall stops it below.
+    let skin = CharacterMover::default().skin;
+    for depth in [0.005, 0.008, 0.012, 0.015, 0.03, 0.06] {
+        let mut world = World::default();
+        let floor = BodyDef::new_static(Vec2::new(0.0, -0.5), Shape::rect(20.0, 1.0));
+        let step = BodyDef::new_static(Vec2::new(1.0 + depth / 2.0, 0.1), Shape::rect(depth, 0.2));
+        let wall = BodyDef::new_static(Vec2::new(1.5 + depth, 2.0), Shape::rect(1.0, 4.0));
+        for def in [floor, step, wall] {
+            world.add_body(def).unwrap();
+        }
+        let start = Vec2::new(1.0 - skin - HALF.x, HALF.y + skin);
+        let id = character_at(&mut world, start);
+        let end = move_once(&mut world, id, Vec2::new(0.1, 0.0));
+        if depth > skin {
+            let on_top = Vec2::new(1.0 + depth - skin - HALF.x, 0.2 + HALF.y + skin);
+            assert!((end - on_top).length() < 1e-4, "depth {depth}: at {end}");
+        } else {
+            assert!((end - start).length() < 1e-4, "depth {depth}: at {end}");
+        }
+    }
+}
