@@ -83,6 +83,17 @@ impl Page {
     /// Opens a blank page in `browser`, with its console, log and page
     /// events on.
     pub fn open(browser: &Browser) -> Result<Self> {
+        Self::open_with(browser, false)
+    }
+
+    /// [`open`](Self::open), in a window of its own: pages that must run
+    /// side by side, since a page hidden behind another gets no animation
+    /// frames.
+    pub fn open_in_window(browser: &Browser) -> Result<Self> {
+        Self::open_with(browser, true)
+    }
+
+    fn open_with(browser: &Browser, new_window: bool) -> Result<Self> {
         let (mut ws, _) = tungstenite::connect(browser.ws_url.as_str())
             .context("connecting to chromium's DevTools")?;
         if let MaybeTlsStream::Plain(s) = ws.get_mut() {
@@ -94,7 +105,10 @@ impl Page {
             session: String::new(),
             events: Vec::new(),
         };
-        let target = page.call("Target.createTarget", json!({ "url": "about:blank" }))?;
+        let target = page.call(
+            "Target.createTarget",
+            json!({ "url": "about:blank", "newWindow": new_window }),
+        )?;
         let target_id = target["targetId"].clone();
         let attached = page.call(
             "Target.attachToTarget",

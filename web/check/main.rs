@@ -7,9 +7,12 @@
 //! - every scene draws: the browser's frame at that tick matches the
 //!   native off-screen render of the same frame (same camera, same size):
 //!   at most [`MAX_DIFFERENT`] of the drawn pixels differ;
-//! - a key press moves the player in the Playground.
+//! - a key press moves the player in the Playground;
+//! - the netplay game, in two tabs that play each other over WebRTC,
+//!   agrees tick by tick with a straight native run (`netplay.rs`).
 //!
-//! `bash web/build.sh && cargo run --release -p passo-web-check -- [--ticks N] [--scenes a,b] [--backends webgpu,webgl] [--dir DIR] [--save DIR]`
+//! `bash web/build.sh && cargo run --release -p passo-web-check -- [--ticks N] [--scenes a,b] [--backends webgpu,webgl] [--netplay-frames N] [--dir DIR] [--save DIR]`
+//! (`--netplay-frames 0` leaves the netplay check out; default 600 ticks)
 //!
 //! It prints a table and exits with 1 when a check fails.
 //!
@@ -18,6 +21,7 @@
 //! ratio; `--bench --write` puts that table in BENCHMARKS.md.
 
 mod cdp;
+mod netplay;
 mod serve;
 
 use anyhow::{Context, Result, anyhow, bail};
@@ -56,6 +60,7 @@ struct Args {
     save: Option<PathBuf>,
     bench: bool,
     write: bool,
+    netplay_frames: u64,
 }
 
 fn parse_args() -> Result<Args> {
@@ -70,6 +75,7 @@ fn parse_args() -> Result<Args> {
         save: None,
         bench: false,
         write: false,
+        netplay_frames: 600,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
@@ -82,12 +88,21 @@ fn parse_args() -> Result<Args> {
             "--save" => args.save = Some(PathBuf::from(value()?)),
             "--bench" => args.bench = true,
             "--write" => args.write = true,
+            "--netplay-frames" => {
+                args.netplay_frames = value()?.parse().context("--netplay-frames")?;
+            }
             _ => bail!("unknown option {flag}; see the file's comment for the options"),
         }
     }
     if !args.dir.join("index.html").is_file() {
         bail!(
             "{} holds no built web demo: run `bash web/build.sh` first",
+            args.dir.display()
+        );
+    }
+    if args.netplay_frames > 0 && !args.dir.join("netplay.html").is_file() {
+        bail!(
+            "{} holds no netplay page: run `bash web/build.sh` again",
             args.dir.display()
         );
     }
@@ -411,6 +426,18 @@ fn run() -> Result<bool> {
             ok &= !row.contains("**failed**");
             println!("{row}");
         }
+    }
+    if args.netplay_frames > 0 {
+        println!(
+            "\nThe netplay game in two tabs, each tick's checksum against a straight native run \
+             of the same inputs.\n"
+        );
+        println!("| game | ticks | rollbacks (each tab) | result |");
+        println!("|---|---:|---|---|");
+        let row = netplay::check(&base, args.netplay_frames, args.save.as_deref())
+            .unwrap_or_else(|e| format!("| two tabs over WebRTC | | | **failed**: {e:#} |"));
+        ok &= !row.contains("**failed**");
+        println!("{row}");
     }
     Ok(ok)
 }
