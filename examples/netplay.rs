@@ -5,8 +5,8 @@
 //! tabs over WebRTC: `web/netplay/`.
 
 use ggrs::{
-    Config, DesyncDetection, GgrsError, GgrsEvent, GgrsRequest, Message, NonBlockingSocket,
-    P2PSession, PlayerType, PredictRepeatLast, SessionBuilder, SessionState,
+    Config, DesyncDetection, GgrsError, GgrsEvent, Message, NonBlockingSocket, P2PSession,
+    PlayerType, PredictRepeatLast, SessionBuilder, SessionState,
 };
 pub use passo_netplay::game::{
     DT, Game, Input, KEYS, Rollback, check_inputs, scripted_input, straight_checksums, straight_run,
@@ -298,18 +298,8 @@ pub fn p2p_loopback(frames: u64, link: Link) -> Result<[PeerReport; 2], String> 
                 Err(GgrsError::PredictionThreshold) => continue,
                 Err(e) => return Err(e.to_string()),
             };
-            for request in requests {
-                let advance = matches!(request, GgrsRequest::AdvanceFrame { .. });
-                reports[me].rollbacks +=
-                    usize::from(matches!(request, GgrsRequest::LoadGameState { .. }));
-                games[me].handle_one(request)?;
-                if advance {
-                    let t = games[me].tick as usize;
-                    let checksums = &mut reports[me].checksums;
-                    checksums.resize(checksums.len().max(t), 0);
-                    checksums[t - 1] = games[me].checksum();
-                }
-            }
+            reports[me].rollbacks +=
+                games[me].handle_recording(requests, &mut reports[me].checksums, u64::MAX)?;
         }
         if link.latency.is_zero() {
             std::thread::sleep(Duration::from_micros(200));

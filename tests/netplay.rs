@@ -9,8 +9,8 @@
 
 use ggrs::{GgrsError, GgrsRequest, InputStatus, NonBlockingSocket};
 use passo_examples::netplay::{
-    Game, Link, LoopbackSocket, check_inputs, p2p_loopback, scripted_input, straight_checksums,
-    straight_run, sync_test,
+    Game, Link, LoopbackSocket, Netplay, check_inputs, p2p_loopback, scripted_input,
+    straight_checksums, straight_run, sync_test,
 };
 use std::time::Duration;
 
@@ -137,7 +137,7 @@ fn input_bits_no_key_makes_end_the_session_with_an_error_naming_the_peer() {
             inputs[player].0 = bad;
             let mut game = Game::new();
             let error = game
-                .handle_one(GgrsRequest::AdvanceFrame {
+                .handle_one::<Netplay>(GgrsRequest::AdvanceFrame {
                     inputs: inputs.to_vec(),
                 })
                 .unwrap_err();

@@ -25,8 +25,8 @@
 
 use crate::game::{Game, Input, scripted_input};
 use ggrs::{
-    Config, DesyncDetection, GgrsError, GgrsEvent, GgrsRequest, Message, NonBlockingSocket,
-    P2PSession, PlayerType, PredictRepeatLast, SessionBuilder, SessionState,
+    Config, DesyncDetection, GgrsError, GgrsEvent, Message, NonBlockingSocket, P2PSession,
+    PlayerType, PredictRepeatLast, SessionBuilder, SessionState,
 };
 use matchbox_socket::{ChannelConfig, PeerId, RtcIceServerConfig, WebRtcChannel, WebRtcSocket};
 use passo_loop::{FixedTimestep, RealClock};
@@ -334,17 +334,11 @@ impl App {
                 Err(GgrsError::PredictionThreshold) => continue,
                 Err(e) => return Err(e.to_string()),
             };
-            for request in requests {
-                let advance = matches!(request, GgrsRequest::AdvanceFrame { .. });
-                self.rollbacks += u64::from(matches!(request, GgrsRequest::LoadGameState { .. }));
-                self.game.handle_one(request)?;
-                let tick = self.game.tick;
-                if advance && self.settings.frames.is_some_and(|n| tick <= n) {
-                    let t = tick as usize;
-                    self.checksums.resize(self.checksums.len().max(t), 0);
-                    self.checksums[t - 1] = self.game.checksum();
-                }
-            }
+            let keep = self.settings.frames.unwrap_or(0);
+            let rollbacks = self
+                .game
+                .handle_recording(requests, &mut self.checksums, keep)?;
+            self.rollbacks += rollbacks as u64;
             self.settled = session.confirmed_frame();
         }
         Ok(())

@@ -115,6 +115,30 @@ impl Game {
         requests.into_iter().try_for_each(|r| self.handle_one(r))
     }
 
+    /// [`handle`](Self::handle), keeping a record: each tick it advances
+    /// to, up to tick `keep`, has its checksum written at `checksums[t -
+    /// 1]` (a tick simulated again after a rollback overwrites it).
+    /// Returns how many rollbacks (loads) the requests held.
+    pub fn handle_recording<C: Rollback>(
+        &mut self,
+        requests: Vec<GgrsRequest<C>>,
+        checksums: &mut Vec<u128>,
+        keep: u64,
+    ) -> Result<usize, String> {
+        let mut rollbacks = 0;
+        for request in requests {
+            let advance = matches!(request, GgrsRequest::AdvanceFrame { .. });
+            rollbacks += usize::from(matches!(request, GgrsRequest::LoadGameState { .. }));
+            self.handle_one(request)?;
+            if advance && self.tick <= keep {
+                let t = self.tick as usize;
+                checksums.resize(checksums.len().max(t), 0);
+                checksums[t - 1] = self.checksum();
+            }
+        }
+        Ok(rollbacks)
+    }
+
     /// Carries out one GGRS request: save, load or advance. An advance
     /// whose inputs set bits no key makes is refused (see
     /// [`check_inputs`]): the session should end with that error.
