@@ -125,3 +125,47 @@ fn a_pair_whose_bodies_do_not_approach_along_its_normal_is_no_contact() {
     assert_eq!(contacts_between(&world, a, b), 1);
     assert!(max_penetration(&world) <= LINEAR_SLOP);
 }
+
+#[test]
+fn a_body_let_go_at_rest_beside_a_ledge_a_hair_above_its_top_falls_past_it() {
+    // A ledge whose top is at y = 0 and right face at x = 0, static or
+    // kinematic (standing still), and a box or a circle let go at rest
+    // beside it, `gap.x` to its right and `gap.y` above its top: beyond
+    // the corner. Gravity alone moves it, straight down past the ledge's
+    // side: the contact is the side's plane. Seen without gravity's pull
+    // over the step (on it, or on the kinematic ledge too), no gap would
+    // close and the top's plane, a hair below, would hold it in the air.
+    for kinematic in [false, true] {
+        for shape in [Shape::rect(0.5, 0.5), Shape::circle(0.25)] {
+            for gap in [
+                Vec2::new(0.0005, 0.0005),
+                Vec2::new(0.001, 0.001),
+                Vec2::new(0.003, 0.0005),
+                Vec2::new(0.0005, 0.002),
+            ] {
+                let mut world = World::default();
+                add_ground(&mut world, 20.0);
+                let centre = Vec2::new(-1.0, 4.0);
+                let ledge = if kinematic {
+                    BodyDef::new_kinematic(centre, Shape::rect(2.0, 8.0), Vec2::ZERO)
+                } else {
+                    BodyDef::new_static(centre, Shape::rect(2.0, 8.0))
+                };
+                world.add_body(ledge).unwrap();
+                let half = shape.half_extents();
+                // Circles beyond the corner diagonally, by the same gaps.
+                let at = Vec2::new(0.0, 8.0) + half + gap;
+                let body = world.add_body(BodyDef::new_dynamic(at, shape)).unwrap();
+                for _ in 0..30 {
+                    world.step(DT);
+                }
+                // Half a second of free fall is 1.23 m.
+                let fell = at.y - world.body(body).unwrap().position.y;
+                assert!(
+                    fell > 1.2,
+                    "kinematic {kinematic}, {shape:?}, gap {gap}: fell {fell} m"
+                );
+            }
+        }
+    }
+}
