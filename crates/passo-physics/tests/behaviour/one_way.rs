@@ -481,3 +481,43 @@ fn a_dropping_body_s_own_queries_pass_through_one_way_platforms() {
     world.set_position(player, Vec2::new(0.0, 3.0));
     assert_eq!(ground_ray(&world).map(|h| h.0), Some(platform));
 }
+
+#[test]
+fn without_continuous_collision_a_body_falling_onto_a_moving_lift_lands_on_it() {
+    // The same falls onto a one-way lift rising at 1.5 m/s or sinking at
+    // 0.5 m/s: how deep a landing may first be seen depends on how fast
+    // the two close, the lift's motion with the box's.
+    use passo_physics::{ContactSettings, WorldSettings};
+    for lift in [1.5f32, -0.5] {
+        for drop in [0.05f32, 0.2, 0.5, 2.0] {
+            for i in 0..5 {
+                let settings = WorldSettings {
+                    contacts: Some(ContactSettings {
+                        continuous: false,
+                        ..Default::default()
+                    }),
+                    ..Default::default()
+                };
+                let mut world = World::new(settings).unwrap();
+                add_ground(&mut world, 40.0);
+                let velocity = Vec2::new(0.0, lift);
+                let def =
+                    BodyDef::new_kinematic(Vec2::new(0.0, 1.9), Shape::rect(6.0, 0.2), velocity);
+                let platform = world.add_body(def.with_one_way(UP)).unwrap();
+                let y = 2.4 + drop + 0.01 * i as f32;
+                let def = BodyDef::new_dynamic(Vec2::new(0.0, y), Shape::rect(0.8, 0.8));
+                let b = world.add_body(def).unwrap();
+                for _ in 0..60 {
+                    world.step(DT);
+                }
+                let top = world.body(platform).unwrap().position.y + 0.1;
+                let y = world.body(b).unwrap().position.y;
+                assert!(
+                    (y - 0.4 - top).abs() < 0.01,
+                    "lift {lift} m/s, from {drop} m (+{i} cm): {} m above its top",
+                    y - 0.4 - top
+                );
+            }
+        }
+    }
+}
