@@ -105,6 +105,28 @@ fn a_body_keeps_its_speculative_contacts_with_walls_whichever_way_it_moves() {
 }
 
 #[test]
+fn a_body_keeps_its_speculative_contact_with_a_sleeping_body_it_flies_past() {
+    // A crate asleep on the ground, and a ball flying level at 20 m/s
+    // 5 cm above its top: it does not close on the crate, but something
+    // it glances off could turn it into it within the step, and the crate,
+    // held still while it sleeps, is met as a wall is. One contact, which
+    // neither wakes the crate nor stops the ball.
+    let mut world = World::default();
+    add_ground(&mut world, 100.0);
+    let def = BodyDef::new_dynamic(Vec2::new(1.0, 0.25), Shape::rect(4.0, 0.5));
+    let crate_ = world.add_body(def).unwrap();
+    for _ in 0..120 {
+        world.step(DT);
+    }
+    assert_eq!(world.is_asleep(crate_), Some(true));
+    let ball = circle(&mut world, Vec2::new(0.0, 0.75), Vec2::new(20.0, 0.0));
+    world.step(DT);
+    assert_eq!(contacts_between(&world, ball, crate_), 1);
+    assert_eq!(world.is_asleep(crate_), Some(true));
+    assert!(world.body(ball).unwrap().position.x > 0.3);
+}
+
+#[test]
 fn a_pair_whose_bodies_do_not_approach_along_its_normal_is_no_contact() {
     let weightless = || weightless_world();
     // B passes A along the tangent of their 10 cm gap at 10 m/s: the
