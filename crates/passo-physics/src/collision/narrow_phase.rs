@@ -300,6 +300,9 @@ impl PairContext<'_> {
             return true;
         }
         let ProxyMargin { fall, dt, .. } = margin;
+        // (A longer reach, `+ dt` or `/ dt` for `* dt`, keeps contacts that
+        // never act: it changes only the work, and the bits through the
+        // order the solver meets contacts in.)
         let travel = |speed: f32, margin: f32| {
             ((speed.max(0.0) + fall) * dt).min(ProxyMargin::reached(margin))
         };
@@ -426,7 +429,10 @@ impl NarrowPhase {
         let proxies = narrow.proxies;
         // The same pairs as the last step's, of the same bodies: the same
         // keys, which `last_keys` holds and `keyed` holds sorted: a pile
-        // at rest need not make them again.
+        // at rest need not make them again. (With `!=`, a body pooled into
+        // a removed one's place keeps the old keys: they only order the
+        // pairs and match kept contacts, by dynamic index, so nothing
+        // shows; `contact_reuse.rs` pools one.)
         if proxies.pairs_same && proxies.slot == self.last_slots {
             #[cfg(test)]
             debug_assert_eq!(self.last_keys, self.keys_of(narrow));
@@ -530,6 +536,8 @@ fn key_all(
     let mut highest = 0;
     for (k, pair) in keys.iter_mut().zip(pairs) {
         *k = key(pair);
+        // (A larger bound, from `|` or `^`, only picks the sort for many
+        // slots: the same order.)
         highest = highest.max(k.0 & 0xFFFF_FFFF);
     }
     highest

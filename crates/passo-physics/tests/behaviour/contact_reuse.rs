@@ -221,3 +221,50 @@ fn a_pyramid_at_rest_takes_the_last_steps_colours_and_a_new_box_colours_anew() {
         "{landing} of 30 while the box lands"
     );
 }
+
+#[test]
+fn a_body_moved_into_the_place_of_one_removed_gets_the_contacts_there() {
+    // Pooling: a crate on a crate is removed and, in the same tick, a
+    // crate of the same size from far away is moved to exactly where it
+    // was, at its velocity. The pairs of the step are the same as the
+    // last step's (the spare, floating far off, was in none), between
+    // other bodies: the contacts name the new crate.
+    for far in [3.0f32, 7.0, 12.0] {
+        let mut world = World::default();
+        let mut settings = *world.settings();
+        settings.contacts.as_mut().unwrap().sleeping = false;
+        world.set_settings(settings).unwrap();
+        add_ground(&mut world, 40.0);
+        let crate_at = |world: &mut World, at: Vec2| {
+            let def = BodyDef::new_dynamic(at, Shape::rect(1.0, 1.0));
+            world.add_body(def).unwrap()
+        };
+        let below = crate_at(&mut world, Vec2::new(0.0, 0.5));
+        let top = crate_at(&mut world, Vec2::new(0.0, 1.5));
+        // Floating, out of every pair (gravity off for it).
+        let spare = crate_at(&mut world, Vec2::new(far, 5.0));
+        world.set_gravity_scale(spare, 0.0).unwrap();
+        for _ in 0..60 {
+            world.step(DT);
+        }
+        let was = world.body(top).unwrap();
+        world.remove_body(top).unwrap();
+        world.set_position(spare, was.position);
+        world.set_velocity(spare, was.velocity);
+        world.step(DT);
+        let on_top: Vec<_> = world.contacts_of(spare).collect();
+        assert!(
+            on_top.iter().any(|c| c.a == below || c.b == below),
+            "{far}: {on_top:?}"
+        );
+        for c in world.contacts_of(below) {
+            assert!(
+                c.a != top && c.b != top,
+                "{far}: a contact of the removed crate"
+            );
+        }
+        // It stays where the removed crate was.
+        let p = world.body(spare).unwrap().position;
+        assert!((p - was.position).length() < 1e-3, "{far}: {p}");
+    }
+}

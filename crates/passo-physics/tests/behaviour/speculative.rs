@@ -127,6 +127,51 @@ fn a_body_keeps_its_speculative_contact_with_a_sleeping_body_it_flies_past() {
 }
 
 #[test]
+fn a_fast_body_keeps_its_speculative_contact_with_an_awake_crate_it_flies_past() {
+    // As with a sleeping crate: a ball at 60 m/s travels farther in a step
+    // (1 m) than its contacts reach (4 radii), so a glance could turn it
+    // anywhere; it keeps the contact with an awake crate 5 cm below its
+    // path.
+    let mut world = World::default();
+    add_ground(&mut world, 100.0);
+    let def = BodyDef::new_dynamic(Vec2::new(1.0, 0.25), Shape::rect(4.0, 0.5));
+    let crate_ = world.add_body(def).unwrap();
+    world.step(DT);
+    assert_eq!(world.is_asleep(crate_), Some(false));
+    let ball = circle(&mut world, Vec2::new(0.0, 0.75), Vec2::new(60.0, 0.0));
+    world.step(DT);
+    assert_eq!(contacts_between(&world, ball, crate_), 1);
+    assert!(world.body(ball).unwrap().position.x > 0.9);
+}
+
+#[test]
+fn at_20_hz_a_box_falling_onto_a_crate_is_met_before_it_gets_in() {
+    // A long step (20 Hz): gravity adds 0.5 m/s over it, and the box
+    // falls that much farther than its speed at the start says. Dropped
+    // from 1 to 80 cm onto a crate (two awake dynamic bodies), the contact
+    // is made the step before they meet, at every height.
+    const STEP: f32 = 0.05;
+    for i in 0..80 {
+        let drop = 0.01 + 0.01 * i as f32;
+        let mut world = World::default();
+        add_ground(&mut world, 20.0);
+        let below = BodyDef::new_dynamic(Vec2::new(0.0, 0.25), Shape::rect(1.0, 0.5));
+        world.add_body(below).unwrap();
+        let def = BodyDef::new_dynamic(Vec2::new(0.0, 0.75 + drop), Shape::rect(0.5, 0.5));
+        world.add_body(def).unwrap();
+        for tick in 0..20 {
+            world.step(STEP);
+            let deepest = max_penetration(&world);
+            assert!(
+                deepest <= 2.0 * LINEAR_SLOP,
+                "from {drop} m, tick {tick}: {} mm in",
+                deepest * 1e3
+            );
+        }
+    }
+}
+
+#[test]
 fn a_pair_whose_bodies_do_not_approach_along_its_normal_is_no_contact() {
     let weightless = || weightless_world();
     // B passes A along the tangent of their 10 cm gap at 10 m/s: the
