@@ -587,6 +587,7 @@ fn in_tasks(
     use rayon::prelude::*;
     let chunk = crate::constants::PARALLEL_CHUNK;
     let count = keyed.len().div_ceil(chunk);
+    // (`<=` resizes to the length it has: nothing.)
     if tasks.len() < count {
         tasks.resize_with(count, TaskFound::default);
     }
