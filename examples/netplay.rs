@@ -5,29 +5,20 @@
 //! tabs over WebRTC: `web/netplay/`.
 
 use ggrs::{
-    Config, DesyncDetection, GgrsError, GgrsEvent, Message, NonBlockingSocket, P2PSession,
-    PlayerType, PredictRepeatLast, SessionBuilder, SessionState,
+    DesyncDetection, GgrsError, GgrsEvent, Message, NonBlockingSocket, P2PSession, PlayerType,
+    SessionBuilder, SessionState,
 };
 pub use passo_netplay::game::{
     DT, Game, Input, KEYS, Rollback, check_inputs, scripted_input, straight_checksums, straight_run,
 };
-use passo_physics::WorldSnapshot;
 use passo_physics::glam::Vec2;
 use std::net::{Ipv4Addr, SocketAddr, UdpSocket};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-/// The GGRS configuration of the game.
-pub struct Netplay;
-
-impl Config for Netplay {
-    type Input = Input;
-    type InputPredictor = PredictRepeatLast;
-    /// What a save holds: the world and the game's tick.
-    type State = (WorldSnapshot, u64);
-    type Address = SocketAddr;
-}
+/// The GGRS configuration of the game over UDP.
+pub type Netplay = passo_netplay::game::Netplay<SocketAddr>;
 
 /// A force model that is not deterministic: it reads a counter that grows
 /// with every call, so a re-simulated tick pushes differently. For showing

@@ -23,30 +23,22 @@
 //! `desyncs` (checksums the peers exchanged that differ), `error`, and
 //! with `frames=N`, `checksums` (hex, `[t]` after `t + 1` ticks).
 
-use crate::game::{Game, Input, scripted_input};
+use crate::game::{Game, Input, Netplay, scripted_input};
 use ggrs::{
-    Config, DesyncDetection, GgrsError, GgrsEvent, Message, NonBlockingSocket, P2PSession,
-    PlayerType, PredictRepeatLast, SessionBuilder, SessionState,
+    DesyncDetection, GgrsError, GgrsEvent, Message, NonBlockingSocket, P2PSession, PlayerType,
+    SessionBuilder, SessionState,
 };
 use matchbox_socket::{ChannelConfig, PeerId, RtcIceServerConfig, WebRtcChannel, WebRtcSocket};
 use passo_loop::{FixedTimestep, RealClock};
-use passo_physics::{BodyKind, Shape, WorldSnapshot};
+use passo_physics::{BodyKind, Shape};
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement, KeyboardEvent};
 
-/// The GGRS configuration in a browser: the game's inputs and state, and
-/// WebRTC peers for addresses.
-pub struct WebNetplay;
-
-impl Config for WebNetplay {
-    type Input = Input;
-    type InputPredictor = PredictRepeatLast;
-    type State = (WorldSnapshot, u64);
-    type Address = PeerId;
-}
+/// The GGRS configuration in a browser: WebRTC peers for addresses.
+pub type WebNetplay = Netplay<PeerId>;
 
 /// GGRS's messages over a WebRTC data channel, in bincode (as over UDP
 /// natively).

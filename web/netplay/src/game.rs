@@ -5,10 +5,13 @@
 //! game keeps no state outside what it saves, and every advance depends
 //! only on the state and the inputs.
 
-use ggrs::{Config, GgrsRequest};
+use ggrs::{Config, GgrsRequest, PredictRepeatLast};
 use passo_physics::glam::Vec2;
 use passo_physics::{BodyId, StateHasher, World, WorldSnapshot};
 use passo_scene::{BuiltScene, Platform, Scene};
+use std::fmt::Debug;
+use std::hash::Hash;
+use std::marker::PhantomData;
 
 /// One player's input for a tick: bit 0 left, bit 1 right, bit 2 jump.
 pub type Input = u8;
@@ -28,6 +31,20 @@ pub fn check_inputs(inputs: &[Input]) -> Result<(), String> {
             inputs[player]
         )),
     }
+}
+
+/// The game's GGRS configuration over a transport whose peers have
+/// addresses `A`: a `SocketAddr` over UDP (`passo_examples::netplay::
+/// Netplay`), a WebRTC peer id in a browser. An input is a [`Input`]; a
+/// save is the world and the game's tick.
+pub struct Netplay<A>(PhantomData<A>);
+
+impl<A: Clone + PartialEq + Eq + Hash + Debug + 'static> Config for Netplay<A> {
+    type Input = Input;
+    type InputPredictor = PredictRepeatLast;
+    /// What a save holds: the world and the game's tick.
+    type State = (WorldSnapshot, u64);
+    type Address = A;
 }
 
 /// A GGRS configuration this game plays under: its inputs and its saved

@@ -307,23 +307,30 @@ fn one_way_platforms_and_drop_through_survive_a_snapshot() {
     assert!(copy.body(a).unwrap().position.y < 1.0, "it dropped through");
 }
 
+/// A world with continuous collision off (contacts reach 2 cm) and solid
+/// ground at y = 0.
+fn without_sweeps() -> World {
+    use passo_physics::{ContactSettings, WorldSettings};
+    let settings = WorldSettings {
+        contacts: Some(ContactSettings {
+            continuous: false,
+            ..Default::default()
+        }),
+        ..Default::default()
+    };
+    let mut world = World::new(settings).unwrap();
+    add_ground(&mut world, 40.0);
+    world
+}
+
 #[test]
 fn without_continuous_collision_a_body_falling_onto_it_lands_as_on_a_solid_one() {
     // With continuous collision off, contacts reach 2 cm: a box falling
     // from 5 to 50 cm was first seen deeper than a landing and went
     // through, 1 to 7 times in 10, where a solid platform held every time.
-    use passo_physics::{ContactSettings, WorldSettings};
     for drop in [0.05f32, 0.1, 0.2, 0.5, 2.0] {
         for i in 0..10 {
-            let settings = WorldSettings {
-                contacts: Some(ContactSettings {
-                    continuous: false,
-                    ..Default::default()
-                }),
-                ..Default::default()
-            };
-            let mut world = World::new(settings).unwrap();
-            add_ground(&mut world, 40.0);
+            let mut world = without_sweeps();
             let platform = BodyDef::new_static(Vec2::new(0.0, 1.9), Shape::rect(6.0, 0.2));
             world.add_body(platform.with_one_way(UP)).unwrap();
             let y = 2.4 + drop + 0.01 * i as f32;
@@ -487,19 +494,10 @@ fn without_continuous_collision_a_body_falling_onto_a_moving_lift_lands_on_it() 
     // The same falls onto a one-way lift rising at 1.5 m/s or sinking at
     // 0.5 m/s: how deep a landing may first be seen depends on how fast
     // the two close, the lift's motion with the box's.
-    use passo_physics::{ContactSettings, WorldSettings};
     for lift in [1.5f32, -0.5] {
         for drop in [0.05f32, 0.2, 0.5, 2.0] {
             for i in 0..5 {
-                let settings = WorldSettings {
-                    contacts: Some(ContactSettings {
-                        continuous: false,
-                        ..Default::default()
-                    }),
-                    ..Default::default()
-                };
-                let mut world = World::new(settings).unwrap();
-                add_ground(&mut world, 40.0);
+                let mut world = without_sweeps();
                 let velocity = Vec2::new(0.0, lift);
                 let def =
                     BodyDef::new_kinematic(Vec2::new(0.0, 1.9), Shape::rect(6.0, 0.2), velocity);
