@@ -39,7 +39,7 @@ pub fn check_inputs(inputs: &[Input]) -> Result<(), String> {
 /// save is the world and the game's tick.
 pub struct Netplay<A>(PhantomData<A>);
 
-impl<A: Clone + PartialEq + Eq + Hash + Debug + 'static> Config for Netplay<A> {
+impl<A: Clone + PartialEq + Eq + Hash + Debug + Send + Sync + 'static> Config for Netplay<A> {
     type Input = Input;
     type InputPredictor = PredictRepeatLast;
     /// What a save holds: the world and the game's tick.
