@@ -124,6 +124,15 @@ impl Page {
         Ok(page)
     }
 
+    /// The page as it shows now, a PNG file's bytes.
+    pub fn screenshot_png(&mut self) -> Result<Vec<u8>> {
+        let shot = self.call("Page.captureScreenshot", json!({ "format": "png" }))?;
+        Ok(base64::Engine::decode(
+            &base64::engine::general_purpose::STANDARD,
+            shot["data"].as_str().unwrap_or_default(),
+        )?)
+    }
+
     /// Calls `method` and returns its result; events read meanwhile are
     /// kept in [`events`](Self::events).
     pub fn call(&mut self, method: &str, params: Value) -> Result<Value> {

@@ -226,11 +226,7 @@ fn check_scene(
     let state = wait_for(page, Duration::from_secs(30), |s| {
         num(s, "frames") >= frames + 2.0
     })?;
-    let shot = page.call("Page.captureScreenshot", json!({ "format": "png" }))?;
-    let png = base64::Engine::decode(
-        &base64::engine::general_purpose::STANDARD,
-        shot["data"].as_str().unwrap_or_default(),
-    )?;
+    let png = page.screenshot_png()?;
     let browser_frame = RgbaImage::decode_png(&png, "the screenshot")?;
 
     let sim = native_sim(scene, args.ticks)?;

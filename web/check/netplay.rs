@@ -89,12 +89,10 @@ pub fn check(base: &str, frames: u64, save: Option<&Path>) -> Result<String> {
     if let Some(dir) = save {
         std::fs::create_dir_all(dir)?;
         for (i, tab) in tabs.iter_mut().enumerate() {
-            let shot = tab.call("Page.captureScreenshot", json!({ "format": "png" }))?;
-            let png = base64::Engine::decode(
-                &base64::engine::general_purpose::STANDARD,
-                shot["data"].as_str().unwrap_or_default(),
+            std::fs::write(
+                dir.join(format!("netplay-tab{i}.png")),
+                tab.screenshot_png()?,
             )?;
-            std::fs::write(dir.join(format!("netplay-tab{i}.png")), png)?;
         }
     }
     for tab in &mut tabs {
